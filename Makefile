@@ -1,0 +1,47 @@
+# tidalcrust: make run | make test | make bench
+# Installs the Debian packages it needs (when root; otherwise prints the apt-get line),
+# configures with CMake and builds.
+BUILD    ?= build
+JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
+PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
+            libtomlplusplus-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev
+EXE      := $(BUILD)/tidalcrust
+
+.PHONY: all deps configure build test run bench clean
+
+all: build
+
+deps:
+	@missing=""; for p in $(PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q 'install ok installed' || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "installing:$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing; \
+	  else \
+	    echo "missing packages; run: sudo apt-get install -y$$missing"; exit 1; \
+	  fi; \
+	fi
+
+$(BUILD)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+run: build
+	$(EXE) run workflows/quick.toml
+
+bench: build
+	$(EXE) bench --config workflows/quick.toml --steps 50
+	$(EXE) bench --config workflows/paper-T.toml --steps 20
+	$(BUILD)/tidalcrust_microbench --benchmark_min_time=0.2
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,40 @@
+#pragma once
+// The body description: particles, springs, hinges and faces. It never changes once built;
+// everything that evolves (positions, rest lengths, stiffnesses, failures) lives in State.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tidalcrust {
+
+enum class Species : std::uint8_t { interior = 0, shell = 1 };
+enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2 };
+
+struct Body {
+  std::vector<double> mass;                          ///< [N] in units of the body mass M
+  std::vector<std::uint8_t> species;                 ///< [N] Species values
+  std::vector<std::array<std::int32_t, 2>> springs;  ///< [Ns] particle indices
+  std::vector<std::uint8_t> spring_kind;             ///< [Ns] SpringKind values
+  /// [Nh] one hinge per shell edge: {wing_1, wing_2, edge_a, edge_b} (Bridson 2003 x1..x4):
+  /// edge_a-edge_b is the shared edge, wing_1 and wing_2 the opposite vertices of its faces.
+  std::vector<std::array<std::int32_t, 4>> hinges;
+  std::vector<std::array<std::int32_t, 3>> faces;    ///< [Nf] shell triangles, outward CCW
+  double softening = 0.0;  ///< Plummer softening length in R (1/100 of min initial spacing)
+
+  std::size_t particle_count() const { return mass.size(); }
+  std::size_t spring_count() const { return springs.size(); }
+  std::size_t hinge_count() const { return hinges.size(); }
+  std::size_t count_species(Species s) const {
+    std::size_t n = 0;
+    for (auto v : species) n += (v == static_cast<std::uint8_t>(s));
+    return n;
+  }
+  std::size_t count_springs(SpringKind k) const {
+    std::size_t n = 0;
+    for (auto v : spring_kind) n += (v == static_cast<std::uint8_t>(k));
+    return n;
+  }
+};
+
+}  // namespace tidalcrust

@@ -1,0 +1,74 @@
+#pragma once
+// One checkpoint = the full content needed to continue a run bit for bit: body, state, stage
+// bookkeeping, resolved configuration and the observables gathered so far. HDF5 layout in
+// design.md ("Checkpoints"); written atomically, validated on read.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "body.hpp"
+#include "state.hpp"
+
+namespace tidalcrust {
+
+inline constexpr std::int64_t checkpoint_format_version = 1;
+
+/// One shell spring failure (paper section 2.6).
+struct FailureEvent {
+  double time = 0;                      ///< t_grav
+  std::int64_t step = 0;
+  std::int32_t spring = 0;              ///< index into Body::springs
+  double strain = 0;                    ///< (L - L0)/L0 when it failed
+  std::array<double, 3> position{};     ///< spring midpoint, R, same frame as State
+};
+
+/// A sample of the conserved quantities (body + perturber, about the origin).
+struct TimeseriesSample {
+  double time = 0;
+  std::int64_t failed = 0;              ///< failed springs so far
+  double kinetic_energy = 0;
+  std::array<double, 3> momentum{};
+  std::array<double, 3> angular_momentum{};
+};
+
+struct Observables {
+  std::vector<FailureEvent> failures;
+  std::vector<TimeseriesSample> timeseries;
+};
+
+/// Which stage wrote the checkpoint and everything its next step depends on.
+struct StageInfo {
+  std::string stage;               ///< "build", "stretch", "relax", "encounter"
+  bool complete = true;            ///< false for a mid-stage (periodic or SIGINT) checkpoint
+  std::int64_t start_step = 0;     ///< global step at which the stage started
+  std::int64_t end_step = 0;       ///< global step at which the stage ends
+  std::string parent_hash;         ///< state_hash of the checkpoint the stage started from
+  std::map<std::string, double> scalars;      ///< results and schedule phases, by name
+  std::map<std::string, std::string> labels;  ///< e.g. "encounter" -> "T5"
+};
+
+struct Checkpoint {
+  StageInfo stage;
+  std::string config_toml;  ///< resolved configuration (to_toml)
+  Body body;
+  State state;
+  Observables observables;
+};
+
+/// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
+/// Never overwrites a valid checkpoint in place. Equal checkpoints give byte-identical files.
+/// Also writes the .xdmf sidecar beside it. Throws InputError if the folder is not writable.
+void write_checkpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
+
+/// Reads and validates (format version, dataset shapes, stage name, state_hash).
+/// Throws InputError naming the file and the dataset for a missing, truncated, corrupt or
+/// tampered file.
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+/// True if `file` exists and read_checkpoint would succeed (used by restart logic).
+bool is_valid_checkpoint(const std::filesystem::path& file);
+
+}  // namespace tidalcrust

@@ -1,0 +1,55 @@
+#include "cli_options.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "errors.hpp"
+
+namespace tidalcrust {
+
+void add_common_options(cxxopts::Options& options) {
+  options.add_options("common")
+      ("config", "replace the stored configuration with this TOML file", cxxopts::value<std::string>())
+      ("set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())
+      ("threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))
+      ("dt-factor", "scale the time step by this factor", cxxopts::value<double>()->default_value("1.0"))
+      ("h,help", "show this help");
+}
+
+CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
+  CommonOptions common;
+  if (parsed.count("config")) common.config_file = parsed["config"].as<std::string>();
+  if (parsed.count("set")) common.overrides = parsed["set"].as<std::vector<std::string>>();
+  common.threads = parsed["threads"].as<int>();
+  common.dt_factor = parsed["dt-factor"].as<double>();
+  if (common.threads < 0) throw InputError(fmt::format("--threads must be >= 0, got {}", common.threads));
+  if (!std::isfinite(common.dt_factor) || common.dt_factor <= 0)
+    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", common.dt_factor));
+  return common;
+}
+
+cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv) {
+  try {
+    return options.parse(argc, argv);
+  } catch (const cxxopts::exceptions::exception& err) {
+    throw InputError(fmt::format("{}: {} (see --help)", options.program(), err.what()));
+  }
+}
+
+Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
+                      const CommonOptions& common) {
+  Config config = common.config_file ? load_config(*common.config_file)
+                                     : parse_config(stored_toml, stored_origin);
+  for (const auto& assignment : common.overrides) apply_override(config, assignment);
+  config.integrator.dt *= common.dt_factor;
+  validate(config, "--dt-factor");
+  return config;
+}
+
+void apply_thread_count(int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,34 @@
+#pragma once
+// Options shared by the stage commands: --config, --set, --threads, --dt-factor.
+#include <cxxopts.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+
+namespace tidalcrust {
+
+struct CommonOptions {
+  std::optional<std::filesystem::path> config_file;  ///< --config replaces the stored config
+  std::vector<std::string> overrides;                ///< --set section.key=value
+  int threads = 0;                                   ///< 0: OpenMP default
+  double dt_factor = 1.0;                            ///< scales integrator.dt
+};
+
+void add_common_options(cxxopts::Options& options);
+CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
+
+/// Parses argv, turning cxxopts errors (unknown option, missing value) into InputError.
+cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
+
+/// The configuration a stage runs with: `stored` (TOML text from the input checkpoint),
+/// replaced by --config when given, then each --set applied, then --dt-factor.
+Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
+                      const CommonOptions& common);
+
+/// Sets the OpenMP thread count (0 leaves the default). Results never depend on it.
+void apply_thread_count(int threads);
+
+}  // namespace tidalcrust

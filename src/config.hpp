@@ -1,0 +1,119 @@
+#pragma once
+// The workflow configuration: every parameter of the paper with a default, a unit and a range.
+// Read from TOML (toml++); unknown keys and out-of-range values are InputErrors naming the key.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tidalcrust {
+
+struct WorkflowConfig {
+  std::string name = "unnamed";
+  std::uint64_t seed = 1;
+};
+
+/// Random isotropic interior (paper section 2.2, Kot 2015).
+struct InteriorConfig {
+  std::int64_t count = 1869;       ///< N_I target number of nodes
+  double radius = 0.92;            ///< r_I, R
+  double min_separation = 0.10;    ///< d_IS, R
+  double spring_distance = 0.23;   ///< d_I, R
+  double spring_constant = 0.076;  ///< k_I, G M^2 / R^3
+  std::int64_t max_trials = 2000000;  ///< random sequential addition gives up after this many
+};
+
+/// Icosahedral crust (sections 2.4-2.6).
+struct ShellConfig {
+  bool enabled = true;
+  std::int64_t level = 4;                  ///< L: 10*4^L+2 nodes
+  double mass = 0.07;                      ///< M_S, M
+  double spring_constant = 0.06;           ///< k_S, G M^2 / R^3
+  double bending_constant = 0.0075;        ///< k_e, G M^2 / R^2
+  double failure_strain = 0.003;           ///< eps_S
+  double failed_stiffness_factor = 0.005;  ///< F_Sk
+};
+
+/// Cross springs between shell and interior (section 2.7, eq. 26).
+struct CrossConfig {
+  double distance = 0.18;         ///< d_C, R
+  double spring_constant = 0.005; ///< k_C, G M^2 / R^3
+  bool nonlinear = false;         ///< apply f(eps) of eq. 26
+  double strain_scale = 0.03;     ///< eps_C
+  double min_force_factor = 0.1;  ///< F_Ck
+};
+
+struct IntegratorConfig {
+  double dt = 0.002;                 ///< t_grav
+  double softening_fraction = 0.01;  ///< Plummer softening / min initial spacing
+};
+
+/// Stretch and strengthen (section 2.3).
+struct StretchConfig {
+  bool enabled = true;
+  std::int64_t max_iterations = 60;
+  double tolerance = 1e-6;            ///< |mean radial surface acceleration|, G M / R^2
+  double cross_compression = 0.002;   ///< extra compressive strain of cross springs
+};
+
+/// Damped relaxation and stability probe (section 2.8).
+struct RelaxConfig {
+  double damping = 50.0;                  ///< gamma, 1/t_grav
+  double duration = 3.0;                  ///< T, t_grav
+  std::int64_t rest_length_interval = 10; ///< steps between shell rest-length updates
+  double rest_length_rate = 0.05;         ///< fraction of (L - L0) moved per update
+  std::int64_t hinge_reset_interval = 100;///< steps between hinge rest-angle resets
+  std::int64_t checkpoint_interval = 500; ///< steps between mid-stage checkpoints (0: none)
+  bool stability_probe = true;
+  double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
+  double probe_duration = 3.0;            ///< t_grav
+};
+
+/// Defaults shared by all encounters (sections 2.6, 2.9).
+struct EncounterDefaults {
+  double damping = 0.01;                   ///< gamma, 1/t_grav
+  std::int64_t fail_interval = 3;          ///< t_fail in steps
+  double start_distance = 3.0;             ///< perturber distance at start, R
+  double end_distance = 3.0;               ///< perturber distance at end, R
+  std::int64_t checkpoint_interval = 250;  ///< steps between mid-stage checkpoints (0: none)
+  std::int64_t sample_interval = 10;       ///< steps between timeseries samples
+};
+
+/// One encounter of Table 4.
+struct EncounterSpec {
+  std::string name;
+  double perturber_mass = 0.5;    ///< M2, M
+  double pericenter = 1.84;       ///< q, R
+  double pericenter_speed = 1.60; ///< V_q, sqrt(GM/R)
+  std::optional<double> failure_strain;  ///< eps_S override (T1 uses 0.002)
+};
+
+struct Config {
+  WorkflowConfig workflow;
+  InteriorConfig interior;
+  ShellConfig shell;
+  CrossConfig cross;
+  IntegratorConfig integrator;
+  StretchConfig stretch;
+  RelaxConfig relax;
+  EncounterDefaults encounter;
+  std::vector<EncounterSpec> encounters;
+
+  /// The encounter with this name; InputError listing the known names otherwise.
+  const EncounterSpec& find_encounter(const std::string& name) const;
+};
+
+/// Parses TOML text. `origin` (a file name) prefixes every error message.
+Config parse_config(const std::string& toml_text, const std::string& origin);
+/// Reads and parses a TOML file; a missing file is an InputError.
+Config load_config(const std::filesystem::path& file);
+/// Applies one "section.key=value" override (value in TOML syntax, e.g. 0.002 or true).
+void apply_override(Config& config, const std::string& assignment);
+/// The resolved configuration, every key with its default, as TOML with unit comments.
+/// parse_config(to_toml(c)) == c, and equal configs give equal text.
+std::string to_toml(const Config& config);
+/// Checks every value's range and the relations between values; InputError naming the key.
+void validate(const Config& config, const std::string& origin);
+
+}  // namespace tidalcrust
