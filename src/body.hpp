@@ -18,6 +18,9 @@ struct Body {
   std::vector<std::uint8_t> spring_kind;             ///< [Ns] SpringKind values
   /// [Nh] one hinge per shell edge: {wing_1, wing_2, edge_a, edge_b} (Bridson 2003 x1..x4):
   /// edge_a-edge_b is the shared edge, wing_1 and wing_2 the opposite vertices of its faces.
+  /// Ordered so that (wing_1, edge_a, edge_b) and (wing_2, edge_b, edge_a) are both
+  /// counter-clockwise seen from outside; then hinge_angle() (hinge_geometry.hpp) has the
+  /// same sign on every hinge of a convex shell.
   std::vector<std::array<std::int32_t, 4>> hinges;
   std::vector<std::array<std::int32_t, 3>> faces;    ///< [Nf] shell triangles, outward CCW
   double softening = 0.0;  ///< Plummer softening length in R (1/100 of min initial spacing)
