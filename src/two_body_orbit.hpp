@@ -38,7 +38,7 @@ class TwoBodyOrbit {
   /// e = q V_q^2 / mu - 1.
   double eccentricity() const { return e_; }
   OrbitType type() const { return type_; }
-  /// V_q^2/2 - mu/q (0 for a parabolic orbit within the tolerance is NOT forced: the exact value).
+  /// V_q^2/2 - mu/q, as given (not set to 0 for orbits classed parabolic).
   double specific_energy() const { return 0.5 * vq_ * vq_ - mu_ / q_; }
   /// |r x v| = q V_q.
   double specific_angular_momentum() const { return q_ * vq_; }

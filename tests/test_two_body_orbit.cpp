@@ -117,6 +117,8 @@ TEST(TwoBodyOrbit, NearlyParabolicOrbitsAreAccurate) {
     EXPECT_NEAR(orbit.eccentricity() - 1.0, de, 1e-14);
     EXPECT_NEAR(orbit.time_to_pericenter(3.0) / t_parabolic - 1.0, 0.0, 2.0 * std::abs(de));
     expect_reaches_pericenter(orbit, 3.0);
+    const auto start = encounter_start(orbit, 3.0);
+    expect_same_state(orbit.state_at_time(-start.time_to_pericenter), start.relative, 1e-12);
   }
 }
 
