@@ -1,5 +1,6 @@
 #pragma once
 // The bending angle of a hinge (Bridson, Marino & Fedkiw 2003, section 4; paper eq. 22).
+#include <Eigen/Geometry>  // cross()
 #include <cmath>
 
 #include "vec3.hpp"
