@@ -2,6 +2,8 @@
 // Stage 4 (paper sections 2.6, 2.9): a point-mass perturber on the two-body orbit with
 // pericenter q and speed V_q passes the body; every t_fail steps the most strained shell
 // spring beyond eps_S fails (k -> F_Sk k). Many encounters branch from one relaxed body.
+#include <filesystem>
+
 #include "checkpoint.hpp"
 #include "config.hpp"
 #include "step_loop.hpp"
@@ -13,7 +15,10 @@ namespace tidalcrust {
 Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const EncounterSpec& spec);
 
 /// Runs (or resumes) the encounter in place until complete. `checkpoint` is what
-/// begin_encounter returned or a mid-stage "encounter" checkpoint.
-LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options);
+/// begin_encounter returned or a mid-stage "encounter" checkpoint. `output` is the encounter's
+/// final checkpoint file: the snapshot checkpoints are written beside it
+/// (encounter_snapshots.hpp); empty = no snapshot files.
+LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options,
+                          const std::filesystem::path& output = {});
 
 }  // namespace tidalcrust
