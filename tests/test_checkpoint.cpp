@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -170,6 +171,21 @@ TEST(Checkpoint, EqualCheckpointsGiveIdenticalBytes) {
   d.state.position[4] = std::nextafter(d.state.position[4], 1.0);
   write_checkpoint(dir / "d.h5", d);
   EXPECT_NE(a, read_bytes(dir / "d.h5"));
+}
+
+TEST(Checkpoint, ManyScalarsAndLabelsUseDenseAttributeStorageReproducibly) {
+  // More than 8 attributes on one group switch HDF5 to dense (heap + B-tree) storage.
+  const ScratchFolder scratch("dense");
+  const fs::path& dir = scratch.path;
+  Checkpoint c = synthetic_checkpoint();
+  for (int i = 0; i < 30; ++i) {
+    c.stage.scalars[fmt::format("phase_{:02}", i)] = 0.1 * i;
+    c.stage.labels[fmt::format("label_{:02}", i)] = std::string(static_cast<std::size_t>(i), 'x');
+  }
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  expect_identical(c, read_checkpoint(dir / "a.h5"));
 }
 
 TEST(Checkpoint, ObjectsCarryNoTimestamps) {
