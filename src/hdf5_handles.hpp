@@ -1,0 +1,444 @@
+#pragma once
+// Small RAII handles over the HDF5 C API and typed read/write helpers for checkpoint files.
+// HDF5's automatic error printing is switched off; every failure becomes an h5::Error whose
+// message names the object (dataset, group or attribute path), so callers only prefix the file.
+// Files are written reproducibly: no object timestamps, fixed library-version bounds, so equal
+// content written in the same order gives byte-identical files.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace tidalcrust::h5 {
+
+/// An HDF5 call failed; the message names the object it concerned.
+struct Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Switches off HDF5's printing of its error stack (we report through exceptions instead).
+inline void silence_errors() {
+  static const bool silenced = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)silenced;
+}
+
+/// Owns one HDF5 identifier and closes it with `Close`.
+template <herr_t (*Close)(hid_t)>
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+    }
+    return *this;
+  }
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  explicit operator bool() const { return id_ >= 0; }
+  void reset() {
+    if (id_ >= 0) Close(id_);
+    id_ = H5I_INVALID_HID;
+  }
+  /// Closes now and reports failure (a file close flushes, which can fail).
+  void close(const std::string& what) {
+    hid_t id = std::exchange(id_, H5I_INVALID_HID);
+    if (id >= 0 && Close(id) < 0) throw Error(what);
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+};
+
+using File = Handle<H5Fclose>;
+using Group = Handle<H5Gclose>;
+using Dataset = Handle<H5Dclose>;
+using Dataspace = Handle<H5Sclose>;
+using Attribute = Handle<H5Aclose>;
+using PropList = Handle<H5Pclose>;
+using Type = Handle<H5Tclose>;
+/// An object opened by path whose kind (group or dataset) is not known in advance.
+using Object = Handle<H5Oclose>;
+
+/// Throws Error(what) when an HDF5 call returned a negative id or status.
+inline hid_t check(hid_t id, const std::string& what) {
+  if (id < 0) throw Error(what);
+  return id;
+}
+
+/// Path of `name` below the object `loc`, for messages ("/checkpoint/springs/failed").
+inline std::string object_path(hid_t loc, std::string_view name) {
+  if (!name.empty() && name.front() == '/') return std::string(name);
+  char buffer[512] = {0};
+  ssize_t n = H5Iget_name(loc, buffer, sizeof buffer);
+  std::string base = n > 0 ? std::string(buffer, std::min<std::size_t>(n, sizeof buffer - 1)) : "";
+  if (name.empty()) return base.empty() ? "/" : base;
+  if (base.empty() || base.back() != '/') base += '/';
+  return base + std::string(name);
+}
+
+// ---- element types: file type (fixed little endian) and memory type -------------------------
+
+template <typename T>
+struct TypeOf;
+template <>
+struct TypeOf<double> {
+  static hid_t file() { return H5T_IEEE_F64LE; }
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+  static constexpr H5T_class_t type_class = H5T_FLOAT;
+  static constexpr const char* name = "float64";
+};
+template <>
+struct TypeOf<std::int32_t> {
+  static hid_t file() { return H5T_STD_I32LE; }
+  static hid_t memory() { return H5T_NATIVE_INT32; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+  static constexpr const char* name = "int32";
+};
+template <>
+struct TypeOf<std::int64_t> {
+  static hid_t file() { return H5T_STD_I64LE; }
+  static hid_t memory() { return H5T_NATIVE_INT64; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+  static constexpr const char* name = "int64";
+};
+template <>
+struct TypeOf<std::uint8_t> {
+  static hid_t file() { return H5T_STD_U8LE; }
+  static hid_t memory() { return H5T_NATIVE_UINT8; }
+  static constexpr H5T_class_t type_class = H5T_INTEGER;
+  static constexpr const char* name = "uint8";
+};
+
+/// Checks that a stored type has the class, size and signedness of T (no silent conversion).
+template <typename T>
+void check_type(hid_t type, const std::string& what) {
+  bool ok = H5Tget_class(type) == TypeOf<T>::type_class && H5Tget_size(type) == sizeof(T);
+  if (ok && TypeOf<T>::type_class == H5T_INTEGER)
+    ok = (H5Tget_sign(type) == H5T_SGN_2) == std::is_signed_v<T>;
+  if (!ok) throw Error(what + ": stored type is not " + TypeOf<T>::name);
+}
+
+// ---- files and groups ---------------------------------------------------------------------
+
+/// Object creation property list of class `cls` with timestamps switched off.
+inline PropList untimed_plist(hid_t cls) {
+  PropList plist(check(H5Pcreate(cls), "H5Pcreate"));
+  check(H5Pset_obj_track_times(plist.get(), false), "H5Pset_obj_track_times");
+  return plist;
+}
+
+/// Creates (truncates) a file for reproducible writing.
+inline File create_file(const std::filesystem::path& path) {
+  silence_errors();
+  PropList fcpl = untimed_plist(H5P_FILE_CREATE);  // also covers the root group
+  PropList fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"));
+  // Fixed bounds: the format does not drift with the library version.
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "H5Pset_libver_bounds");
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
+  return File(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), "cannot create file"));
+}
+
+inline File open_file_readonly(const std::filesystem::path& path) {
+  silence_errors();
+  return File(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open file"));
+}
+
+inline Group create_group(hid_t loc, std::string_view name) {
+  PropList gcpl = untimed_plist(H5P_GROUP_CREATE);
+  std::string n(name);
+  return Group(check(H5Gcreate2(loc, n.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
+                     "cannot create group " + object_path(loc, name)));
+}
+
+/// True if every component of the relative or absolute `path` exists as a link below loc.
+inline bool exists(hid_t loc, std::string_view path) {
+  std::string prefix;
+  std::size_t start = 0;
+  if (!path.empty() && path.front() == '/') {
+    prefix = "/";
+    start = 1;
+  }
+  while (start < path.size()) {
+    std::size_t end = path.find('/', start);
+    if (end == std::string_view::npos) end = path.size();
+    prefix += std::string(path.substr(start, end - start));
+    if (H5Lexists(loc, prefix.c_str(), H5P_DEFAULT) <= 0) return false;
+    prefix += '/';
+    start = end + 1;
+  }
+  return true;
+}
+
+inline Group open_group(hid_t loc, std::string_view name) {
+  std::string n(name);
+  if (!exists(loc, n)) throw Error("group " + object_path(loc, name) + " is missing");
+  return Group(check(H5Gopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open group " + object_path(loc, name)));
+}
+
+/// Makes `name` a second (hard) link to the existing object `target`.
+inline void hard_link(hid_t loc, std::string_view target, std::string_view name) {
+  std::string t(target), n(name);
+  check(H5Lcreate_hard(loc, t.c_str(), loc, n.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+        "cannot link " + object_path(loc, name));
+}
+
+// ---- datasets -------------------------------------------------------------------------------
+
+/// Writes a contiguous dataset of shape `dims` (empty dims: a scalar). Zero-size shapes allowed.
+template <typename T>
+void write_dataset(hid_t loc, std::string_view name, const T* data, const std::vector<hsize_t>& dims) {
+  const std::string what = object_path(loc, name);
+  Dataspace space(check(dims.empty() ? H5Screate(H5S_SCALAR)
+                                     : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                        "cannot create dataspace for " + what));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  std::string n(name);
+  Dataset set(check(H5Dcreate2(loc, n.c_str(), TypeOf<T>::file(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count > 0)
+    check(H5Dwrite(set.get(), TypeOf<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + what);
+}
+
+template <typename T>
+void write_dataset(hid_t loc, std::string_view name, const std::vector<T>& data, const std::vector<hsize_t>& dims) {
+  write_dataset(loc, name, data.data(), dims);
+}
+
+/// A dataset read back: its values in row-major order and its shape.
+template <typename T>
+struct Array {
+  std::vector<T> values;
+  std::vector<hsize_t> dims;
+};
+
+/// Reads a whole dataset of element type T; Error if missing or of another type.
+template <typename T>
+Array<T> read_dataset(hid_t loc, std::string_view name) {
+  const std::string what = "dataset " + object_path(loc, name);
+  std::string n(name);
+  if (!exists(loc, n)) throw Error(what + " is missing");
+  {
+    Object object(H5Oopen(loc, n.c_str(), H5P_DEFAULT));
+    if (!object || H5Iget_type(object.get()) != H5I_DATASET) throw Error(what + " is not a dataset");
+  }
+  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
+  check_type<T>(type.get(), what);
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw Error("cannot read the shape of " + what);
+  Array<T> out;
+  out.dims.resize(rank);
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), out.dims.data(), nullptr);
+  hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) throw Error("cannot read the shape of " + what);
+  out.values.resize(static_cast<std::size_t>(count));
+  if (count > 0)
+    check(H5Dread(set.get(), TypeOf<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()),
+          "cannot read " + what + " (corrupt data)");
+  return out;
+}
+
+/// Address of a contiguous dataset's raw data in the file (tests use it to corrupt bytes).
+inline haddr_t dataset_offset(hid_t loc, std::string_view name) {
+  std::string n(name);
+  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open dataset " + object_path(loc, name)));
+  return H5Dget_offset(set.get());
+}
+
+// ---- strings --------------------------------------------------------------------------------
+
+/// Fixed-length UTF-8 string type of `size` bytes, padded with NULs.
+inline Type fixed_string_type(std::size_t size) {
+  Type type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"));
+  check(H5Tset_size(type.get(), std::max<std::size_t>(size, 1)), "H5Tset_size");
+  check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "H5Tset_strpad");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "H5Tset_cset");
+  return type;
+}
+
+/// Reads `count` strings stored with `stored` type through `read(memory_type, buffer)`.
+/// Handles fixed-length (any padding) and variable-length strings.
+template <typename ReadFn>
+std::vector<std::string> read_strings(hid_t stored, std::size_t count, const std::string& what, ReadFn read) {
+  if (H5Tget_class(stored) != H5T_STRING) throw Error(what + ": stored type is not a string");
+  std::vector<std::string> out(count);
+  if (count == 0) return out;
+  if (H5Tis_variable_str(stored) > 0) {
+    Type memory(check(H5Tcopy(H5T_C_S1), "H5Tcopy"));
+    H5Tset_size(memory.get(), H5T_VARIABLE);
+    H5Tset_cset(memory.get(), H5Tget_cset(stored));
+    std::vector<char*> pointers(count, nullptr);
+    check(read(memory.get(), pointers.data()), "cannot read " + what);
+    for (std::size_t i = 0; i < count; ++i) out[i] = pointers[i] ? pointers[i] : "";
+    Dataspace space(check(H5Screate_simple(1, std::vector<hsize_t>{count}.data(), nullptr), "H5Screate"));
+#if H5_VERSION_GE(1, 12, 0)
+    H5Treclaim(memory.get(), space.get(), H5P_DEFAULT, pointers.data());
+#else
+    H5Dvlen_reclaim(memory.get(), space.get(), H5P_DEFAULT, pointers.data());
+#endif
+    return out;
+  }
+  std::size_t size = H5Tget_size(stored);
+  Type memory(check(H5Tcopy(stored), "H5Tcopy"));
+  std::vector<char> buffer(size * count);
+  check(read(memory.get(), buffer.data()), "cannot read " + what);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::string s(buffer.data() + i * size, size);
+    auto nul = s.find('\0');  // NULLTERM and NULLPAD end at the first NUL
+    if (nul != std::string::npos) s.resize(nul);
+    while (H5Tget_strpad(stored) == H5T_STR_SPACEPAD && !s.empty() && s.back() == ' ') s.pop_back();
+    out[i] = std::move(s);
+  }
+  return out;
+}
+
+/// A scalar fixed-length string dataset.
+inline void write_string_dataset(hid_t loc, std::string_view name, const std::string& text) {
+  const std::string what = object_path(loc, name);
+  Type type = fixed_string_type(text.size());
+  Dataspace space(check(H5Screate(H5S_SCALAR), "H5Screate"));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  std::string n(name);
+  Dataset set(check(H5Dcreate2(loc, n.c_str(), type.get(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()), "cannot write dataset " + what);
+}
+
+inline std::string read_string_dataset(hid_t loc, std::string_view name) {
+  const std::string what = "dataset " + object_path(loc, name);
+  std::string n(name);
+  if (!exists(loc, n)) throw Error(what + " is missing");
+  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw Error(what + ": expected a single string");
+  return read_strings(type.get(), 1, what, [&](hid_t memory, void* buffer) {
+    return H5Dread(set.get(), memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+  })[0];
+}
+
+// ---- attributes -----------------------------------------------------------------------------
+
+inline bool has_attribute(hid_t loc, std::string_view name) {
+  std::string n(name);
+  return H5Aexists(loc, n.c_str()) > 0;
+}
+
+/// Writes an attribute of shape `dims` (empty: scalar) from raw memory of type `memory`.
+inline void write_attribute_raw(hid_t loc, std::string_view name, hid_t file_type, hid_t memory_type,
+                                const void* data, const std::vector<hsize_t>& dims) {
+  const std::string what = "attribute " + object_path(loc, "") + "@" + std::string(name);
+  Dataspace space(check(dims.empty() ? H5Screate(H5S_SCALAR)
+                                     : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                        "cannot create dataspace for " + what));
+  std::string n(name);
+  Attribute attr(check(H5Acreate2(loc, n.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                       "cannot create " + what));
+  check(H5Awrite(attr.get(), memory_type, data), "cannot write " + what);
+}
+
+template <typename T>
+void write_attribute(hid_t loc, std::string_view name, T value) {
+  write_attribute_raw(loc, name, TypeOf<T>::file(), TypeOf<T>::memory(), &value, {});
+}
+
+template <typename T>
+void write_attribute_array(hid_t loc, std::string_view name, const std::vector<T>& values) {
+  write_attribute_raw(loc, name, TypeOf<T>::file(), TypeOf<T>::memory(), values.data(), {values.size()});
+}
+
+inline void write_string_attribute(hid_t loc, std::string_view name, const std::string& text) {
+  Type type = fixed_string_type(text.size());
+  write_attribute_raw(loc, name, type.get(), type.get(), text.c_str(), {});
+}
+
+inline void write_string_array_attribute(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+  std::size_t size = 1;
+  for (const auto& t : texts) size = std::max(size, t.size());
+  std::vector<char> buffer(size * texts.size(), '\0');
+  for (std::size_t i = 0; i < texts.size(); ++i) std::copy(texts[i].begin(), texts[i].end(), buffer.begin() + i * size);
+  Type type = fixed_string_type(size);
+  write_attribute_raw(loc, name, type.get(), type.get(), buffer.data(), {texts.size()});
+}
+
+/// Opens attribute `name` of `loc`; Error naming it if missing.
+inline Attribute open_attribute(hid_t loc, std::string_view name, const std::string& what) {
+  if (!has_attribute(loc, name)) throw Error(what + " is missing");
+  std::string n(name);
+  return Attribute(check(H5Aopen(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+}
+
+/// Reads all elements of a numeric attribute of type T.
+template <typename T>
+std::vector<T> read_attribute_array(hid_t loc, std::string_view name) {
+  const std::string what = "attribute " + object_path(loc, "") + "@" + std::string(name);
+  Attribute attr = open_attribute(loc, name, what);
+  Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
+  check_type<T>(type.get(), what);
+  Dataspace space(check(H5Aget_space(attr.get()), "cannot read the shape of " + what));
+  hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) throw Error("cannot read the shape of " + what);
+  std::vector<T> values(static_cast<std::size_t>(count));
+  if (count > 0) check(H5Aread(attr.get(), TypeOf<T>::memory(), values.data()), "cannot read " + what);
+  return values;
+}
+
+/// Reads a scalar (or one-element) numeric attribute of type T.
+template <typename T>
+T read_attribute(hid_t loc, std::string_view name) {
+  auto values = read_attribute_array<T>(loc, name);
+  if (values.size() != 1)
+    throw Error("attribute " + object_path(loc, "") + "@" + std::string(name) + ": expected a single value");
+  return values[0];
+}
+
+inline std::vector<std::string> read_string_array_attribute(hid_t loc, std::string_view name) {
+  const std::string what = "attribute " + object_path(loc, "") + "@" + std::string(name);
+  Attribute attr = open_attribute(loc, name, what);
+  Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
+  Dataspace space(check(H5Aget_space(attr.get()), "cannot read the shape of " + what));
+  hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) throw Error("cannot read the shape of " + what);
+  return read_strings(type.get(), static_cast<std::size_t>(count), what,
+                      [&](hid_t memory, void* buffer) { return H5Aread(attr.get(), memory, buffer); });
+}
+
+inline std::string read_string_attribute(hid_t loc, std::string_view name) {
+  auto values = read_string_array_attribute(loc, name);
+  if (values.size() != 1)
+    throw Error("attribute " + object_path(loc, "") + "@" + std::string(name) + ": expected a single string");
+  return values[0];
+}
+
+/// Names of all attributes of `loc`, in name order.
+inline std::vector<std::string> attribute_names(hid_t loc) {
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
+    static_cast<std::vector<std::string>*>(data)->emplace_back(name);
+    return 0;
+  };
+  hsize_t index = 0;
+  check(H5Aiterate2(loc, H5_INDEX_NAME, H5_ITER_INC, &index, collect, &names),
+        "cannot list the attributes of " + object_path(loc, ""));
+  return names;
+}
+
+}  // namespace tidalcrust::h5
