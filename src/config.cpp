@@ -376,35 +376,41 @@ void apply_override(Config& config, const std::string& assignment) {
   validate(config, fmt::format("--set '{}'", assignment));
 }
 
-std::string to_toml(const Config& config) {
+std::string section_toml(const Config& config, std::string_view section) {
   Config& c = const_cast<Config&>(config);  // only read through the field accessors
-  std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
-  for (auto section : section_order()) {
-    out += fmt::format("\n[{}]\n", section);
-    for (const auto& p : params()) {
-      if (std::string_view(p.section) != section) continue;
-      void* f = p.field(c);
-      std::string value;
-      switch (p.type) {
-        case ParamType::real: value = format_real(*static_cast<double*>(f)); break;
-        case ParamType::integer:
-          value = std::string_view(p.key) == "seed" ? fmt::format("{}", *static_cast<std::uint64_t*>(f))
-                                                    : fmt::format("{}", *static_cast<std::int64_t*>(f));
-          break;
-        case ParamType::boolean: value = *static_cast<bool*>(f) ? "true" : "false"; break;
-        case ParamType::text: value = quote(*static_cast<std::string*>(f)); break;
-      }
-      out += fmt::format("{} = {}  # [{}] {}\n", p.key, value, p.unit, p.doc);
+  std::string out = fmt::format("[{}]\n", section);
+  for (const auto& p : params()) {
+    if (std::string_view(p.section) != section) continue;
+    void* f = p.field(c);
+    std::string value;
+    switch (p.type) {
+      case ParamType::real: value = format_real(*static_cast<double*>(f)); break;
+      case ParamType::integer:
+        value = std::string_view(p.key) == "seed" ? fmt::format("{}", *static_cast<std::uint64_t*>(f))
+                                                  : fmt::format("{}", *static_cast<std::int64_t*>(f));
+        break;
+      case ParamType::boolean: value = *static_cast<bool*>(f) ? "true" : "false"; break;
+      case ParamType::text: value = quote(*static_cast<std::string*>(f)); break;
     }
+    out += fmt::format("{} = {}  # [{}] {}\n", p.key, value, p.unit, p.doc);
   }
-  for (const auto& e : config.encounters) {
-    out += "\n[[encounters]]\n";
-    out += fmt::format("name = {}\n", quote(e.name));
-    out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));
-    out += fmt::format("pericenter = {}  # [R] q\n", format_real(e.pericenter));
-    out += fmt::format("pericenter_speed = {}  # [sqrt(GM/R)] V_q\n", format_real(e.pericenter_speed));
-    if (e.failure_strain) out += fmt::format("failure_strain = {}  # [-] eps_S override\n", format_real(*e.failure_strain));
-  }
+  return out;
+}
+
+std::string encounter_toml(const EncounterSpec& e) {
+  std::string out = "[[encounters]]\n";
+  out += fmt::format("name = {}\n", quote(e.name));
+  out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));
+  out += fmt::format("pericenter = {}  # [R] q\n", format_real(e.pericenter));
+  out += fmt::format("pericenter_speed = {}  # [sqrt(GM/R)] V_q\n", format_real(e.pericenter_speed));
+  if (e.failure_strain) out += fmt::format("failure_strain = {}  # [-] eps_S override\n", format_real(*e.failure_strain));
+  return out;
+}
+
+std::string to_toml(const Config& config) {
+  std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
+  for (auto section : section_order()) out += "\n" + section_toml(config, section);
+  for (const auto& e : config.encounters) out += "\n" + encounter_toml(e);
   return out;
 }
 

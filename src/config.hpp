@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tidalcrust {
@@ -113,6 +114,11 @@ void apply_override(Config& config, const std::string& assignment);
 /// The resolved configuration, every key with its default, as TOML with unit comments.
 /// parse_config(to_toml(c)) == c, and equal configs give equal text.
 std::string to_toml(const Config& config);
+/// One section ("interior", "shell", ...) of to_toml: used as the fingerprint of what a stage
+/// depends on, so that a changed value reruns exactly the stages it affects.
+std::string section_toml(const Config& config, std::string_view section);
+/// One [[encounters]] table of to_toml.
+std::string encounter_toml(const EncounterSpec& encounter);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "bad_checkpoints.hpp"
+#include "cli_runner.hpp"
 #include "build_stage.hpp"
 #include "checkpoint.hpp"
 #include "config.hpp"
@@ -24,25 +25,6 @@ using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
-
-/// Runs the CLI through the shell; `redirect` chooses which stream is captured.
-RunResult run_cli(const std::string& arguments, const std::string& redirect = "2>/dev/null") {
-  const std::string command = std::string("'") + TIDALCRUST_EXE + "' " + arguments + " " + redirect;
-  RunResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  std::size_t n;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -123,23 +105,23 @@ TEST(InspectCli, JsonOfAWrittenCheckpoint) {
   const fs::path& dir = scratch.path;
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(dir / "enc.h5", c);
-  const RunResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_EQ(r.output, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
+  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
   for (const char* key : {"\"counts\": {", "\"derived\": {", "\"conservation\": {", "\"perturber\": {",
                           "\"springs_cross\": 4", "\"time\": 2.25", "\"step\": 1125"})
-    EXPECT_TRUE(contains(r.output, key)) << key;
+    EXPECT_TRUE(contains(r.out, key)) << key;
 }
 
 TEST(InspectCli, TableIsAlignedAndNamesEveryKey) {
   const ScratchFolder scratch("inspect_table");
   const fs::path& dir = scratch.path;
   write_checkpoint(dir / "enc.h5", synthetic_checkpoint());
-  const RunResult r = run_cli("inspect " + quoted(dir / "enc.h5"));
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5"));
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_TRUE(contains(r.output, "state_hash                " + state_hash(synthetic_checkpoint().state)))
-      << r.output;
-  EXPECT_TRUE(contains(r.output, "\ncounts\n  interior                1\n")) << r.output;
+  EXPECT_TRUE(contains(r.out, "state_hash                " + state_hash(synthetic_checkpoint().state)))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "\ncounts\n  interior                1\n")) << r.out;
 }
 
 TEST(InspectCli, BuiltQuickBodyCountsMatch) {
@@ -149,16 +131,16 @@ TEST(InspectCli, BuiltQuickBodyCountsMatch) {
   Checkpoint c = build_stage(config);
   c.config_toml = to_toml(config);
   write_checkpoint(dir / "body.h5", c);
-  const RunResult r = run_cli("inspect " + quoted(dir / "body.h5") + " --json");
+  const CliResult r = run_cli("inspect " + quoted(dir / "body.h5") + " --json");
   ASSERT_EQ(r.exit_code, 0);
-  EXPECT_TRUE(contains(r.output, "\"stage\": \"build\""));
-  EXPECT_TRUE(contains(r.output, fmt::format("\"interior\": {}", config.interior.count)));
-  EXPECT_TRUE(contains(r.output, "\"shell\": 642"));
-  EXPECT_TRUE(contains(r.output, "\"springs_shell\": 1920"));
-  EXPECT_TRUE(contains(r.output, "\"faces\": 1280"));
-  EXPECT_TRUE(contains(r.output, "\"hinges\": 1920"));
-  EXPECT_TRUE(contains(r.output, "\"failed\": 0"));
-  EXPECT_FALSE(contains(r.output, "\"E_I\": 0,"));  // a real interior has a modulus
+  EXPECT_TRUE(contains(r.out, "\"stage\": \"build\""));
+  EXPECT_TRUE(contains(r.out, fmt::format("\"interior\": {}", config.interior.count)));
+  EXPECT_TRUE(contains(r.out, "\"shell\": 642"));
+  EXPECT_TRUE(contains(r.out, "\"springs_shell\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"faces\": 1280"));
+  EXPECT_TRUE(contains(r.out, "\"hinges\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"failed\": 0"));
+  EXPECT_FALSE(contains(r.out, "\"E_I\": 0,"));  // a real interior has a modulus
 }
 
 TEST(InspectCli, BadFilesExitWithCode2AndAOneLineMessage) {
@@ -166,14 +148,14 @@ TEST(InspectCli, BadFilesExitWithCode2AndAOneLineMessage) {
   const fs::path& dir = scratch.path;
   write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
   for (const auto& bad : make_bad_checkpoints(dir / "valid.h5", dir)) {
-    const RunResult json = run_cli("inspect " + quoted(bad.file) + " --json", "2>&1 >/dev/null");
+    const CliResult json = run_cli("inspect " + quoted(bad.file) + " --json");
     EXPECT_EQ(json.exit_code, 2) << bad.what;
-    EXPECT_EQ(std::count(json.output.begin(), json.output.end(), '\n'), 1) << bad.what << ": " << json.output;
-    EXPECT_TRUE(contains(json.output, bad.file.string() + ": ")) << bad.what << ": " << json.output;
-    EXPECT_TRUE(contains(json.output, bad.expected_message)) << bad.what << ": " << json.output;
-    const RunResult stdout_only = run_cli("inspect " + quoted(bad.file));
+    EXPECT_EQ(std::count(json.err.begin(), json.err.end(), '\n'), 1) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.file.string() + ": ")) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.expected_message)) << bad.what << ": " << json.err;
+    const CliResult stdout_only = run_cli("inspect " + quoted(bad.file));
     EXPECT_EQ(stdout_only.exit_code, 2) << bad.what;
-    EXPECT_EQ(stdout_only.output, "") << bad.what;
+    EXPECT_EQ(stdout_only.out, "") << bad.what;
   }
 }
 
@@ -181,5 +163,5 @@ TEST(InspectCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run_cli("inspect").exit_code, 2);
   EXPECT_EQ(run_cli("inspect a.h5 b.h5").exit_code, 2);
   EXPECT_EQ(run_cli("inspect --bogus x.h5").exit_code, 2);
-  EXPECT_EQ(run_cli("inspect --help", "2>&1").exit_code, 0);
+  EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
 }
