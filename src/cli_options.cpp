@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <cctype>
 #include <cmath>
 
 #include "errors.hpp"
@@ -30,9 +31,28 @@ CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
   return common;
 }
 
+std::vector<std::string> spell_single_letter_long_options(int argc, char** argv) {
+  std::vector<std::string> args(argv, argv + argc);
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--") break;
+    const bool single_letter = arg.size() >= 3 && arg.compare(0, 2, "--") == 0 &&
+                               std::isalnum(static_cast<unsigned char>(arg[2])) && (arg.size() == 3 || arg[3] == '=');
+    if (!single_letter) continue;
+    std::string value = arg.size() > 3 ? arg.substr(4) : "";
+    const bool has_value = arg.size() > 3;
+    args[i] = std::string("-") + arg[2];
+    if (has_value) args.insert(args.begin() + static_cast<std::ptrdiff_t>(++i), value);
+  }
+  return args;
+}
+
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv) {
+  const std::vector<std::string> args = spell_single_letter_long_options(argc, argv);
+  std::vector<const char*> pointers;
+  for (const auto& arg : args) pointers.push_back(arg.c_str());
   try {
-    return options.parse(argc, argv);
+    return options.parse(static_cast<int>(pointers.size()), pointers.data());
   } catch (const cxxopts::exceptions::exception& err) {
     throw InputError(fmt::format("{}: {} (see --help)", options.program(), err.what()));
   }

@@ -20,7 +20,12 @@ struct CommonOptions {
 void add_common_options(cxxopts::Options& options);
 CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
 
+/// cxxopts 3.1 only accepts long options of two or more letters; the CLI has --q (design.md).
+/// Rewrites "--x" to "-x" and "--x=V" to "-x" "V" for single-letter options (up to a "--").
+std::vector<std::string> spell_single_letter_long_options(int argc, char** argv);
+
 /// Parses argv, turning cxxopts errors (unknown option, missing value) into InputError.
+/// Single-letter options are accepted as --x (see spell_single_letter_long_options).
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
 
 /// The configuration a stage runs with: `stored` (TOML text from the input checkpoint),

@@ -1,0 +1,32 @@
+#pragma once
+// Progress of a long stage: a line on the terminal (stage, step, steps/s, ETA) at most once a
+// second, and a small status JSON file that other programs can poll.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace tidalcrust {
+
+class ProgressReporter {
+ public:
+  /// `status_file` empty: no status file. `label` e.g. "relax" or "encounter T5".
+  ProgressReporter(std::string label, std::int64_t first_step, std::int64_t last_step,
+                   std::optional<std::filesystem::path> status_file);
+  /// Called after every step; prints/writes only when a second has passed (or force).
+  void update(std::int64_t step, bool force = false);
+  /// Final line and status "done" (or the given state, e.g. "interrupted").
+  void finish(std::int64_t step, const std::string& state = "done");
+
+ private:
+  void write_status(std::int64_t step, double rate, double eta, const std::string& state) const;
+
+  std::string label_;
+  std::int64_t first_step_, last_step_;
+  std::optional<std::filesystem::path> status_file_;
+  std::chrono::steady_clock::time_point start_, last_print_;
+  bool terminal_;
+};
+
+}  // namespace tidalcrust

@@ -1,0 +1,19 @@
+#pragma once
+// Stage 4 (paper sections 2.6, 2.9): a point-mass perturber on the two-body orbit with
+// pericenter q and speed V_q passes the body; every t_fail steps the most strained shell
+// spring beyond eps_S fails (k -> F_Sk k). Many encounters branch from one relaxed body.
+#include "checkpoint.hpp"
+#include "config.hpp"
+#include "step_loop.hpp"
+
+namespace tidalcrust {
+
+/// A fresh "encounter" checkpoint from a complete "relax" or "encounter" checkpoint: places
+/// the perturber, sets damping, records the spec in scalars/labels and parent_hash.
+Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const EncounterSpec& spec);
+
+/// Runs (or resumes) the encounter in place until complete. `checkpoint` is what
+/// begin_encounter returned or a mid-stage "encounter" checkpoint.
+LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options);
+
+}  // namespace tidalcrust

@@ -1,0 +1,61 @@
+#include "step_loop.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "errors.hpp"
+#include "progress.hpp"
+#include "stop_signal.hpp"
+
+namespace tidalcrust {
+
+std::int64_t steps_for_duration(double duration, double dt) {
+  return static_cast<std::int64_t>(std::llround(duration / dt));
+}
+
+LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State&)>& advance,
+                          const std::function<void(Checkpoint&)>& after_step, const StepLoopOptions& options) {
+  State& state = checkpoint.state;
+  const std::int64_t end = checkpoint.stage.end_step;
+  std::optional<ProgressReporter> progress;
+  if (!options.quiet) progress.emplace(options.label, state.step, end, options.status_file);
+  install_stop_handlers();
+
+  auto write_mid = [&] {
+    if (options.mid_checkpoint.empty()) return;
+    checkpoint.stage.complete = false;
+    write_checkpoint(options.mid_checkpoint, checkpoint);
+  };
+
+  while (state.step < end) {
+    try {
+      advance(state);
+      after_step(checkpoint);
+    } catch (const SimulationError& err) {
+      std::string where;
+      if (!options.diagnostic_checkpoint.empty()) {
+        checkpoint.stage.complete = false;
+        checkpoint.stage.labels["diagnostic"] = err.what();
+        write_checkpoint(options.diagnostic_checkpoint, checkpoint);
+        where = fmt::format(" (diagnostic checkpoint: {})", options.diagnostic_checkpoint.string());
+      }
+      if (progress) progress->finish(state.step, "failed");
+      throw SimulationError(std::string(err.what()) + where);
+    }
+    if (progress) progress->update(state.step);
+    const bool stop = stop_requested() || state.step == options.stop_after_step;
+    if (stop && state.step < end) {
+      write_mid();
+      if (progress) progress->finish(state.step, "interrupted");
+      return LoopOutcome::interrupted;
+    }
+    const std::int64_t done = state.step - checkpoint.stage.start_step;
+    if (options.checkpoint_interval > 0 && done % options.checkpoint_interval == 0 && state.step < end) write_mid();
+  }
+  checkpoint.stage.complete = true;
+  if (progress) progress->finish(state.step);
+  return LoopOutcome::finished;
+}
+
+}  // namespace tidalcrust

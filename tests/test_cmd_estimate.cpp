@@ -1,0 +1,123 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace std::string_literals;
+
+namespace {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Runs `tidalcrust ARGS`, capturing stdout and stderr separately.
+CommandResult run_cli(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("tidalcrust_estimate_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto out = dir / "out.txt", err = dir / "err.txt";
+  const std::string command =
+      "\""s + TIDALCRUST_EXE + "\" " + args + " >\"" + out.string() + "\" 2>\"" + err.string() + "\"";
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = read_text(out);
+  result.err = read_text(err);
+  std::filesystem::remove_all(dir);
+  return result;
+}
+
+bool has_key(const std::string& json, const std::string& key) {
+  return json.find("\"" + key + "\": ") != std::string::npos;
+}
+
+/// The number after "key": in a JSON text (first occurrence).
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  if (at == std::string::npos) return NAN;
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+int count_lines(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+}  // namespace
+
+TEST(CommandEstimate, DioneJsonHasTable1AndEncounterKeys) {
+  const auto r = run_cli("estimate --body Dione --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  for (const char* key : {"mass_kg", "radius_km", "e_g_GPa", "t_grav_s", "rho_g_cm3", "v_c_km_s", "strain",
+                          "t_enc_over_t_elas", "delta_v", "strain_rate_per_s"})
+    EXPECT_TRUE(has_key(r.out, key)) << key << "\n" << r.out;
+  EXPECT_NEAR(json_number(r.out, "e_g_GPa"), 0.81, 0.02 * 0.81);  // Table 1
+  EXPECT_NEAR(json_number(r.out, "t_grav_s"), 1556, 0.02 * 1556);
+  EXPECT_NEAR(json_number(r.out, "rho_g_cm3"), 1.48, 0.02 * 1.48);
+  EXPECT_DOUBLE_EQ(json_number(r.out, "mass_kg"), 1.1e21);
+  // Defaults: M2 = 1, q = 2, V_q = sqrt(2), E = 0.9 GPa: strain = (e_g/E)^(1/2) / (4 sqrt 2).
+  const double e_g = json_number(r.out, "e_g_GPa");
+  EXPECT_NEAR(json_number(r.out, "strain"), std::sqrt(e_g / 0.9) / (4 * std::sqrt(2.0)), 1e-12);
+  EXPECT_EQ(r.out.front(), '{');
+  EXPECT_EQ(r.out.substr(r.out.size() - 2), "}\n");
+}
+
+TEST(CommandEstimate, EncounterOptionsChangeTheEstimates) {
+  const auto r = run_cli("estimate --mass 1.1e21 --radius 561 --m2 0.5 --q 1.84 --vq=1.6 --youngs 2.7 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double e_g = json_number(r.out, "e_g_GPa");
+  EXPECT_NEAR(json_number(r.out, "strain"), std::sqrt(e_g / 2.7) * 0.5 / (1.84 * 1.84 * 1.6), 1e-12);
+  EXPECT_NEAR(json_number(r.out, "t_enc_over_t_elas"), 1.84 / 1.6 * std::sqrt(2.7 / e_g), 1e-12);
+  EXPECT_NEAR(json_number(r.out, "delta_v"), 2 * 0.5 / (1.84 * 1.84 * 1.6), 1e-12);
+}
+
+TEST(CommandEstimate, WithoutABodyPrintsAllOfTable1) {
+  const auto json = run_cli("estimate --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  for (const char* name : {"Tethys", "Dione", "Rhea", "Ariel", "Titania", "Charon", "Mars"})
+    EXPECT_NE(json.out.find("\""s + name + "\""), std::string::npos) << name;
+  const auto table = run_cli("estimate");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_EQ(count_lines(table.out), 2 + 7);  // title, header, one row per body
+  EXPECT_NE(table.out.find("Titania"), std::string::npos);
+}
+
+TEST(CommandEstimate, UnknownBodyIsAOneLineInputError) {
+  const auto r = run_cli("estimate --body Pluto2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("Pluto2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Charon"), std::string::npos) << r.err;
+}
+
+TEST(CommandEstimate, BadInputNamesTheOption) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"estimate --mass -1e21 --radius 500", "--mass"}, {"estimate --mass nan --radius 500", "--mass"},
+      {"estimate --mass 1e21", "--radius"},              {"estimate --radius 500", "--mass"},
+      {"estimate --mass 1e21 --radius 0", "--radius"},  {"estimate --q 0", "--q"},
+      {"estimate --q=-2", "--q"},                        {"estimate --vq abc", "--vq"},
+      {"estimate --youngs 0", "--youngs"},               {"estimate --body Rhea --mass 1e21", "--body"}};
+  for (const auto& [args, option] : cases) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+  }
+}
