@@ -17,8 +17,6 @@ int command_run(int, char**) { return pending("run"); }
 int command_stretch(int, char**) { return pending("stretch"); }
 int command_relax(int, char**) { return pending("relax"); }
 int command_encounter(int, char**) { return pending("encounter"); }
-int command_analyze(int, char**) { return pending("analyze"); }
-int command_compare(int, char**) { return pending("compare"); }
 int command_bench(int, char**) { return pending("bench"); }
 
 }  // namespace tidalcrust
