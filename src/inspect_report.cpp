@@ -1,5 +1,7 @@
 #include "inspect_report.hpp"
 
+#include "fracture_analysis.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -94,7 +96,14 @@ ReportSection& InspectReport::section(const std::string& name) {
   return sections.back();
 }
 
-void add_failures_section(const Checkpoint&, InspectReport&) {}
+void add_failures_section(const Checkpoint& c, InspectReport& r) {
+  if (c.stage.stage != "encounter") return;
+  ReportSection& failures = r.section("failures");
+  for (const auto& [key, value] : failure_summary_fields(analyze_fractures(c.body, c.state))) {
+    if (key == "count" || key == "clusters") failures.add(key, static_cast<std::int64_t>(value));
+    else failures.add(key, value);
+  }
+}
 
 InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
   InspectReport r;

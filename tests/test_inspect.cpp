@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <string>
 
 #include "bad_checkpoints.hpp"
@@ -39,7 +40,7 @@ TEST(InspectReport, JsonHasEveryKeyOfTheDesign) {
                           "counts", "interior", "shell", "springs_interior", "springs_shell", "springs_cross",
                           "hinges", "faces", "failed", "derived", "E_I", "L_I", "k_I", "L_S", "k_S", "M_S", "L_C",
                           "k_C", "V_IP", "V_SP", "V_Co", "h_S", "dt_max", "conservation", "momentum",
-                          "angular_momentum", "kinetic_energy", "scalars", "labels", "perturber", "mass",
+                          "angular_momentum", "kinetic_energy", "scalars", "labels", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "longest_crack", "clusters",
                           "min_distance", "speed_at_min"})
     EXPECT_TRUE(contains(json, JsonWriter::quote(key) + ": ")) << key;
   EXPECT_TRUE(contains(json, "\"state_hash\": \"" + state_hash(c.state) + "\""));
@@ -119,9 +120,21 @@ TEST(InspectCli, TableIsAlignedAndNamesEveryKey) {
   write_checkpoint(dir / "enc.h5", synthetic_checkpoint());
   const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5"));
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_TRUE(contains(r.out, "state_hash                " + state_hash(synthetic_checkpoint().state)))
+  // Every "key value" line has its value in one common column.
+  std::size_t column = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto gap = line.find("  ", line.find_first_not_of(' '));
+    if (gap == std::string::npos) continue;  // a section title
+    const auto value = line.find_first_not_of(' ', gap);
+    if (column == 0) column = value;
+    EXPECT_EQ(value, column) << line;
+  }
+  EXPECT_GT(column, 0u);
+  EXPECT_TRUE(contains(r.out, "state_hash" + std::string(column - 10, ' ') + state_hash(synthetic_checkpoint().state)))
       << r.out;
-  EXPECT_TRUE(contains(r.out, "\ncounts\n  interior                1\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\ncounts\n  interior" + std::string(column - 10, ' ') + "1\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\nfailures\n")) << r.out;
 }
 
 TEST(InspectCli, BuiltQuickBodyCountsMatch) {
