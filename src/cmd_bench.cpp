@@ -52,8 +52,9 @@ double median_ms_per_call(int repeats, std::int64_t calls, Run&& run) {
 
 int command_bench(int argc, char** argv) {
   cxxopts::Options options("tidalcrust bench",
-                           "Time full integration steps (springs, hinges, gravity, perturber) of the configured "
-                           "body, and the textbook step at the same N in the same run.");
+                           "Time full integration steps (springs, hinges, gravity, perturber) of the body built "
+                           "from --config (default workflows/paper-T.toml, relative to the current folder), and the "
+                           "textbook step at the same N in the same run.");
   add_common_options(options);
   options.add_options("bench")
       ("steps", "steps per timed repeat", cxxopts::value<std::int64_t>()->default_value("20"))

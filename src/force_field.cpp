@@ -216,7 +216,8 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
         if (h >= 0) collapsed = std::min(collapsed, h);
       }
     }
-#pragma omp for schedule(static)
+    // Dynamic too: a thread that the OS pauses (other jobs on the cores) holds up little.
+#pragma omp for schedule(dynamic, 256)
     for (std::size_t p = 0; p < n; ++p) gather(p, self_gravity, acc);
   }
   ForceAlarms alarms;
