@@ -22,11 +22,6 @@ struct Accumulator {
   double* z;
 };
 
-/// The pairs of rows i and i+1 (i even) with j in [j_begin, j_end), j > row: the pull of j on
-/// a row is summed in `lanes` partial sums (lane = j mod lanes), which are then added to
-/// acc[row]; the pulls of the rows on j are subtracted from acc[j], row i first. j_begin is a
-/// multiple of `lanes`; lanes with j <= row are masked out. Two rows share every load and
-/// store of the j side (register blocking: ~20% faster than one row).
 #if defined(__AVX512F__)
 inline __m512d inverse_cube(__m512d s) {
   // y ~ 1/sqrt(s) to 14 bits, then two Newton steps y <- y (3/2 - s/2 y^2): ~1 ulp.
@@ -52,6 +47,11 @@ inline __mmask8 partners_after(std::size_t row, std::size_t j) {
   return row < j ? static_cast<__mmask8>(0xFF) : static_cast<__mmask8>(0xFFu << std::min<std::size_t>(row - j + 1, 8));
 }
 
+/// The pairs of rows i and i+1 (i even) with j in [j_begin, j_end), j > row: the pull of j on
+/// a row is summed in `lanes` partial sums (lane = j mod lanes), which are then added to
+/// acc[row]; the pulls of the rows on j are subtracted from acc[j], row i first. j_begin is a
+/// multiple of `lanes`; lanes with j <= row are masked out. Two rows share every load and
+/// store of the j side (register blocking: ~20% faster than one row).
 void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
                const double* z, const double* m, double eps2, Accumulator acc) {
   const __m512d e2 = _mm512_set1_pd(eps2);
@@ -90,6 +90,7 @@ void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const doub
   acc.z[i + 1] += lane_sum(szb);
 }
 #else
+/// pair_rows() without AVX-512: the same pairs, lanes and order of rows, plain arithmetic.
 void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
                const double* z, const double* m, double eps2, Accumulator acc) {
   for (std::size_t row = i; row < i + 2; ++row) {
