@@ -17,6 +17,5 @@ int command_run(int, char**) { return pending("run"); }
 int command_stretch(int, char**) { return pending("stretch"); }
 int command_relax(int, char**) { return pending("relax"); }
 int command_encounter(int, char**) { return pending("encounter"); }
-int command_bench(int, char**) { return pending("bench"); }
 
 }  // namespace tidalcrust
