@@ -25,8 +25,10 @@ inline double plummer_inverse_cube(double r2, double eps2) {
 ///
 /// With AVX-512 the inverse cube comes from the hardware reciprocal square root estimate
 /// (vrsqrt14pd, exactly specified, 14 bits) refined by two Newton steps (~1 ulp) instead of a
-/// square root and a division, which share one slow divider unit. Without AVX-512 a portable
-/// path computes plummer_inverse_cube(); the two builds then differ in the last bits.
+/// square root and a division, which share one slow divider unit (that is most of the speed).
+/// Without AVX-512 a portable path computes plummer_inverse_cube(): correct, deterministic, but
+/// divider-bound (about the textbook speed per thread), and its last bits differ from the
+/// AVX-512 build's.
 class DirectGravity {
  public:
   /// mass [N] in M; softening eps in R (Body::softening).
