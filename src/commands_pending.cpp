@@ -22,6 +22,5 @@ int command_analyze(int, char**) { return pending("analyze"); }
 int command_inspect(int, char**) { return pending("inspect"); }
 int command_compare(int, char**) { return pending("compare"); }
 int command_estimate(int, char**) { return pending("estimate"); }
-int command_bench(int, char**) { return pending("bench"); }
 
 }  // namespace tidalcrust
