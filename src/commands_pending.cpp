@@ -19,7 +19,6 @@ int command_stretch(int, char**) { return pending("stretch"); }
 int command_relax(int, char**) { return pending("relax"); }
 int command_encounter(int, char**) { return pending("encounter"); }
 int command_analyze(int, char**) { return pending("analyze"); }
-int command_inspect(int, char**) { return pending("inspect"); }
 int command_compare(int, char**) { return pending("compare"); }
 int command_estimate(int, char**) { return pending("estimate"); }
 
