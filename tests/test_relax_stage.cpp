@@ -201,7 +201,8 @@ TEST(RelaxStage, SameBitsWithOneAndTwoThreads) {
 TEST(RelaxStage, ResumedRunEqualsStraightRunBitForBit) {
   const Config config = short_config();
   const Checkpoint straight = run_straight(config);
-  const auto dir = test_support::scratch_folder("relax_resume");
+  const test_support::ScratchFolder scratch("relax_resume");
+  const auto& dir = scratch.path;
   // k = 25: inside a rest-length interval (updates at 20 and 30) and a hinge interval.
   for (std::int64_t k : {25, 45, 65}) {  // creep phase, settle phase, stability probe
     Checkpoint c = begin_relax(quick_stretched(), config);
@@ -218,7 +219,6 @@ TEST(RelaxStage, ResumedRunEqualsStraightRunBitForBit) {
     EXPECT_EQ(resumed.observables.timeseries.size(), straight.observables.timeseries.size()) << k;
     EXPECT_TRUE(resumed.stage.complete);
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST(RelaxStage, ProbeCountsFailuresOfAPrestressedCrustWithoutChangingTheBody) {
