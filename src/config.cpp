@@ -102,6 +102,8 @@ const std::vector<Param>& params() {
        "fraction of (L - L0) a shell rest length moves per update"},
       {"relax", "hinge_reset_interval", ParamType::integer, TC_FIELD(relax.hinge_reset_interval), 1, 1e9,
        "steps", "steps between resets of hinge rest angles to current angles"},
+      {"relax", "settle_duration", ParamType::real, TC_FIELD(relax.settle_duration), 0, 1e4, "t_grav",
+       "last part of T: the crust is reset to zero stress, then the body settles without creep or resets"},
       {"relax", "checkpoint_interval", ParamType::integer, TC_FIELD(relax.checkpoint_interval), 0, 1e12,
        "steps", "steps between mid-stage checkpoints (0: none)"},
       {"relax", "stability_probe", ParamType::boolean, TC_FIELD(relax.stability_probe), 0, 0, "-",
@@ -273,6 +275,9 @@ void validate(const Config& config, const std::string& origin) {
                                  origin, config.interior.min_separation, config.interior.spring_distance));
   if (config.interior.min_separation > 2 * config.interior.radius)
     throw InputError(fmt::format("{}: interior.min_separation is larger than the interior", origin));
+  if (config.relax.settle_duration > config.relax.duration)
+    throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
+                                 config.relax.settle_duration, config.relax.duration));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
     check_encounter(e, origin);

@@ -63,8 +63,9 @@ struct RelaxConfig {
   double damping = 50.0;                  ///< gamma, 1/t_grav
   double duration = 3.0;                  ///< T, t_grav
   std::int64_t rest_length_interval = 10; ///< steps between shell rest-length updates
-  double rest_length_rate = 0.05;         ///< fraction of (L - L0) moved per update
+  double rest_length_rate = 0.5;          ///< fraction of (L - L0) moved per update
   std::int64_t hinge_reset_interval = 100;///< steps between hinge rest-angle resets
+  double settle_duration = 1.0;           ///< final part of T without creep or resets, t_grav
   std::int64_t checkpoint_interval = 500; ///< steps between mid-stage checkpoints (0: none)
   bool stability_probe = true;
   double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
