@@ -14,8 +14,6 @@ int pending(const char* name) {
 }  // namespace
 
 int command_run(int, char**) { return pending("run"); }
-int command_stretch(int, char**) { return pending("stretch"); }
-int command_relax(int, char**) { return pending("relax"); }
 int command_encounter(int, char**) { return pending("encounter"); }
 
 }  // namespace tidalcrust
