@@ -26,6 +26,7 @@ int command_build(int argc, char** argv) {
   check_output_path(out);
   Config config = load_config(*common.config_file);
   for (const auto& assignment : common.overrides) apply_override(config, assignment);
+  validate(config, "--set");
   apply_thread_count(common.threads);
   Checkpoint body = build_stage(config);
   write_checkpoint(out, body);

@@ -370,7 +370,6 @@ void apply_override(Config& config, const std::string& assignment) {
       if (field == "pericenter") e.pericenter = updated.pericenter;
       if (field == "pericenter_speed") e.pericenter_speed = updated.pericenter_speed;
       if (field == "failure_strain") e.failure_strain = updated.failure_strain;
-      validate(config, "--set");
       return;
     }
     throw InputError(fmt::format("--set '{}': no encounter named '{}'", assignment, name));
@@ -378,7 +377,6 @@ void apply_override(Config& config, const std::string& assignment) {
   const Param* p = find_param(section, key);
   if (!p) throw InputError(fmt::format("--set '{}': unknown key '{}'", assignment, path));
   assign(config, *p, node, "--set");
-  validate(config, fmt::format("--set '{}'", assignment));
 }
 
 std::string section_toml(const Config& config, std::string_view section) {

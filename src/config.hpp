@@ -111,6 +111,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin);
 /// Reads and parses a TOML file; a missing file is an InputError.
 Config load_config(const std::filesystem::path& file);
 /// Applies one "section.key=value" override (value in TOML syntax, e.g. 0.002 or true).
+/// Ranges are checked by validate() once all overrides are applied (they may depend on each other).
 void apply_override(Config& config, const std::string& assignment);
 /// The resolved configuration, every key with its default, as TOML with unit comments.
 /// parse_config(to_toml(c)) == c, and equal configs give equal text.
