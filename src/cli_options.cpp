@@ -64,7 +64,7 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
                                      : parse_config(stored_toml, stored_origin);
   for (const auto& assignment : common.overrides) apply_override(config, assignment);
   config.integrator.dt *= common.dt_factor;
-  validate(config, "--dt-factor");
+  validate(config, "--set/--dt-factor");
   return config;
 }
 

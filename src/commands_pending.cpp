@@ -14,13 +14,6 @@ int pending(const char* name) {
 }  // namespace
 
 int command_run(int, char**) { return pending("run"); }
-int command_build(int, char**) { return pending("build"); }
-int command_stretch(int, char**) { return pending("stretch"); }
-int command_relax(int, char**) { return pending("relax"); }
 int command_encounter(int, char**) { return pending("encounter"); }
-int command_analyze(int, char**) { return pending("analyze"); }
-int command_inspect(int, char**) { return pending("inspect"); }
-int command_compare(int, char**) { return pending("compare"); }
-int command_bench(int, char**) { return pending("bench"); }
 
 }  // namespace tidalcrust

@@ -102,6 +102,8 @@ const std::vector<Param>& params() {
        "fraction of (L - L0) a shell rest length moves per update"},
       {"relax", "hinge_reset_interval", ParamType::integer, TC_FIELD(relax.hinge_reset_interval), 1, 1e9,
        "steps", "steps between resets of hinge rest angles to current angles"},
+      {"relax", "settle_duration", ParamType::real, TC_FIELD(relax.settle_duration), 0, 1e4, "t_grav",
+       "last part of T: the crust is reset to zero stress, then the body settles without creep or resets"},
       {"relax", "checkpoint_interval", ParamType::integer, TC_FIELD(relax.checkpoint_interval), 0, 1e12,
        "steps", "steps between mid-stage checkpoints (0: none)"},
       {"relax", "stability_probe", ParamType::boolean, TC_FIELD(relax.stability_probe), 0, 0, "-",
@@ -273,6 +275,9 @@ void validate(const Config& config, const std::string& origin) {
                                  origin, config.interior.min_separation, config.interior.spring_distance));
   if (config.interior.min_separation > 2 * config.interior.radius)
     throw InputError(fmt::format("{}: interior.min_separation is larger than the interior", origin));
+  if (config.relax.settle_duration > config.relax.duration)
+    throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
+                                 config.relax.settle_duration, config.relax.duration));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
     check_encounter(e, origin);
@@ -365,7 +370,6 @@ void apply_override(Config& config, const std::string& assignment) {
       if (field == "pericenter") e.pericenter = updated.pericenter;
       if (field == "pericenter_speed") e.pericenter_speed = updated.pericenter_speed;
       if (field == "failure_strain") e.failure_strain = updated.failure_strain;
-      validate(config, "--set");
       return;
     }
     throw InputError(fmt::format("--set '{}': no encounter named '{}'", assignment, name));
@@ -373,38 +377,43 @@ void apply_override(Config& config, const std::string& assignment) {
   const Param* p = find_param(section, key);
   if (!p) throw InputError(fmt::format("--set '{}': unknown key '{}'", assignment, path));
   assign(config, *p, node, "--set");
-  validate(config, fmt::format("--set '{}'", assignment));
+}
+
+std::string section_toml(const Config& config, std::string_view section) {
+  Config& c = const_cast<Config&>(config);  // only read through the field accessors
+  std::string out = fmt::format("[{}]\n", section);
+  for (const auto& p : params()) {
+    if (std::string_view(p.section) != section) continue;
+    void* f = p.field(c);
+    std::string value;
+    switch (p.type) {
+      case ParamType::real: value = format_real(*static_cast<double*>(f)); break;
+      case ParamType::integer:
+        value = std::string_view(p.key) == "seed" ? fmt::format("{}", *static_cast<std::uint64_t*>(f))
+                                                  : fmt::format("{}", *static_cast<std::int64_t*>(f));
+        break;
+      case ParamType::boolean: value = *static_cast<bool*>(f) ? "true" : "false"; break;
+      case ParamType::text: value = quote(*static_cast<std::string*>(f)); break;
+    }
+    out += fmt::format("{} = {}  # [{}] {}\n", p.key, value, p.unit, p.doc);
+  }
+  return out;
+}
+
+std::string encounter_toml(const EncounterSpec& e) {
+  std::string out = "[[encounters]]\n";
+  out += fmt::format("name = {}\n", quote(e.name));
+  out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));
+  out += fmt::format("pericenter = {}  # [R] q\n", format_real(e.pericenter));
+  out += fmt::format("pericenter_speed = {}  # [sqrt(GM/R)] V_q\n", format_real(e.pericenter_speed));
+  if (e.failure_strain) out += fmt::format("failure_strain = {}  # [-] eps_S override\n", format_real(*e.failure_strain));
+  return out;
 }
 
 std::string to_toml(const Config& config) {
-  Config& c = const_cast<Config&>(config);  // only read through the field accessors
   std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
-  for (auto section : section_order()) {
-    out += fmt::format("\n[{}]\n", section);
-    for (const auto& p : params()) {
-      if (std::string_view(p.section) != section) continue;
-      void* f = p.field(c);
-      std::string value;
-      switch (p.type) {
-        case ParamType::real: value = format_real(*static_cast<double*>(f)); break;
-        case ParamType::integer:
-          value = std::string_view(p.key) == "seed" ? fmt::format("{}", *static_cast<std::uint64_t*>(f))
-                                                    : fmt::format("{}", *static_cast<std::int64_t*>(f));
-          break;
-        case ParamType::boolean: value = *static_cast<bool*>(f) ? "true" : "false"; break;
-        case ParamType::text: value = quote(*static_cast<std::string*>(f)); break;
-      }
-      out += fmt::format("{} = {}  # [{}] {}\n", p.key, value, p.unit, p.doc);
-    }
-  }
-  for (const auto& e : config.encounters) {
-    out += "\n[[encounters]]\n";
-    out += fmt::format("name = {}\n", quote(e.name));
-    out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));
-    out += fmt::format("pericenter = {}  # [R] q\n", format_real(e.pericenter));
-    out += fmt::format("pericenter_speed = {}  # [sqrt(GM/R)] V_q\n", format_real(e.pericenter_speed));
-    if (e.failure_strain) out += fmt::format("failure_strain = {}  # [-] eps_S override\n", format_real(*e.failure_strain));
-  }
+  for (auto section : section_order()) out += "\n" + section_toml(config, section);
+  for (const auto& e : config.encounters) out += "\n" + encounter_toml(e);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tidalcrust {
@@ -62,8 +63,9 @@ struct RelaxConfig {
   double damping = 50.0;                  ///< gamma, 1/t_grav
   double duration = 3.0;                  ///< T, t_grav
   std::int64_t rest_length_interval = 10; ///< steps between shell rest-length updates
-  double rest_length_rate = 0.05;         ///< fraction of (L - L0) moved per update
+  double rest_length_rate = 0.5;          ///< fraction of (L - L0) moved per update
   std::int64_t hinge_reset_interval = 100;///< steps between hinge rest-angle resets
+  double settle_duration = 1.0;           ///< final part of T without creep or resets, t_grav
   std::int64_t checkpoint_interval = 500; ///< steps between mid-stage checkpoints (0: none)
   bool stability_probe = true;
   double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
@@ -109,10 +111,16 @@ Config parse_config(const std::string& toml_text, const std::string& origin);
 /// Reads and parses a TOML file; a missing file is an InputError.
 Config load_config(const std::filesystem::path& file);
 /// Applies one "section.key=value" override (value in TOML syntax, e.g. 0.002 or true).
+/// Ranges are checked by validate() once all overrides are applied (they may depend on each other).
 void apply_override(Config& config, const std::string& assignment);
 /// The resolved configuration, every key with its default, as TOML with unit comments.
 /// parse_config(to_toml(c)) == c, and equal configs give equal text.
 std::string to_toml(const Config& config);
+/// One section ("interior", "shell", ...) of to_toml: used as the fingerprint of what a stage
+/// depends on, so that a changed value reruns exactly the stages it affects.
+std::string section_toml(const Config& config, std::string_view section);
+/// One [[encounters]] table of to_toml.
+std::string encounter_toml(const EncounterSpec& encounter);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
 

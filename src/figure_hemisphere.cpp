@@ -110,8 +110,10 @@ void draw_panel(cairo_t* cr, const PlotAxes& axes, const Checkpoint& checkpoint,
   cairo_set_source_rgb(cr, 0, 0, 0);
   draw_text(cr, fmt::format("t \u2212 t_peri = {:+.2f}", state.time - pericenter_time),
             area.left + 0.5 * area.width, area.top - 5, 0.5, 1, label_font_size);
+  cairo_save(cr);
   cairo_set_source_rgb(cr, 1, 1, 1);
   draw_text(cr, fmt::format("{} failed", fractures.count()), area.left + 6, area.bottom() - 6, 0, 1, tick_font_size);
+  cairo_restore(cr);
 }
 }  // namespace
 
@@ -131,6 +133,7 @@ FigureFiles write_hemisphere_views(const std::vector<const Checkpoint*>& snapsho
   return write_figure(stem, width, height, [&](cairo_t* cr) {
     for (std::size_t i = 0; i < snapshots.size(); ++i)
       draw_panel(cr, hemisphere_panel_axes(i, snapshots.size()), *snapshots[i], pericenter_time);
+    cairo_set_source_rgb(cr, 0, 0, 0);
     draw_title(cr, {0, 32, width, 0}, title);
     const std::string view = "orthographic; viewer on +y in the orbital plane, facing the subsatellite point; +z up, +x left";
     const std::string perturber = "magenta: perturber, radius M\u2082^(1/3) R (same density); time in t_grav";

@@ -9,7 +9,7 @@
 #include "figure_style.hpp"
 #include "figures.hpp"
 #include "orbital_frame.hpp"
-#include "two_body_track.hpp"
+#include "two_body_orbit.hpp"
 
 namespace tidalcrust {
 
@@ -62,12 +62,17 @@ FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncount
   std::vector<double> tick_times;
   const auto ticks = static_cast<long>(std::floor((t_end - t_start) / tick_interval + 1e-9));
   for (long k = 0; k <= ticks; ++k) tick_times.push_back(t_start + static_cast<double>(k) * tick_interval);
-  const double m2 = encounter.perturber_mass, q = encounter.pericenter, vq = encounter.pericenter_speed;
-  const double tq = encounter.pericenter_time;
-  const auto track = two_body_track(m2, q, vq, tq, track_times);
-  const auto tick_positions = two_body_track(m2, q, vq, tq, tick_times);
-  const auto snapshot_positions = two_body_track(m2, q, vq, tq, snapshot_times);
-  const auto near_pericenter = two_body_track(m2, q, vq, tq, {tq, tq + 0.02});
+  const double m2 = encounter.perturber_mass, tq = encounter.pericenter_time;
+  const TwoBodyOrbit orbit = perturber_orbit(m2, encounter.pericenter, encounter.pericenter_speed);
+  auto positions = [&](const std::vector<double>& times) {
+    std::vector<Vec3> out;
+    for (const double t : times) out.push_back(orbit.state_at_time(t - tq).position);
+    return out;
+  };
+  const auto track = positions(track_times);
+  const auto tick_positions = positions(tick_times);
+  const auto snapshot_positions = positions(snapshot_times);
+  const auto near_pericenter = positions({tq, tq + 0.02});
 
   const bool stored = checkpoint.state.perturber.present;
   const Vec3 stored_position =

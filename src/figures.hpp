@@ -40,7 +40,7 @@ PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count);
 /// the stage, the body as a black disc of radius R, red diamonds every 0.1 t_grav, open circles
 /// of radius M2^(1/3) R at `snapshot_times`, a red arrow for the direction of motion, and the
 /// stored perturber position of the checkpoint. The track is the two-body orbit
-/// (two_body_track.hpp) because the timeseries holds no perturber positions.
+/// (two_body_orbit.hpp, analytic) because the timeseries holds no perturber positions.
 FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
                              const std::vector<double>& snapshot_times, const std::filesystem::path& stem,
                              const std::string& title);

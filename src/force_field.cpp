@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "derived_quantities.hpp"
 #include "errors.hpp"
@@ -74,11 +75,10 @@ ForceField::ForceField(const Body& body, ForceOptions options)
   build_incidence(n, pairs, hinge_offset_, hinge_entry_);
   spring_force_.assign(3 * ns, 0.0);
   hinge_force_.assign(12 * nh, 0.0);
-  gravity_acceleration_.assign(3 * n, 0.0);
 }
 
-void ForceField::compute_spring_forces(const double* position, const double* velocity, const SpringState& springs) {
-  const std::size_t ns = body_.spring_count();
+void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                              const SpringState& springs) {
   const auto* ends = body_.springs.data();
   const double* rest = springs.rest_length.data();
   const double* stiffness = springs.stiffness.data();
@@ -87,8 +87,7 @@ void ForceField::compute_spring_forces(const double* position, const double* vel
   const std::uint8_t* nonlinear = nonlinear_.data();
   const double strain_scale = options_.cross_strain_scale, min_factor = options_.cross_min_force_factor;
   double* force = spring_force_.data();
-#pragma omp parallel for schedule(static) if (ns >= options_.min_parallel_items)
-  for (std::size_t s = 0; s < ns; ++s) {
+  for (std::size_t s = begin; s < end; ++s) {
     const std::size_t i = 3 * static_cast<std::size_t>(ends[s][0]), j = 3 * static_cast<std::size_t>(ends[s][1]);
     const double dx = position[i] - position[j], dy = position[i + 1] - position[j + 1],
                  dz = position[i + 2] - position[j + 2];
@@ -103,6 +102,51 @@ void ForceField::compute_spring_forces(const double* position, const double* vel
     force[3 * s + 1] = -c * dy;
     force[3 * s + 2] = -c * dz;
   }
+}
+
+std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position,
+                                     const HingeState& hinges) {
+  const auto* corners = body_.hinges.data();
+  const double* stiffness = hinges.stiffness.data();
+  const HalfRestAngle* rest = half_rest_.data();
+  double* force = hinge_force_.data();
+  std::int64_t collapsed = -1;
+  for (std::size_t h = begin; h < end; ++h) {
+    const auto& c = corners[h];
+    const HingeForces f = tidalcrust::hinge_forces(point(position, c[0]), point(position, c[1]),
+                                                   point(position, c[2]), point(position, c[3]), rest[h], stiffness[h]);
+    if (f.collapsed && collapsed < 0) collapsed = static_cast<std::int64_t>(h);
+    for (std::size_t v = 0; v < 4; ++v)
+      for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
+  }
+  return collapsed;
+}
+
+void ForceField::gather(std::size_t p, bool with_gravity, double* acceleration) const {
+  double f[3] = {0, 0, 0};
+  for (std::int32_t e = spring_offset_[p]; e < spring_offset_[p + 1]; ++e) {
+    const std::int32_t slot = spring_entry_[static_cast<std::size_t>(e)];
+    const double* fs = spring_force_.data() + 3 * static_cast<std::size_t>(slot >> 1);
+    // +F on the first particle, -F on the second; f + (-1 * F) is bitwise f - F, and no branch.
+    const double sign = (slot & 1) ? -1.0 : 1.0;
+    for (int k = 0; k < 3; ++k) f[k] += sign * fs[k];
+  }
+  for (std::int32_t e = hinge_offset_[p]; e < hinge_offset_[p + 1]; ++e) {
+    const double* fh = hinge_force_.data() + 3 * static_cast<std::size_t>(hinge_entry_[static_cast<std::size_t>(e)]);
+    for (int k = 0; k < 3; ++k) f[k] += fh[k];
+  }
+  const double inv_mass = 1.0 / body_.mass[p];
+  double g[3] = {0, 0, 0};
+  if (with_gravity) gravity_.sum_blocks(p, g);
+  for (int k = 0; k < 3; ++k) acceleration[3 * p + k] = f[k] * inv_mass + g[k];
+}
+
+void ForceField::compute_spring_forces(const double* position, const double* velocity, const SpringState& springs) {
+  const std::size_t ns = body_.spring_count();
+  const std::size_t chunks = (ns + spring_chunk - 1) / spring_chunk;
+#pragma omp parallel for schedule(static) if (ns >= options_.min_parallel_items)
+  for (std::size_t c = 0; c < chunks; ++c)
+    spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
 }
 
 void ForceField::refresh_half_rest_angles(const HingeState& hinges) {
@@ -122,23 +166,15 @@ void ForceField::refresh_half_rest_angles(const HingeState& hinges) {
 
 std::int64_t ForceField::compute_hinge_forces(const double* position, const HingeState& hinges) {
   refresh_half_rest_angles(hinges);
-  const std::int64_t nh = static_cast<std::int64_t>(body_.hinge_count());
-  const auto* corners = body_.hinges.data();
-  const double* stiffness = hinges.stiffness.data();
-  const HalfRestAngle* rest = half_rest_.data();
-  double* force = hinge_force_.data();
-  std::int64_t collapsed = nh;
-#pragma omp parallel for schedule(static) reduction(min : collapsed) \
-    if (static_cast<std::size_t>(nh) >= options_.min_parallel_items)
-  for (std::int64_t h = 0; h < nh; ++h) {
-    const auto& c = corners[h];
-    const HingeForces f = tidalcrust::hinge_forces(point(position, c[0]), point(position, c[1]), point(position, c[2]),
-                                       point(position, c[3]), rest[h], stiffness[h]);
-    if (f.collapsed) collapsed = std::min(collapsed, h);
-    for (std::size_t v = 0; v < 4; ++v)
-      for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
+  const std::size_t nh = body_.hinge_count();
+  const std::size_t chunks = (nh + hinge_chunk - 1) / hinge_chunk;
+  std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel for schedule(static) reduction(min : collapsed) if (4 * nh >= options_.min_parallel_items)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+    if (h >= 0) collapsed = std::min(collapsed, h);
   }
-  return collapsed < nh ? collapsed : -1;
+  return collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
 }
 
 ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
@@ -152,38 +188,41 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
                                  ns, nh, springs.rest_length.size(), springs.stiffness.size(),
                                  springs.damping.size(), hinges.rest_angle.size(), hinges.stiffness.size()));
   out.body.resize(3 * n);
-  compute_spring_forces(position, velocity, springs);
-  ForceAlarms alarms;
-  alarms.collapsed_hinge = compute_hinge_forces(position, hinges);
-  if (options_.self_gravity)
-    gravity_.accelerations(position, gravity_acceleration_.data(), n * n / 2 >= 64 * options_.min_parallel_items);
-
-  const std::int32_t *s_offset = spring_offset_.data(), *s_entry = spring_entry_.data();
-  const std::int32_t *h_offset = hinge_offset_.data(), *h_entry = hinge_entry_.data();
-  const double *spring_force = spring_force_.data(), *hinge_force = hinge_force_.data();
-  const double* gravity = gravity_acceleration_.data();
-  const double* mass = body_.mass.data();
+  refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
+  if (self_gravity) gravity_.load_positions(position);
+
+  // One parallel region per pass: first every independent piece of work (gravity blocks, the
+  // largest, then spring and hinge chunks) from one dynamic queue, then the per-particle gather.
+  const std::size_t gravity_items = self_gravity ? static_cast<std::size_t>(DirectGravity::block_count) : 0;
+  const std::size_t spring_items = (ns + spring_chunk - 1) / spring_chunk;
+  const std::size_t hinge_items = (nh + hinge_chunk - 1) / hinge_chunk;
+  const std::size_t items = gravity_items + spring_items + hinge_items;
+  const bool parallel = n * n / 128 + ns + 4 * nh >= options_.min_parallel_items;
+  std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
   double* acc = out.body.data();
-#pragma omp parallel for schedule(static) if (n >= options_.min_parallel_items)
-  for (std::size_t p = 0; p < n; ++p) {
-    double f[3] = {0, 0, 0};
-    for (std::int32_t e = s_offset[p]; e < s_offset[p + 1]; ++e) {
-      const std::int32_t slot = s_entry[e];
-      const double* fs = spring_force + 3 * static_cast<std::size_t>(slot >> 1);
-      if (slot & 1) {
-        for (int k = 0; k < 3; ++k) f[k] -= fs[k];
+#pragma omp parallel if (parallel)
+  {
+#pragma omp for schedule(dynamic, 1) reduction(min : collapsed)
+    for (std::size_t item = 0; item < items; ++item) {
+      if (item < gravity_items) {
+        gravity_.accumulate_block(static_cast<int>(item));
+      } else if (item < gravity_items + spring_items) {
+        const std::size_t c = item - gravity_items;
+        spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
       } else {
-        for (int k = 0; k < 3; ++k) f[k] += fs[k];
+        const std::size_t c = item - gravity_items - spring_items;
+        const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+        if (h >= 0) collapsed = std::min(collapsed, h);
       }
     }
-    for (std::int32_t e = h_offset[p]; e < h_offset[p + 1]; ++e) {
-      const double* fh = hinge_force + 3 * static_cast<std::size_t>(h_entry[e]);
-      for (int k = 0; k < 3; ++k) f[k] += fh[k];
-    }
-    const double inv_mass = 1.0 / mass[p];
-    for (int k = 0; k < 3; ++k) acc[3 * p + k] = self_gravity ? f[k] * inv_mass + gravity[3 * p + k] : f[k] * inv_mass;
+    // Dynamic too: a thread that the OS pauses (other jobs on the cores) holds up little.
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t p = 0; p < n; ++p) gather(p, self_gravity, acc);
   }
+  ForceAlarms alarms;
+  alarms.collapsed_hinge = collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
+
   out.perturber = {0, 0, 0};
   if (perturber.present)
     out.perturber = add_perturber_gravity(body_.mass, body_.softening, position, perturber, acc);

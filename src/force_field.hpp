@@ -27,10 +27,10 @@ struct ForceOptions {
   double cross_strain_scale = 0.03;   ///< eps_C
   double cross_min_force_factor = 0.1;///< F_Ck
   bool self_gravity = true;           ///< false only for tests of the other forces
-  /// Loops over fewer elements (springs, hinges, particles; gravity: pairs / 64) run on one
-  /// thread: below this the fork/join costs more than the loop, and far more when the cores
-  /// are oversubscribed. Results never depend on it (tests set 1 to exercise the threads).
-  std::size_t min_parallel_items = 2048;
+  /// A pass with less work than this (N^2/128 + springs + 4 hinges) runs on one thread:
+  /// below it the fork/join costs more than it saves, and far more when the cores are
+  /// oversubscribed. Results never depend on it (tests set 1 to exercise the threads).
+  std::size_t min_parallel_items = 16384;
 };
 
 /// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor).
@@ -72,6 +72,10 @@ class ForceField {
   /// Self-gravity accelerations [N*3].
   void compute_gravity(const double* position, double* acceleration) { gravity_.accelerations(position, acceleration); }
 
+  /// Springs and hinges per unit of parallel work.
+  static constexpr std::size_t spring_chunk = 2048;
+  static constexpr std::size_t hinge_chunk = 512;
+
   const std::vector<double>& spring_forces() const { return spring_force_; }  ///< [Ns*3] G M^2/R^2
   const std::vector<double>& hinge_forces() const { return hinge_force_; }    ///< [Nh*4*3] G M^2/R^2
 
@@ -83,6 +87,13 @@ class ForceField {
 
  private:
   void refresh_half_rest_angles(const HingeState& hinges);
+  void spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                    const SpringState& springs);
+  /// Returns the lowest collapsed hinge in [begin, end), or -1.
+  std::int64_t hinge_range(std::size_t begin, std::size_t end, const double* position, const HingeState& hinges);
+  /// Acceleration of particle p into acceleration[3p..3p+2]: spring forces, then hinge forces
+  /// (each in index order), divided by the mass, plus self-gravity when `with_gravity`.
+  void gather(std::size_t p, bool with_gravity, double* acceleration) const;
 
   const Body& body_;
   ForceOptions options_;
@@ -96,7 +107,6 @@ class ForceField {
   std::vector<std::int32_t> hinge_offset_, hinge_entry_;
   std::vector<double> spring_force_;
   std::vector<double> hinge_force_;
-  std::vector<double> gravity_acceleration_;
   std::vector<double> cached_rest_angle_;  ///< rest angles the half-angle table was made from
   std::vector<HalfRestAngle> half_rest_;
 };

@@ -7,6 +7,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "body.hpp"
@@ -68,5 +70,7 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 /// mean_angle_from_subsatellite_deg, longest_crack, longest_crack_extent, clusters}` object
 /// (lengths in R, clusters = number of clusters; undefined values are null).
 void add_failure_summary(JsonWriter& json, const FractureSummary& summary);
+/// The same fields as (key, value) pairs, in output order (counts are whole numbers).
+std::vector<std::pair<std::string, double>> failure_summary_fields(const FractureSummary& summary);
 
 }  // namespace tidalcrust

@@ -17,15 +17,18 @@ inline double plummer_inverse_cube(double r2, double eps2) {
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2) for every particle.
 ///
 /// Each pair is evaluated once and acts on both particles (Newton's third law). For speed the
-/// pairs are split into a FIXED number of blocks (interleaved rows i, balanced in pair count),
-/// each accumulating into its own buffer while sweeping j in L1-sized chunks; the buffers are
-/// then added per particle in block order. Every particle's sum therefore has one fixed order,
-/// whatever the number of threads: the result is bitwise independent of it.
+/// pairs are split into a FIXED number of blocks (interleaved pairs of rows, balanced in pair
+/// count), each accumulating into its own buffer while sweeping j in L1-sized chunks, two rows
+/// at a time with 8-wide SIMD over j; the buffers are then added per particle in block order.
+/// Every particle's sum therefore has one fixed order, whatever the number of threads: the
+/// result is bitwise independent of it.
 ///
 /// With AVX-512 the inverse cube comes from the hardware reciprocal square root estimate
 /// (vrsqrt14pd, exactly specified, 14 bits) refined by two Newton steps (~1 ulp) instead of a
-/// square root and a division, which share one slow divider unit. Without AVX-512 a portable
-/// path computes plummer_inverse_cube(); the two builds then differ in the last bits.
+/// square root and a division, which share one slow divider unit (that is most of the speed).
+/// Without AVX-512 a portable path computes plummer_inverse_cube(): correct, deterministic, but
+/// divider-bound (about the textbook speed per thread), and its last bits differ from the
+/// AVX-512 build's.
 class DirectGravity {
  public:
   /// mass [N] in M; softening eps in R (Body::softening).
@@ -34,6 +37,19 @@ class DirectGravity {
   /// Writes accelerations [N*3] (G M/R^2) for positions [N*3] (R). `parallel` false keeps
   /// the work on the calling thread (same result).
   void accelerations(const double* position, double* acceleration, bool parallel = true);
+
+  // accelerations() in pieces, so a caller can schedule the blocks among its own work:
+  // load_positions(), then accumulate_block(b) for every b (any order, any threads), then
+  // sum_blocks(i) for every particle.
+  void load_positions(const double* position);
+  void accumulate_block(int block);
+  /// a[3] = acceleration of particle i: the block buffers added in block order.
+  void sum_blocks(std::size_t i, double* a) const {
+    double sum[3] = {0, 0, 0};
+    for (std::size_t b = 0; b < static_cast<std::size_t>(block_count); ++b)
+      for (std::size_t k = 0; k < 3; ++k) sum[k] += buffers_[(3 * b + k) * padded_ + i];
+    for (std::size_t k = 0; k < 3; ++k) a[k] = sum[k];
+  }
 
   std::size_t particle_count() const { return count_; }
   /// Number of pair blocks (fixed; the unit of parallel work).

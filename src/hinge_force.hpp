@@ -50,10 +50,11 @@ inline HingeForces hinge_forces(const Vec3& x1, const Vec3& x2, const Vec3& x3, 
   const double n1_norm = std::sqrt(n1_sq);
   const double n2_norm = std::sqrt(n2_sq);
   const double length = e.norm();
+  const double inv_length = 1 / length;
+  const double inv_normal_product = 1 / (n1_norm * n2_norm);
   // Both normals are perpendicular to the edge, so n1 x n2 is parallel to it.
-  const double normal_product = n1_norm * n2_norm;
-  const double cos_theta = n1.dot(n2) / normal_product;
-  const double sin_theta = n1.cross(n2).dot(e) / (normal_product * length);
+  const double cos_theta = n1.dot(n2) * inv_normal_product;
+  const double sin_theta = n1.cross(n2).dot(e) * (inv_normal_product * inv_length);
   // Half angles, each from the formula without cancellation on its side of pi/2.
   double sin_half, cos_half;
   if (cos_theta >= 0) {
@@ -66,9 +67,8 @@ inline HingeForces hinge_forces(const Vec3& x1, const Vec3& x2, const Vec3& x3, 
   const double sin_half_difference = sin_half * rest.cos - cos_half * rest.sin;
   const double magnitude = stiffness * length * length / (n1_norm + n2_norm) * sin_half_difference;
 
-  const Vec3 w1 = n1 / n1_sq;  // N1/|N1|^2
-  const Vec3 w2 = n2 / n2_sq;
-  const double inv_length = 1 / length;
+  const Vec3 w1 = n1 * (1 / n1_sq);  // N1/|N1|^2
+  const Vec3 w2 = n2 * (1 / n2_sq);
   HingeForces f;
   f.collapsed = !(std::min(n1_norm, n2_norm) >= collapsed_face_fraction * length * length);
   f.on[0] = (magnitude * length) * w1;

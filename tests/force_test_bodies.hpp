@@ -38,6 +38,10 @@ softening_fraction = 0.01
 
 inline Checkpoint small_body() { return build_stage(small_body_config()); }
 
+/// The quick workflow's body (~1000 particles, ~7000 springs, ~2000 hinges): big enough that
+/// every kernel splits into several parallel work items.
+inline Checkpoint quick_body() { return build_stage(load_config(TIDALCRUST_SOURCE_DIR "/workflows/quick.toml")); }
+
 /// Adds uniform random displacements in [-dx, dx] and velocities in [-dv, dv] per component.
 inline void shake(State& state, double dx, double dv, std::uint64_t seed) {
   Random random(seed);

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <system_error>
+
+#include <unistd.h>
 
 #include "checkpoint.hpp"
 
@@ -55,12 +58,22 @@ inline Checkpoint synthetic_checkpoint() {
   return c;
 }
 
-/// A fresh empty folder for one test's files.
-inline std::filesystem::path scratch_folder(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("tidalcrust_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+/// A fresh empty folder for one test's files, unique per process (test binaries of several
+/// worktrees may run at once), removed when the test ends.
+struct ScratchFolder {
+  std::filesystem::path path;
+  explicit ScratchFolder(const std::string& name)
+      : path(std::filesystem::temp_directory_path() /
+             ("tidalcrust_test_" + name + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
 
 }  // namespace tidalcrust::test_support

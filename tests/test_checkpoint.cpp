@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -11,7 +12,9 @@
 #include <vector>
 
 #include "bad_checkpoints.hpp"
+#include "build_stage.hpp"
 #include "checkpoint.hpp"
+#include "config.hpp"
 #include "errors.hpp"
 #include "hdf5_handles.hpp"
 #include "state_hash.hpp"
@@ -117,7 +120,8 @@ std::vector<std::string> tmp_files_in(const fs::path& folder) {
 }  // namespace
 
 TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
-  const auto dir = scratch_folder("roundtrip");
+  const ScratchFolder scratch("roundtrip");
+  const fs::path& dir = scratch.path;
   const Checkpoint original = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", original);
   const Checkpoint back = read_checkpoint(dir / "c.h5");
@@ -128,7 +132,8 @@ TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
 }
 
 TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
-  const auto dir = scratch_folder("roundtrip_empty");
+  const ScratchFolder scratch("roundtrip_empty");
+  const fs::path& dir = scratch.path;
   Checkpoint original = synthetic_checkpoint();
   original.stage.stage = "build";
   original.stage.complete = true;
@@ -150,7 +155,8 @@ TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
 }
 
 TEST(Checkpoint, EqualCheckpointsGiveIdenticalBytes) {
-  const auto dir = scratch_folder("identical");
+  const ScratchFolder scratch("identical");
+  const fs::path& dir = scratch.path;
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(dir / "a.h5", c);
   write_checkpoint(dir / "b.h5", c);
@@ -167,8 +173,24 @@ TEST(Checkpoint, EqualCheckpointsGiveIdenticalBytes) {
   EXPECT_NE(a, read_bytes(dir / "d.h5"));
 }
 
+TEST(Checkpoint, ManyScalarsAndLabelsUseDenseAttributeStorageReproducibly) {
+  // More than 8 attributes on one group switch HDF5 to dense (heap + B-tree) storage.
+  const ScratchFolder scratch("dense");
+  const fs::path& dir = scratch.path;
+  Checkpoint c = synthetic_checkpoint();
+  for (int i = 0; i < 30; ++i) {
+    c.stage.scalars[fmt::format("phase_{:02}", i)] = 0.1 * i;
+    c.stage.labels[fmt::format("label_{:02}", i)] = std::string(static_cast<std::size_t>(i), 'x');
+  }
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  expect_identical(c, read_checkpoint(dir / "a.h5"));
+}
+
 TEST(Checkpoint, ObjectsCarryNoTimestamps) {
-  const auto dir = scratch_folder("timestamps");
+  const ScratchFolder scratch("timestamps");
+  const fs::path& dir = scratch.path;
   write_checkpoint(dir / "c.h5", synthetic_checkpoint());
   h5::File f = h5::open_file_readonly(dir / "c.h5");
   struct Visit {
@@ -187,7 +209,8 @@ TEST(Checkpoint, ObjectsCarryNoTimestamps) {
 }
 
 TEST(Checkpoint, FileFollowsTheH5mdLayout) {
-  const auto dir = scratch_folder("layout");
+  const ScratchFolder scratch("layout");
+  const fs::path& dir = scratch.path;
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", c);
   h5::File f = h5::open_file_readonly(dir / "c.h5");
@@ -234,7 +257,8 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
 }
 
 TEST(Checkpoint, XdmfSidecarReferencesExistingDatasets) {
-  const auto dir = scratch_folder("xdmf");
+  const ScratchFolder scratch("xdmf");
+  const fs::path& dir = scratch.path;
   write_checkpoint(dir / "body.h5", synthetic_checkpoint());
   ASSERT_TRUE(fs::exists(dir / "body.xdmf"));
   const std::string xml = read_bytes(dir / "body.xdmf");
@@ -260,7 +284,8 @@ TEST(Checkpoint, XdmfSidecarReferencesExistingDatasets) {
 }
 
 TEST(Checkpoint, BadFilesAreRejectedWithMessagesNamingFileAndDataset) {
-  const auto dir = scratch_folder("bad");
+  const ScratchFolder scratch("bad");
+  const fs::path& dir = scratch.path;
   write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
   const auto bad = make_bad_checkpoints(dir / "valid.h5", dir);
   EXPECT_EQ(bad.size(), 11u);
@@ -274,7 +299,8 @@ TEST(Checkpoint, BadFilesAreRejectedWithMessagesNamingFileAndDataset) {
 }
 
 TEST(Checkpoint, HashMismatchMessageGivesBothHashes) {
-  const auto dir = scratch_folder("hash");
+  const ScratchFolder scratch("hash");
+  const fs::path& dir = scratch.path;
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(dir / "valid.h5", c);
   Checkpoint changed = c;
@@ -289,7 +315,8 @@ TEST(Checkpoint, HashMismatchMessageGivesBothHashes) {
 }
 
 TEST(Checkpoint, ReplacingAValidFileGoesThroughRenameNeverInPlace) {
-  const auto dir = scratch_folder("replace");
+  const ScratchFolder scratch("replace");
+  const fs::path& dir = scratch.path;
   const Checkpoint first = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", first);
   const std::string first_bytes = read_bytes(dir / "c.h5");
@@ -305,7 +332,8 @@ TEST(Checkpoint, ReplacingAValidFileGoesThroughRenameNeverInPlace) {
 }
 
 TEST(Checkpoint, FailedWriteIntoMissingFolderLeavesNothing) {
-  const auto dir = scratch_folder("missing_folder");
+  const ScratchFolder scratch("missing_folder");
+  const fs::path& dir = scratch.path;
   const fs::path target = dir / "no" / "such" / "folder" / "c.h5";
   try {
     write_checkpoint(target, synthetic_checkpoint());
@@ -317,7 +345,8 @@ TEST(Checkpoint, FailedWriteIntoMissingFolderLeavesNothing) {
 }
 
 TEST(Checkpoint, FailedWriteLeavesExistingFileUntouched) {
-  const auto dir = scratch_folder("failed_write");
+  const ScratchFolder scratch("failed_write");
+  const fs::path& dir = scratch.path;
   const Checkpoint first = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", first);
   const std::string before = read_bytes(dir / "c.h5");
@@ -342,7 +371,8 @@ TEST(Checkpoint, FailedWriteLeavesExistingFileUntouched) {
 }
 
 TEST(Checkpoint, InconsistentCheckpointIsNotWritten) {
-  const auto dir = scratch_folder("inconsistent");
+  const ScratchFolder scratch("inconsistent");
+  const fs::path& dir = scratch.path;
   Checkpoint c = synthetic_checkpoint();
   c.state.springs.failed.pop_back();
   EXPECT_THROW(write_checkpoint(dir / "c.h5", c), std::logic_error);
@@ -350,4 +380,19 @@ TEST(Checkpoint, InconsistentCheckpointIsNotWritten) {
   c.body.faces[1][2] = 5;
   EXPECT_THROW(write_checkpoint(dir / "c.h5", c), std::logic_error);
   EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Checkpoint, BuiltQuickBodyRoundTripsAndWritesReproducibly) {
+  const ScratchFolder scratch("built_body");
+  const fs::path& dir = scratch.path;
+  const Config config = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml");
+  Checkpoint c = build_stage(config);
+  c.config_toml = to_toml(config);
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  const Checkpoint back = read_checkpoint(dir / "a.h5");
+  expect_identical(c, back);
+  EXPECT_EQ(back.body.particle_count(), 1042u);
+  EXPECT_EQ(parse_config(back.config_toml, "stored").interior.radius, config.interior.radius);
 }

@@ -9,38 +9,13 @@
 #include <sstream>
 #include <string>
 
+#include "cli_runner.hpp"
+
 using namespace std::string_literals;
+using tidalcrust::test_support::count_lines;
+using tidalcrust::test_support::run_cli;
 
 namespace {
-
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// Runs `tidalcrust ARGS`, capturing stdout and stderr separately.
-CommandResult run_cli(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("tidalcrust_estimate_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const auto out = dir / "out.txt", err = dir / "err.txt";
-  const std::string command =
-      "\""s + TIDALCRUST_EXE + "\" " + args + " >\"" + out.string() + "\" 2>\"" + err.string() + "\"";
-  const int status = std::system(command.c_str());
-  CommandResult result;
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = read_text(out);
-  result.err = read_text(err);
-  std::filesystem::remove_all(dir);
-  return result;
-}
 
 bool has_key(const std::string& json, const std::string& key) {
   return json.find("\"" + key + "\": ") != std::string::npos;
@@ -53,11 +28,6 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(json.substr(at + key.size() + 4));
 }
 
-int count_lines(const std::string& text) {
-  int lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
 
 }  // namespace
 

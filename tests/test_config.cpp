@@ -78,7 +78,10 @@ TEST(Config, OverridesApplyAndValidate) {
   apply_override(config, "encounters.T5.pericenter=2.0");
   EXPECT_DOUBLE_EQ(config.find_encounter("T5").pericenter, 2.0);
   EXPECT_THROW(apply_override(config, "shell.nope=1"), InputError);
-  EXPECT_THROW(apply_override(config, "integrator.dt=0"), InputError);
-  EXPECT_THROW(apply_override(config, "encounters.T5.pericenter=0.9"), InputError);
+  apply_override(config, "integrator.dt=0");
+  EXPECT_THROW(validate(config, "--set"), InputError);
+  apply_override(config, "integrator.dt=0.002");
+  apply_override(config, "encounters.T5.pericenter=0.9");
+  EXPECT_THROW(validate(config, "--set"), InputError);
   EXPECT_THROW(config.find_encounter("T7"), InputError);
 }

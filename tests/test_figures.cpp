@@ -8,13 +8,13 @@
 #include <numbers>
 #include <string>
 
+#include "conservation_drift.hpp"
 #include "errors.hpp"
 #include "figure_output.hpp"
 #include "figures.hpp"
 #include "orbital_frame.hpp"
 #include "recorded_encounter.hpp"
 #include "synthetic_encounter.hpp"
-#include "two_body_track.hpp"
 
 using namespace tidalcrust;
 using tidalcrust::testing::synthetic_encounter;
@@ -167,19 +167,22 @@ TEST(RecordedEncounter, RefusesOtherStagesAndMissingScalars) {
   EXPECT_THROW(recorded_encounter(c, "ENC.h5"), InputError);
 }
 
-TEST(TwoBodyTrack, ParabolaFollowsBarkersEquation) {
-  // Parabolic orbit, mu = 1.5: t - T = sqrt(2 q^3 / mu) (D + D^3 / 3), r = q (1 + D^2), D = tan(nu/2).
-  const double m2 = 0.5, mu = 1.5, q = 1.84, vq = std::sqrt(2 * mu / q), tq = 1.2;
-  std::vector<double> times;
-  for (const double d : {-1.5, -0.7, 0.0, 0.4, 1.1}) times.push_back(tq + std::sqrt(2 * q * q * q / mu) * (d + d * d * d / 3));
-  const auto track = two_body_track(m2, q, vq, tq, times);
-  for (std::size_t i = 0; i < times.size(); ++i) {
-    const double d = std::vector<double>{-1.5, -0.7, 0.0, 0.4, 1.1}[i];
-    const double nu = 2 * std::atan(d);
-    const double r = q * (1 + d * d);
-    // Pericenter on +y, moving toward -x: true anomaly counted from +y toward -x.
-    EXPECT_NEAR(track[i].x(), -r * std::sin(nu), 1e-9);
-    EXPECT_NEAR(track[i].y(), r * std::cos(nu), 1e-9);
-    EXPECT_EQ(track[i].z(), 0.0);
-  }
+
+TEST(ConservationDrift, ChangesRelativeToTheFirstSample) {
+  std::vector<TimeseriesSample> samples(3);
+  samples[0].kinetic_energy = 2.0;
+  samples[0].angular_momentum = {0, 0, 4.0};
+  samples[1].kinetic_energy = 2.5;
+  samples[1].momentum = {3e-15, 4e-15, 0};
+  samples[1].angular_momentum = {0, 0, 4.0 + 2e-12};
+  samples[2].kinetic_energy = 1.0;
+  samples[2].angular_momentum = {0, 0, 4.0};
+  const ConservationDrift d = conservation_drift(samples);
+  EXPECT_EQ(d.samples, 3u);
+  EXPECT_DOUBLE_EQ(d.max_momentum_change, 5e-15);
+  EXPECT_NEAR(d.max_angular_momentum_change, 2e-12, 1e-15);  // ulp(4) ~ 9e-16
+  EXPECT_NEAR(d.max_relative_angular_momentum_change, 5e-13, 1e-15 / 4);
+  EXPECT_DOUBLE_EQ(d.final_kinetic_energy_change, -0.5);
+  EXPECT_DOUBLE_EQ(d.max_kinetic_energy_change, 0.5);
+  EXPECT_TRUE(std::isnan(conservation_drift({}).max_momentum_change));
 }

@@ -135,7 +135,10 @@ TEST(Leapfrog, ResumedRunEqualsStraightRun) {
 }
 
 TEST(Leapfrog, BitwiseIdenticalWithOneAndTwoThreads) {
-  Checkpoint c = lively_body();
+  Checkpoint c = quick_body();
+  shake(c.state, 3e-3, 0.02, 6);
+  for (double& g : c.state.springs.damping) g = 5.0;
+  c.state.perturber = {true, 0.5, {-1.0, 2.5, 0.2}, {0.9, 0.0, 0.0}};
   ForceOptions options;
   options.min_parallel_items = 1;  // every loop threaded
   ForceField field(c.body, options);

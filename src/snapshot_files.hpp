@@ -1,0 +1,30 @@
+#pragma once
+// Mid-stage snapshots of an encounter, kept beside its checkpoint for the snapshot row of the
+// hemisphere figure (Figure 6): ENC.h5 -> ENC.snap-<step>.h5 (step: global step, decimal).
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+namespace tidalcrust {
+
+inline constexpr std::string_view snapshot_infix = ".snap-";
+
+/// The snapshot file of `checkpoint_file` at global step `step`.
+std::filesystem::path snapshot_path(const std::filesystem::path& checkpoint_file, std::int64_t step);
+
+struct SnapshotFile {
+  std::int64_t step = 0;
+  std::filesystem::path file;
+};
+
+/// Snapshot files beside `checkpoint_file`, ascending step (none if the folder is missing).
+std::vector<SnapshotFile> find_snapshots(const std::filesystem::path& checkpoint_file);
+
+/// Up to `max_panels` indices into ascending `times` for a row of snapshots: evenly spread
+/// over the list, always with the first, the last and (for max_panels >= 3) the one nearest
+/// `pericenter_time`.
+std::vector<std::size_t> choose_snapshot_panels(const std::vector<double>& times, double pericenter_time,
+                                                std::size_t max_panels);
+
+}  // namespace tidalcrust

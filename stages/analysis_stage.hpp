@@ -1,0 +1,26 @@
+#pragma once
+// Stage 5 (paper section 3): analysis of one encounter checkpoint into a folder of figures
+// (fracture map, hemisphere views, orbit, failures over time, conservation; PNG + SVG) and
+// summary.json.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "checkpoint.hpp"
+#include "fracture_analysis.hpp"
+
+namespace tidalcrust {
+
+/// Writes the figures and summary.json (last, atomically) of `checkpoint`, read from `from`
+/// (snapshots ENC.snap-<step>.h5 beside it form the hemisphere row). Returns the figure files.
+/// InputError for a checkpoint that is not an encounter.
+std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path& from, const Checkpoint& checkpoint,
+                                                     const std::filesystem::path& out);
+
+/// True if out/summary.json was written for exactly this state (same state_hash).
+bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
+
+/// One line: failures, fraction, hemisphere fraction, mean angle, cracks, longest crack.
+std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures);
+
+}  // namespace tidalcrust

@@ -1,0 +1,40 @@
+#include "stability_probe.hpp"
+
+#include <algorithm>
+
+#include "force_field.hpp"
+#include "leapfrog.hpp"
+#include "shell_failure.hpp"
+
+namespace tidalcrust {
+
+ProbeResult run_stability_probe(const Checkpoint& relaxed, const Config& config, double failure_strain,
+                                const StepLoopOptions& options) {
+  Checkpoint probe = relaxed;
+  probe.state.perturber = Perturber{};
+  std::fill(probe.state.springs.damping.begin(), probe.state.springs.damping.end(), config.relax.probe_damping);
+  probe.observables = Observables{};
+  const std::int64_t first = probe.state.step;
+  probe.stage.start_step = first;
+  probe.stage.end_step = first + steps_for_duration(config.relax.probe_duration, probe.state.dt);
+
+  ForceField forces(probe.body, force_options(config));
+  Leapfrog leapfrog(forces, StepClock::starting_at(probe.state));
+  ProbeResult result;
+  result.max_shell_tension = max_shell_tension(probe.body, probe.state);
+  auto after_step = [&](Checkpoint& c) {
+    result.max_shell_tension = std::max(result.max_shell_tension, max_shell_tension(c.body, c.state));
+    if ((c.state.step - first) % config.encounter.fail_interval == 0 &&
+        fail_most_strained_shell_spring(c.body, c.state, failure_strain, config.shell.failed_stiffness_factor))
+      ++result.failures;
+  };
+  StepLoopOptions probe_options = options;
+  probe_options.label = options.label.empty() ? "stability probe" : options.label + " stability probe";
+  probe_options.mid_checkpoint.clear();
+  probe_options.checkpoint_interval = 0;
+  result.interrupted =
+      run_step_loop(probe, [&](State& s) { leapfrog.step(s); }, after_step, probe_options) == LoopOutcome::interrupted;
+  return result;
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,310 @@
+#include "stretch_stage.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "derived_quantities.hpp"
+#include "errors.hpp"
+#include "force_field.hpp"
+#include "hydrostatic_pressure.hpp"
+#include "state_hash.hpp"
+#include "vec3.hpp"
+
+namespace tidalcrust {
+namespace {
+
+/// Rest lengths may at most double: a body that needs more is not held by its springs.
+constexpr double largest_stretch_factor = 2.0;
+/// Strengthening no more than this: a stiffer core would need a much smaller time step.
+constexpr double largest_strengthening = 100.0;
+
+Vec3 centre_of_mass(const Body& body, const State& state) {
+  Vec3 sum = Vec3::Zero();
+  double mass = 0;
+  for (std::size_t i = 0; i < body.particle_count(); ++i) {
+    sum += body.mass[i] * vec3_at(state.position, i);
+    mass += body.mass[i];
+  }
+  return sum / mass;
+}
+
+/// The surface whose mean radial acceleration the stretch zeroes: the shell nodes, or for a
+/// body without shell the interior nodes within d_I/2 of the outermost one (those that lack
+/// outward neighbours, like a surface).
+std::vector<std::size_t> surface_nodes(const Body& body, const State& state, const Vec3& centre,
+                                       double spring_distance) {
+  std::vector<std::size_t> nodes;
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) nodes.push_back(i);
+  if (!nodes.empty()) return nodes;
+  double r_max = 0;
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    r_max = std::max(r_max, (vec3_at(state.position, i) - centre).norm());
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    if ((vec3_at(state.position, i) - centre).norm() > r_max - 0.5 * spring_distance) nodes.push_back(i);
+  return nodes;
+}
+
+/// The balance of the body at rest at its built positions with trial springs.
+struct Balance {
+  double surface = 0;  ///< mean a . r_hat over the surface nodes, G M/R^2
+  /// sum m (x - c) . a / sum m |x - c|, G M/R^2: half the initial second derivative of the
+  /// moment of inertia about the centre c, per unit sum m r. Zero: no breathing drive.
+  double virial = 0;
+};
+
+/// The body at rest at its built positions with trial rest lengths and stiffnesses.
+class StretchTrial {
+ public:
+  StretchTrial(const Checkpoint& built, const Config& config)
+      : body_(built.body),
+        base_(built.state.springs),
+        cross_compression_(config.stretch.cross_compression),
+        forces_(built.body, force_options(config)),
+        state_(built.state),
+        centre_(centre_of_mass(built.body, built.state)),
+        surface_(surface_nodes(built.body, built.state, centre_, config.interior.spring_distance)) {
+    std::fill(state_.velocity.begin(), state_.velocity.end(), 0.0);
+    state_.perturber = Perturber{};
+    if (surface_.empty()) throw InputError("stretch: the body has no particles");
+  }
+
+  /// Rest lengths f L_built (cross springs (1 + cross_compression) times longer: slightly
+  /// compressed) and stiffnesses k_built times `multiplier`.
+  void apply(double factor, const std::vector<double>& multiplier, SpringState& springs) const {
+    for (std::size_t n = 0; n < body_.spring_count(); ++n) {
+      const bool cross = body_.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::cross);
+      springs.rest_length[n] = factor * base_.rest_length[n] * (cross ? 1.0 + cross_compression_ : 1.0);
+      springs.stiffness[n] = base_.stiffness[n] * multiplier[n];
+    }
+  }
+
+  /// Accelerations at rest (gravity + springs + hinges) for stretch factor f and stiffness
+  /// multipliers, reduced to the two balances the stage zeroes.
+  Balance balance(double factor, const std::vector<double>& multiplier) {
+    apply(factor, multiplier, state_.springs);
+    forces_.compute(state_, acc_);
+    Balance b;
+    for (std::size_t i : surface_) {
+      const Vec3 r_hat = (vec3_at(state_.position, i) - centre_).normalized();
+      b.surface += vec3_at(acc_.body, i).dot(r_hat);
+    }
+    b.surface /= static_cast<double>(surface_.size());
+    double moment = 0;
+    for (std::size_t i = 0; i < body_.particle_count(); ++i) {
+      const Vec3 r = vec3_at(state_.position, i) - centre_;
+      b.virial += body_.mass[i] * r.dot(vec3_at(acc_.body, i));
+      moment += body_.mass[i] * r.norm();
+    }
+    b.virial /= moment;
+    return b;
+  }
+
+  const Vec3& centre() const { return centre_; }
+
+ private:
+  const Body& body_;
+  const SpringState& base_;
+  double cross_compression_;
+  ForceField forces_;
+  State state_;
+  Accelerations acc_;
+  Vec3 centre_;
+  std::vector<std::size_t> surface_;
+};
+
+/// Counts force evaluations against stretch.max_iterations.
+class EvaluationBudget {
+ public:
+  EvaluationBudget(std::int64_t limit, double tolerance) : limit_(limit), tolerance_(tolerance) {}
+  void spend(const char* what, double x, double residual) {
+    if (used_ >= limit_)
+      throw SimulationError(fmt::format(
+          "stretch: {} not found to |residual| < {} G M/R^2 (stretch.tolerance) within stretch.max_iterations = {} "
+          "force evaluations; last residual {:.3g} at {:.9g}",
+          what, tolerance_, limit_, residual, x));
+    ++used_;
+  }
+  std::int64_t used() const { return used_; }
+  double tolerance() const { return tolerance_; }
+
+ private:
+  std::int64_t limit_;
+  double tolerance_;
+  std::int64_t used_ = 0;
+};
+
+struct Root {
+  double x = 0;
+  double residual = 0;
+};
+
+/// Root of an increasing-or-decreasing g inside the bracket [a, b] (g(a), g(b) of opposite
+/// signs): Illinois regula falsi, a secant step kept inside the bracket. For linear springs at
+/// rest g is linear (or piecewise linear) in the unknown, so it converges in a step or two.
+Root illinois(const std::function<double(double)>& g, double a, double ga, double b, double gb,
+              EvaluationBudget& budget, const char* what) {
+  Root last{b, gb};
+  while (std::abs(last.residual) >= budget.tolerance()) {
+    budget.spend(what, last.x, last.residual);
+    const double c = (a * gb - b * ga) / (gb - ga);
+    const double gc = g(c);
+    if ((gc < 0) != (gb < 0)) {
+      a = b;
+      ga = gb;
+    } else {
+      ga *= 0.5;  // Illinois: keeps the stale end from stalling the secant
+    }
+    b = c;
+    gb = gc;
+    last = {c, gc};
+  }
+  return last;
+}
+
+/// The common factor f of all rest lengths that zeroes the mean radial surface acceleration:
+/// from f = 1 (built lengths; gravity pulls the surface in, g < 0) the bracket grows by
+/// doubling steps, then Illinois.
+Root solve_stretch_factor(const std::function<double(double)>& g, EvaluationBudget& budget) {
+  const char* what = "stretch factor";
+  budget.spend(what, 1, 0);
+  double a = 1, ga = g(a);
+  if (std::abs(ga) < budget.tolerance()) return {a, ga};
+  // An inward pull (ga < 0) needs longer rest lengths: compressed springs push outward.
+  const double direction = ga < 0 ? 1.0 : -1.0;
+  double step = 0.01, b = 1 + direction * step;
+  budget.spend(what, b, ga);
+  double gb = g(b);
+  while ((gb < 0) == (ga < 0)) {
+    if (std::abs(gb) < budget.tolerance()) return {b, gb};
+    a = b;
+    ga = gb;
+    step *= 2;
+    b = 1 + direction * step;
+    if (b > largest_stretch_factor || b < 1 / largest_stretch_factor)
+      throw InputError(fmt::format(
+          "stretch: the springs cannot hold the body against self-gravity (the surface still accelerates by "
+          "{:.3g} G M/R^2 with rest lengths scaled by {:.3g}); stiffen interior.spring_constant, "
+          "shell.spring_constant or cross.spring_constant",
+          gb, a));
+    budget.spend(what, b, gb);
+    gb = g(b);
+  }
+  return illinois(g, a, ga, b, gb, budget, what);
+}
+
+/// Stiffness multipliers of the hydrostatic strengthening: interior spring n gets
+/// max(1, P(r_mid)/P_uniform), P the paper's hydrostatic pressure at its midpoint radius and
+/// P_uniform the pressure of the uniformly compressed network; shell and cross springs keep 1.
+/// `inverse_uniform_pressure` = 1/P_uniform (0: no strengthening).
+struct Strengthening {
+  std::vector<double> multiplier;  ///< [Ns]
+  double largest = 1;
+  double inverse_uniform_pressure = 0;
+};
+
+Strengthening strengthen(const Body& body, const std::vector<double>& midpoint_pressure,
+                         double inverse_uniform_pressure) {
+  Strengthening s;
+  s.inverse_uniform_pressure = inverse_uniform_pressure;
+  s.multiplier.assign(body.spring_count(), 1.0);
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
+    s.multiplier[n] = std::max(1.0, midpoint_pressure[n] * inverse_uniform_pressure);
+    s.largest = std::max(s.largest, s.multiplier[n]);
+  }
+  return s;
+}
+
+/// P(r) of section 2.3 at every spring's midpoint radius (e_g).
+std::vector<double> midpoint_pressures(const Body& body, const State& state, const Vec3& centre) {
+  std::vector<double> p(body.spring_count());
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])) +
+                            vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])));
+    p[n] = std::max(0.0, hydrostatic_pressure((mid - centre).norm()));
+  }
+  return p;
+}
+
+/// Pressure of the interior network when every spring is compressed by the common factor f
+/// (e_g). Each spring then pushes with k L (f - 1), and the virial stress of an isotropic
+/// network, P = (1/3V) sum F L = (1/3V) sum k L^2 (f - 1), is 2 E_I (f - 1) with E_I of eq. 15
+/// (the bulk modulus of the Poisson-1/4 network is 2 E_I/3 and the volumetric strain
+/// 3 (f - 1)). The paper's "P ~ E_I eps" fixes only the order of magnitude; with E_I eps the
+/// core would be strengthened twice too much and push the body outward (tests: the stretched
+/// body then rings almost as much as the unstretched one).
+double uniform_network_pressure(double young_modulus, double factor) { return 2 * young_modulus * (factor - 1); }
+
+}  // namespace
+
+Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
+  if (built.stage.stage != "build" || !built.stage.complete)
+    throw InputError(fmt::format("stretch needs a complete 'build' checkpoint, got {} '{}' checkpoint",
+                                 built.stage.complete ? "a complete" : "an incomplete", built.stage.stage));
+  Checkpoint out = built;
+  out.stage = StageInfo{};
+  out.stage.stage = "stretch";
+  out.stage.complete = true;
+  out.stage.start_step = built.state.step;
+  out.stage.end_step = built.state.step;
+  out.stage.parent_hash = state_hash(built.state);
+  out.config_toml = to_toml(config);
+  out.observables = Observables{};
+  auto& scalars = out.stage.scalars;
+  if (!config.stretch.enabled) {
+    scalars["stretch_factor"] = 1.0;
+    return out;
+  }
+
+  const Body& body = built.body;
+  StretchTrial trial(built, config);
+  const double young_modulus = derive_quantities(body, built.state, config.interior.radius).E_I;
+  const std::vector<double> pressure = midpoint_pressures(body, built.state, trial.centre());
+  EvaluationBudget budget(config.stretch.max_iterations, config.stretch.tolerance);
+
+  // (a) The common factor with the built stiffnesses.
+  Strengthening strengthening = strengthen(body, pressure, 0);
+  auto solve_factor = [&] {
+    return solve_stretch_factor([&](double f) { return trial.balance(f, strengthening.multiplier).surface; },
+                                budget);
+  };
+  const Root unstrengthened = solve_factor();
+  // (b) Strengthening for the pressure of that compression, then the factor again with the
+  // strengthened springs. With a shell the surface nodes carry no interior springs and the
+  // factor does not change. Without a shell it drops a little (the stiffer outer interior
+  // pushes the surface out); strengthening is not iterated to a fixed point, which for such a
+  // body drifts toward f = 1 with ever stiffer springs (the force of a strengthened spring,
+  // k P(r)/P_uniform (f - 1) L, no longer depends on f).
+  const double uniform_pressure = uniform_network_pressure(young_modulus, unstrengthened.x);
+  strengthening = strengthen(body, pressure, uniform_pressure > 0 ? 1 / uniform_pressure : 0.0);
+  if (strengthening.largest > largest_strengthening)
+    throw InputError(fmt::format(
+        "stretch: the common compression (stretch factor {:.6g}) is too small for the interior to carry the "
+        "hydrostatic pressure: its central springs would have to be {:.3g}x stiffer (limit {}); soften "
+        "interior.spring_constant relative to shell.spring_constant and cross.spring_constant",
+        unstrengthened.x, strengthening.largest, largest_strengthening));
+  const Root factor = solve_factor();
+  trial.apply(factor.x, strengthening.multiplier, out.state.springs);
+  const Balance final_balance = trial.balance(factor.x, strengthening.multiplier);
+
+  const double beta = strengthening.inverse_uniform_pressure;
+  scalars["stretch_factor"] = factor.x;
+  scalars["residual_surface_acceleration"] = final_balance.surface;
+  scalars["residual_virial_acceleration"] = final_balance.virial;
+  scalars["iterations"] = static_cast<double>(budget.used());
+  scalars["stretch_factor_unstrengthened"] = unstrengthened.x;
+  scalars["strengthening_max"] = strengthening.largest;
+  scalars["P_uniform"] = beta > 0 ? 1 / beta : 0.0;
+  // P(r) = P_uniform at r^2 = 1 - P_uniform/P(0): springs inside were strengthened.
+  scalars["strengthening_radius"] = beta > 0 ? std::sqrt(std::max(0.0, 1 - 1 / (beta * hydrostatic_pressure(0)))) : 0.0;
+  scalars["dt_max"] = derive_quantities(out.body, out.state, config.interior.radius).dt_max;
+  return out;
+}
+
+}  // namespace tidalcrust
