@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "conservation.hpp"
-#include "encounter_snapshots.hpp"
+#include "encounter_snapshot_steps.hpp"
+#include "snapshot_files.hpp"
 #include "errors.hpp"
 #include "force_field.hpp"
 #include "leapfrog.hpp"
@@ -17,13 +17,14 @@
 #include "recorded_encounter.hpp"
 #include "shell_failure.hpp"
 #include "state_hash.hpp"
+#include "timeseries_sample.hpp"
 #include "two_body_orbit.hpp"
 
 namespace tidalcrust {
 namespace {
 
 // StageInfo scalars of an encounter beyond the shared encounter_keys (recorded_encounter.hpp)
-// and the snapshot steps (encounter_snapshots.hpp). The run reads its schedule from here, not
+// and the snapshot steps (snapshot_files.hpp). The run reads its schedule from here, not
 // from the configuration, so a resumed run follows exactly the schedule it began with.
 namespace key {
 constexpr const char* failure_strain = "failure_strain";                    ///< eps_S used
@@ -53,17 +54,6 @@ std::int64_t required_step_count(const Checkpoint& checkpoint, const char* name)
   if (!(value >= 1) || value != std::floor(value))
     throw InputError(fmt::format("encounter checkpoint: scalar '{}' = {} must be a whole number >= 1", name, value));
   return static_cast<std::int64_t>(value);
-}
-
-TimeseriesSample sample_of(const Body& body, const State& state) {
-  const Conservation totals = measure_conservation(body, state);
-  TimeseriesSample sample;
-  sample.time = state.time;
-  sample.failed = std::count(state.springs.failed.begin(), state.springs.failed.end(), std::uint8_t{1});
-  sample.kinetic_energy = totals.kinetic_energy;
-  sample.momentum = totals.momentum;
-  sample.angular_momentum = totals.angular_momentum;
-  return sample;
 }
 
 /// Perturber relative to the body's centre of mass: distance (R) and speed (sqrt(GM/R)).
@@ -167,7 +157,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   // Observables belong to this stage: a fresh failure log and timeseries (the parent's stay in
   // the parent's file), starting with the state at the start.
   c.observables = {};
-  c.observables.timeseries.push_back(sample_of(c.body, state));
+  c.observables.timeseries.push_back(sample_timeseries(c.body, state));
   return c;
 }
 
@@ -201,7 +191,7 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
       if (auto event = fail_most_strained_shell_spring(c.body, state, failure_strain, failed_stiffness_factor))
         c.observables.failures.push_back(*event);
     }
-    if (done % sample_interval == 0 || state.step == end_step) c.observables.timeseries.push_back(sample_of(c.body, state));
+    if (done % sample_interval == 0 || state.step == end_step) c.observables.timeseries.push_back(sample_timeseries(c.body, state));
 
     // Closest approach, sampled every step (the error of a step-sampled minimum is ~(V dt)^2/(8 q)).
     const Separation now = separation(c.body, state);
@@ -214,7 +204,7 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
     }
 
     if (!output.empty() && std::binary_search(snapshots.begin(), snapshots.end(), state.step))
-      write_checkpoint(encounter_snapshot_path(output, state.step), c);
+      write_checkpoint(snapshot_path(output, state.step), c);
   };
   return run_step_loop(checkpoint, advance, after_step, options);
 }

@@ -3,7 +3,6 @@
 // snapshots, second passes and bad input.
 #include <gtest/gtest.h>
 #include <omp.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,13 +16,17 @@
 #include "checkpoint.hpp"
 #include "config.hpp"
 #include "conservation.hpp"
-#include "encounter_snapshots.hpp"
+#include "encounter_snapshot_steps.hpp"
+#include "snapshot_files.hpp"
 #include "encounter_stage.hpp"
 #include "errors.hpp"
+#include "fracture_analysis.hpp"
 #include "orbital_frame.hpp"
 #include "recorded_encounter.hpp"
+#include "relax_stage.hpp"
 #include "state_hash.hpp"
 #include "stretch_stage.hpp"
+#include "synthetic_checkpoint.hpp"
 #include "two_body_orbit.hpp"
 
 namespace tidalcrust {
@@ -33,30 +36,31 @@ namespace fs = std::filesystem;
 
 Config quick_config() { return load_config(fs::path(TIDALCRUST_SOURCE_DIR) / "workflows" / "quick.toml"); }
 
-/// The quick body, built and stretched, standing in for a relaxed body.
+StepLoopOptions quiet() {
+  StepLoopOptions options;
+  options.quiet = true;
+  return options;
+}
+
+/// The quick body built, stretched and relaxed (without the stability probe), once.
 const Checkpoint& quick_parent() {
   static const Checkpoint parent = [] {
-    const Config config = quick_config();
-    Checkpoint c = stretch_stage(build_stage(config), config);
-    c.stage.stage = "relax";
-    c.stage.complete = true;
+    Config config = quick_config();
+    config.relax.stability_probe = false;
+    Checkpoint c = begin_relax(stretch_stage(build_stage(config), config), config);
+    EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
     return c;
   }();
   return parent;
 }
 
-/// Per-process scratch folder.
+/// One scratch folder per test binary process, removed at exit.
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tidalcrust_encounter_" + std::to_string(::getpid())) / name;
+  static const test_support::ScratchFolder root("encounter");
+  const fs::path dir = root.path / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-StepLoopOptions quiet() {
-  StepLoopOptions options;
-  options.quiet = true;
-  return options;
 }
 
 /// The quick "strong" encounter (M2 = 1, q = 1.6, V_q = 1.6) run straight through on 2 threads,
@@ -205,6 +209,10 @@ TEST(EncounterStage, StrongEncounterCracksTheCrustFacingThePerturber) {
               100.0 * static_cast<double>(failures.size()) / static_cast<double>(shell_springs), shell_springs);
   EXPECT_GE(failures.size(), 30u);
   EXPECT_LT(failures.size(), shell_springs / 2);
+  // Mostly on the hemisphere facing pericenter (+y from the centre of mass; about 0.8 here).
+  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  EXPECT_EQ(fractures.count(), failures.size());
+  EXPECT_GT(fractures.hemisphere_fraction, 0.65);
   EXPECT_EQ(count_failed(c.state), failures.size() + count_failed(quick_parent().state));
 
   const double eps = c.stage.scalars.at("failure_strain");
@@ -254,8 +262,12 @@ TEST(EncounterStage, MomentumAndAngularMomentumAreConserved) {
 
 TEST(EncounterStage, SnapshotFilesAtTheirSteps) {
   const StrongRun& r = strong_run();
+  // analyze finds exactly the planned snapshots beside the output.
+  std::vector<std::int64_t> found;
+  for (const SnapshotFile& f : find_snapshots(r.output)) found.push_back(f.step);
+  EXPECT_EQ(found, snapshot_steps(r.done.stage));
   for (std::int64_t step : snapshot_steps(r.done.stage)) {
-    const fs::path file = encounter_snapshot_path(r.output, step);
+    const fs::path file = snapshot_path(r.output, step);
     EXPECT_EQ(file.filename().string(), "strong.snap-" + std::to_string(step) + ".h5");
     ASSERT_TRUE(fs::exists(file)) << file;
     const Checkpoint snap = read_checkpoint(file);
@@ -302,8 +314,8 @@ TEST(EncounterStage, ResumedRunIsBitIdentical) {
   expect_same_timeseries(c.observables.timeseries, r.done.observables.timeseries);
   EXPECT_EQ(c.stage.scalars, r.done.stage.scalars);
   for (std::int64_t step : snapshot_steps(c.stage))
-    EXPECT_EQ(state_hash(read_checkpoint(encounter_snapshot_path(output, step)).state),
-              state_hash(read_checkpoint(encounter_snapshot_path(r.output, step)).state))
+    EXPECT_EQ(state_hash(read_checkpoint(snapshot_path(output, step)).state),
+              state_hash(read_checkpoint(snapshot_path(r.output, step)).state))
         << "snapshot at step " << step;
 }
 

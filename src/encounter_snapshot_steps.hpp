@@ -1,9 +1,8 @@
 #pragma once
-// Snapshot checkpoints of an encounter (for the hemisphere views of paper Figure 6): full
-// "encounter" checkpoints written mid-stage beside the encounter's output file, at steps fixed
-// when the encounter begins and stored in StageInfo scalars, so that analyze finds them.
+// When an encounter writes its snapshot checkpoints (for the hemisphere views of paper
+// Figure 6; file names in snapshot_files.hpp): global steps fixed when the encounter begins and
+// stored in StageInfo scalars, so that a resumed run writes the same snapshots.
 #include <cstdint>
-#include <filesystem>
 #include <vector>
 
 #include "checkpoint.hpp"
@@ -14,10 +13,6 @@ namespace encounter_snapshot_keys {
 inline constexpr const char* count = "snapshot_count";        ///< number of snapshot steps
 inline constexpr const char* step_prefix = "snapshot_step_";  ///< + index 0..count-1: global step
 }  // namespace encounter_snapshot_keys
-
-/// The snapshot of `output` (e.g. "dir/ENC.h5") at global step `step`: "dir/ENC.snap-<step>.h5"
-/// (decimal step, no padding).
-std::filesystem::path encounter_snapshot_path(const std::filesystem::path& output, std::int64_t step);
 
 /// Stores the snapshot steps (ascending) in stage.scalars.
 void store_snapshot_steps(StageInfo& stage, const std::vector<std::int64_t>& steps);

@@ -1,4 +1,4 @@
-#include "encounter_snapshots.hpp"
+#include "encounter_snapshot_steps.hpp"
 
 #include <fmt/format.h>
 
@@ -7,10 +7,6 @@
 #include "errors.hpp"
 
 namespace tidalcrust {
-
-std::filesystem::path encounter_snapshot_path(const std::filesystem::path& output, std::int64_t step) {
-  return output.parent_path() / fmt::format("{}.snap-{}.h5", output.stem().string(), step);
-}
 
 void store_snapshot_steps(StageInfo& stage, const std::vector<std::int64_t>& steps) {
   stage.scalars[encounter_snapshot_keys::count] = static_cast<double>(steps.size());
