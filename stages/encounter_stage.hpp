@@ -17,7 +17,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
 /// Runs (or resumes) the encounter in place until complete. `checkpoint` is what
 /// begin_encounter returned or a mid-stage "encounter" checkpoint. `output` is the encounter's
 /// final checkpoint file: the snapshot checkpoints are written beside it
-/// (encounter_snapshots.hpp); empty = no snapshot files.
+/// (snapshot_files.hpp); empty = no snapshot files.
 LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options,
                           const std::filesystem::path& output = {});
 
