@@ -1,0 +1,243 @@
+// `tidalcrust run WORKFLOW.toml`: the restart-driven workflow. One body chain (build, stretch,
+// relax) shared by all encounters; each encounter and its analysis in its own folder. Rerunning
+// after an interruption continues from the newest valid checkpoint; finished stages whose
+// fingerprint and parent match are skipped; a changed value reruns exactly what it affects.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "analysis_stage.hpp"
+#include "fracture_analysis.hpp"
+#include "build_stage.hpp"
+#include "checkpoint.hpp"
+#include "cli_options.hpp"
+#include "commands.hpp"
+#include "encounter_stage.hpp"
+#include "errors.hpp"
+#include "relax_stage.hpp"
+#include "stage_fingerprint.hpp"
+#include "state_hash.hpp"
+#include "stretch_stage.hpp"
+
+namespace tidalcrust {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunContext {
+  fs::path root;
+  fs::path status_file;
+  bool quiet = false;
+};
+
+/// A finished checkpoint that can be reused as it is, or nothing.
+std::optional<Checkpoint> reusable(const fs::path& file, const std::string& fingerprint,
+                                   const std::string& parent_hash) {
+  if (!fs::exists(file)) return std::nullopt;
+  Checkpoint existing = read_checkpoint(file);  // corrupt final file: exit 2, never guessed over
+  auto it = existing.stage.labels.find(fingerprint_label);
+  const bool same_config = it != existing.stage.labels.end() && it->second == fingerprint;
+  if (existing.stage.complete && same_config && existing.stage.parent_hash == parent_hash) return existing;
+  return std::nullopt;
+}
+
+/// A mid-stage checkpoint to resume from, or nothing (stale or corrupt ones are ignored:
+/// they are only a shortcut, and the stage can always start again from its parent).
+std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fingerprint,
+                                    const std::string& parent_hash) {
+  if (!is_valid_checkpoint(mid)) return std::nullopt;
+  Checkpoint existing = read_checkpoint(mid);
+  auto it = existing.stage.labels.find(fingerprint_label);
+  if (it == existing.stage.labels.end() || it->second != fingerprint || existing.stage.parent_hash != parent_hash ||
+      existing.stage.complete)
+    return std::nullopt;
+  return existing;
+}
+
+void remove_quietly(const fs::path& file) {
+  std::error_code ignored;
+  fs::remove(file, ignored);
+  fs::path xdmf = file;
+  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
+}
+
+StepLoopOptions loop_options(const RunContext& ctx, const fs::path& final_file, std::string label,
+                             std::int64_t interval) {
+  StepLoopOptions loop;
+  loop.label = std::move(label);
+  fs::path stem = final_file;
+  stem.replace_extension();
+  loop.mid_checkpoint = fs::path(stem.string() + ".mid.h5");
+  loop.diagnostic_checkpoint = fs::path(stem.string() + ".diagnostic.h5");
+  loop.checkpoint_interval = interval;
+  loop.status_file = ctx.status_file;
+  loop.quiet = ctx.quiet;
+  return loop;
+}
+
+void say(const RunContext& ctx, const std::string& text) {
+  if (!ctx.quiet) fmt::print("{}\n", text);
+}
+
+void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpoint& encounter, const fs::path& out,
+                      const std::string& name) {
+  if (analysis_is_current(out, encounter)) {
+    say(ctx, fmt::format("analyze {}: up to date ({})", name, out.string()));
+    return;
+  }
+  analyze_encounter(file, encounter, out);
+  say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
+}
+
+/// Refuses an output folder that holds another body, before anything is written.
+void check_same_body(const fs::path& build_file, const Config& config) {
+  if (!fs::exists(build_file)) return;
+  Checkpoint existing = read_checkpoint(build_file);
+  auto it = existing.stage.labels.find(fingerprint_label);
+  const std::string wanted = build_fingerprint(config);
+  if (it == existing.stage.labels.end() || it->second != wanted)
+    throw InputError(fmt::format(
+        "{}: the output folder holds checkpoints of a different body ({}); use --out DIR or remove the folder",
+        build_file.string(),
+        it == existing.stage.labels.end() ? "no fingerprint" : first_difference(it->second, wanted)));
+}
+
+}  // namespace
+
+int command_run(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust run", "Run a whole workflow; rerun the same command to resume.");
+  options.positional_help("WORKFLOW.toml");
+  options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
+      "out", "output root (default checkpoints/<workflow name>)", cxxopts::value<std::string>())(
+      "threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))(
+      "dt-factor", "run the encounters at dt times this factor, into a separate folder",
+      cxxopts::value<double>()->default_value("1.0"))(
+      "only", "run only this encounter (repeatable)", cxxopts::value<std::vector<std::string>>())(
+      "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
+      "quiet", "no progress lines")("h,help", "show this help");
+  options.parse_positional({"workflow"});
+  auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
+  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
+
+  // Everything is checked before anything is written.
+  const fs::path workflow = parsed["workflow"].as<std::string>();
+  Config config = load_config(workflow);
+  if (parsed.count("set"))
+    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
+  validate(config, "--set");
+  const double dt_factor = parsed["dt-factor"].as<double>();
+  if (!std::isfinite(dt_factor) || dt_factor <= 0)
+    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
+  const int threads = parsed["threads"].as<int>();
+  if (threads < 0) throw InputError(fmt::format("--threads must be >= 0, got {}", threads));
+  std::vector<EncounterSpec> encounters = config.encounters;
+  if (parsed.count("only")) {
+    encounters.clear();
+    for (const auto& name : parsed["only"].as<std::vector<std::string>>())
+      encounters.push_back(config.find_encounter(name));
+  }
+  RunContext ctx;
+  ctx.root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
+                                 : fs::path("checkpoints") / config.workflow.name;
+  ctx.quiet = parsed.count("quiet") > 0;
+  const fs::path body_dir = ctx.root / "body";
+  check_same_body(body_dir / "build.h5", config);
+  apply_thread_count(threads);
+  fs::create_directories(body_dir);
+  ctx.status_file = ctx.root / "status.json";
+
+  // Body chain.
+  const fs::path build_file = body_dir / "build.h5";
+  Checkpoint built;
+  if (auto existing = reusable(build_file, build_fingerprint(config), "")) {
+    built = std::move(*existing);
+    say(ctx, fmt::format("build: up to date ({})", build_file.string()));
+  } else {
+    say(ctx, "build: building the body");
+    built = build_stage(config);
+    built.stage.labels[fingerprint_label] = build_fingerprint(config);
+    write_checkpoint(build_file, built);
+  }
+
+  const fs::path stretch_file = body_dir / "stretch.h5";
+  const std::string built_hash = state_hash(built.state);
+  Checkpoint stretched;
+  if (auto existing = reusable(stretch_file, stretch_fingerprint(config), built_hash)) {
+    stretched = std::move(*existing);
+    say(ctx, fmt::format("stretch: up to date ({})", stretch_file.string()));
+  } else {
+    say(ctx, "stretch: stretching and strengthening");
+    stretched = stretch_stage(built, config);
+    stretched.stage.labels[fingerprint_label] = stretch_fingerprint(config);
+    write_checkpoint(stretch_file, stretched);
+  }
+
+  const fs::path relax_file = body_dir / "relax.h5";
+  const std::string stretched_hash = state_hash(stretched.state);
+  Checkpoint relaxed;
+  if (auto existing = reusable(relax_file, relax_fingerprint(config), stretched_hash)) {
+    relaxed = std::move(*existing);
+    say(ctx, fmt::format("relax: up to date ({})", relax_file.string()));
+  } else {
+    StepLoopOptions loop = loop_options(ctx, relax_file, "relax", config.relax.checkpoint_interval);
+    if (auto mid = resumable(loop.mid_checkpoint, relax_fingerprint(config), stretched_hash)) {
+      relaxed = std::move(*mid);
+      say(ctx, fmt::format("relax: resuming from {} (step {})", loop.mid_checkpoint.string(), relaxed.state.step));
+    } else {
+      relaxed = begin_relax(stretched, config);
+      relaxed.stage.labels[fingerprint_label] = relax_fingerprint(config);
+    }
+    if (run_relax(relaxed, config, loop) == LoopOutcome::interrupted) return exit_interrupted;
+    write_checkpoint(relax_file, relaxed);
+    remove_quietly(loop.mid_checkpoint);
+  }
+
+  // Encounters, each branching from the relaxed body, at dt * dt_factor.
+  Config encounter_config = config;
+  encounter_config.integrator.dt *= dt_factor;
+  const fs::path encounter_root = dt_factor == 1.0 ? ctx.root : ctx.root / fmt::format("dt{}", dt_factor);
+  const std::string relaxed_hash = state_hash(relaxed.state);
+  std::vector<std::string> summary_lines;
+  for (const auto& spec : encounters) {
+    const fs::path dir = encounter_root / spec.name;
+    fs::create_directories(dir);
+    const fs::path file = dir / "encounter.h5";
+    const std::string fingerprint = encounter_fingerprint(encounter_config, spec);
+    Checkpoint encounter;
+    if (auto existing = reusable(file, fingerprint, relaxed_hash)) {
+      encounter = std::move(*existing);
+      say(ctx, fmt::format("encounter {}: up to date ({})", spec.name, file.string()));
+    } else {
+      StepLoopOptions loop = loop_options(ctx, file, "encounter " + spec.name,
+                                          encounter_config.encounter.checkpoint_interval);
+      if (auto mid = resumable(loop.mid_checkpoint, fingerprint, relaxed_hash)) {
+        encounter = std::move(*mid);
+        say(ctx, fmt::format("encounter {}: resuming from {} (step {})", spec.name, loop.mid_checkpoint.string(),
+                             encounter.state.step));
+      } else {
+        encounter = begin_encounter(relaxed, encounter_config, spec);
+        encounter.stage.labels[fingerprint_label] = fingerprint;
+      }
+      if (run_encounter(encounter, encounter_config, loop, file) == LoopOutcome::interrupted) return exit_interrupted;
+      write_checkpoint(file, encounter);
+      remove_quietly(loop.mid_checkpoint);
+    }
+    analyze_if_stale(ctx, file, encounter, dir / "analysis", spec.name);
+    summary_lines.push_back(fracture_summary_line(spec.name, analyze_fractures(encounter.body, encounter.state)) +
+                            fmt::format("\n    figures: {}", (dir / "analysis").string()));
+  }
+
+  fmt::print("\nworkflow {} finished: checkpoints in {}\n", config.workflow.name, ctx.root.string());
+  const auto& probe = relaxed.stage.scalars;
+  if (probe.count("stability_failures"))
+    fmt::print("relaxed body: stability probe {} failures, largest shell strain {:.2e}\n",
+               probe.at("stability_failures"), probe.count("stability_max_shell_strain") ? probe.at("stability_max_shell_strain") : NAN);
+  for (const auto& line : summary_lines) fmt::print("  {}\n", line);
+  return exit_ok;
+}
+
+}  // namespace tidalcrust
