@@ -63,7 +63,7 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
   Config config = common.config_file ? load_config(*common.config_file)
                                      : parse_config(stored_toml, stored_origin);
   for (const auto& assignment : common.overrides) apply_override(config, assignment);
-  config.integrator.dt *= common.dt_factor;
+  if (common.dt_factor != 1.0) scale_time_step(config, common.dt_factor);
   validate(config, "--set/--dt-factor");
   return config;
 }

@@ -198,7 +198,7 @@ int command_run(int argc, char** argv) {
 
   // Encounters, each branching from the relaxed body, at dt * dt_factor.
   Config encounter_config = config;
-  encounter_config.integrator.dt *= dt_factor;
+  if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
   const fs::path encounter_root = dt_factor == 1.0 ? ctx.root : ctx.root / fmt::format("dt{}", dt_factor);
   const std::string relaxed_hash = state_hash(relaxed.state);
   std::vector<std::string> summary_lines;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -254,6 +255,19 @@ const EncounterSpec& Config::find_encounter(const std::string& name) const {
   }
   throw InputError(fmt::format("unknown encounter '{}' (this workflow has: {})", name,
                                known.empty() ? "none" : known));
+}
+
+void scale_time_step(Config& config, double factor) {
+  config.integrator.dt *= factor;
+  auto rescale = [factor](std::int64_t& steps) {
+    if (steps > 0) steps = std::max<std::int64_t>(1, std::llround(static_cast<double>(steps) / factor));
+  };
+  rescale(config.relax.rest_length_interval);
+  rescale(config.relax.hinge_reset_interval);
+  rescale(config.relax.checkpoint_interval);
+  rescale(config.encounter.fail_interval);
+  rescale(config.encounter.checkpoint_interval);
+  rescale(config.encounter.sample_interval);
 }
 
 void validate(const Config& config, const std::string& origin) {

@@ -121,6 +121,10 @@ std::string to_toml(const Config& config);
 std::string section_toml(const Config& config, std::string_view section);
 /// One [[encounters]] table of to_toml.
 std::string encounter_toml(const EncounterSpec& encounter);
+/// Scales the time step by `factor` (--dt-factor) and every schedule counted in steps by
+/// 1/factor (rounded, at least 1), so schedules keep their length in time: at half dt the
+/// failure interval t_fail is 6 steps instead of 3, and the run checks dt alone.
+void scale_time_step(Config& config, double factor);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
 

@@ -85,3 +85,15 @@ TEST(Config, OverridesApplyAndValidate) {
   EXPECT_THROW(validate(config, "--set"), InputError);
   EXPECT_THROW(config.find_encounter("T7"), InputError);
 }
+
+TEST(Config, ScalingTheTimeStepKeepsSchedulesInTime) {
+  auto config = load_config(workflow("paper-T.toml"));
+  scale_time_step(config, 0.5);
+  EXPECT_DOUBLE_EQ(config.integrator.dt, 0.001);
+  EXPECT_EQ(config.encounter.fail_interval, 6);  // t_fail stays 3 x 0.002 = 0.006 t_grav
+  EXPECT_EQ(config.encounter.sample_interval, 20);
+  scale_time_step(config, 4.0);  // dt 0.004: 1.5 steps rounds to 2, never below 1
+  EXPECT_EQ(config.encounter.fail_interval, 2);
+  scale_time_step(config, 10.0);
+  EXPECT_EQ(config.encounter.fail_interval, 1);
+}
