@@ -70,3 +70,22 @@ TEST(StageCli, WrongStageOrderExitsTwoAndInterruptedRelaxResumesBitIdentical) {
   auto already = run_cli("relax --from " + c.at("straight.h5") + " --out " + c.at("again.h5"));
   EXPECT_EQ(already.exit_code, 2);
 }
+
+TEST(StageCli, BlowUpExitsOneNamingStepAndCauseAndWritesDiagnosticCheckpoint) {
+  Chain c;
+  ASSERT_EQ(run_cli("build --config " + quick() + " --set relax.duration=0.4 --set relax.settle_duration=0.1"
+                    " --set relax.stability_probe=false --out " + c.at("body.h5")).exit_code, 0);
+  ASSERT_EQ(run_cli("stretch --from " + c.at("body.h5") + " --out " + c.at("stretched.h5")).exit_code, 0);
+  ASSERT_EQ(run_cli("relax --quiet --from " + c.at("stretched.h5") + " --out " + c.at("relaxed.h5")).exit_code, 0);
+  // dt far beyond the stability bound of the stiffest spring (eq. 13).
+  auto r = run_cli("encounter --quiet --from " + c.at("relaxed.h5") + " --out " + c.at("enc.h5") +
+                   " --m2 1 --q 1.6 --vq 1.6 --set integrator.dt=0.08");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("blow-up at step"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("stability bound"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("enc.diagnostic.h5"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(c.dir / "enc.h5"));
+  const Checkpoint diagnostic = read_checkpoint(c.dir / "enc.diagnostic.h5");  // valid, inspectable
+  EXPECT_FALSE(diagnostic.stage.complete);
+  EXPECT_EQ(diagnostic.stage.labels.count("diagnostic"), 1u);
+}
