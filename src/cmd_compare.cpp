@@ -87,6 +87,8 @@ int command_compare(int argc, char** argv) {
   row("subsatellite hemisphere fraction", number(r.a.hemisphere_fraction), number(r.b.hemisphere_fraction));
   row("mean angle from subsatellite [deg]", number(r.a.mean_angle_from_subsatellite_deg, "{:.2f}"),
       number(r.b.mean_angle_from_subsatellite_deg, "{:.2f}"));
+  row("median angle from subsatellite [deg]", number(r.a.median_angle_from_subsatellite_deg, "{:.2f}"),
+      number(r.b.median_angle_from_subsatellite_deg, "{:.2f}"));
   row("cracks (clusters)", fmt::format("{}", r.a.clusters.size()), fmt::format("{}", r.b.clusters.size()));
   row("longest crack [R]", number(r.a.longest_crack_length), number(r.b.longest_crack_length));
   row("longest crack extent [R]", number(r.a.longest_crack_extent), number(r.b.longest_crack_extent));

@@ -87,6 +87,11 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
   summary.fraction_shell = summary.shell_springs ? count / static_cast<double>(summary.shell_springs) : nan;
   summary.hemisphere_fraction = count > 0 ? static_cast<double>(on_subsatellite_hemisphere) / count : nan;
   summary.mean_angle_from_subsatellite_deg = count > 0 ? angle_sum / count : nan;
+  std::vector<double> angles = summary.angles_from_subsatellite_deg();
+  std::sort(angles.begin(), angles.end());
+  const std::size_t n = angles.size();
+  summary.median_angle_from_subsatellite_deg =
+      n == 0 ? nan : (n % 2 ? angles[n / 2] : 0.5 * (angles[n / 2 - 1] + angles[n / 2]));
 
   // Dual-lattice bars, and clusters: failed edges of one face are joined at its centroid.
   DisjointSets sets(body.spring_count());
@@ -138,6 +143,7 @@ std::vector<std::pair<std::string, double>> failure_summary_fields(const Fractur
           {"fraction_shell", summary.fraction_shell},
           {"hemisphere_fraction", summary.hemisphere_fraction},
           {"mean_angle_from_subsatellite_deg", summary.mean_angle_from_subsatellite_deg},
+          {"median_angle_from_subsatellite_deg", summary.median_angle_from_subsatellite_deg},
           {"longest_crack", summary.longest_crack_length},
           {"longest_crack_extent", summary.longest_crack_extent},
           {"clusters", static_cast<double>(summary.clusters.size())}};

@@ -54,6 +54,7 @@ struct FractureSummary {
   double fraction_shell = 0;        ///< failed / shell springs; NaN without shell springs
   double hemisphere_fraction = 0;   ///< share of failed springs with midpoint . (+y) > 0; NaN if none
   double mean_angle_from_subsatellite_deg = 0;  ///< NaN if none failed
+  double median_angle_from_subsatellite_deg = 0;  ///< NaN if none failed (robust to a few far cracks)
   double longest_crack_length = 0;  ///< length of the longest cluster, R (0 if none)
   double longest_crack_extent = 0;  ///< its great-circle extent, R (0 if none)
   std::array<std::int64_t, angle_bins> angle_histogram{};  ///< failed springs per 10-degree bin
@@ -67,7 +68,7 @@ struct FractureSummary {
 FractureSummary analyze_fractures(const Body& body, const State& state);
 
 /// Writes design.md's `failures {count, fraction_shell, hemisphere_fraction,
-/// mean_angle_from_subsatellite_deg, longest_crack, longest_crack_extent, clusters}` object
+/// mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg, longest_crack, longest_crack_extent, clusters}` object
 /// (lengths in R, clusters = number of clusters; undefined values are null).
 void add_failure_summary(JsonWriter& json, const FractureSummary& summary);
 /// The same fields as (key, value) pairs, in output order (counts are whole numbers).

@@ -189,9 +189,9 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {
   return fmt::format("{}: {} failed shell springs ({} of {}), {} on the subsatellite hemisphere, "
-                     "mean angle from it {:.0f} deg, {} cracks, longest {:.2f} R",
+                     "median angle from it {:.0f} deg, {} cracks, longest {:.2f} R",
                      name, fractures.count(), percent(fractures.fraction_shell), fractures.shell_springs,
-                     percent(fractures.hemisphere_fraction), fractures.mean_angle_from_subsatellite_deg,
+                     percent(fractures.hemisphere_fraction), fractures.median_angle_from_subsatellite_deg,
                      fractures.clusters.size(), fractures.longest_crack_length);
 }
 

@@ -142,13 +142,17 @@ TEST(FractureAnalysis, LineOfFailedSpringsIsOneCrack) {
   EXPECT_EQ(s.bars.size(), 2u * 7u);  // two half-bars per failed edge on a closed shell
   // The strip starts at +y and walks along the equator toward -x: longitudes from ~90 upward.
   double mean_angle = 0;
+  std::vector<double> angles;
   std::int64_t histogram_total = 0;
   for (const auto& f : s.failed) {
     const Vec3 m = 0.5 * (vec3_at(c.state.position, c.body.springs[f.spring][0]) +
                           vec3_at(c.state.position, c.body.springs[f.spring][1])) - offset;
     EXPECT_NEAR(f.longitude_deg, std::atan2(m.y(), m.x()) * 180 / std::numbers::pi, 1e-9);
     mean_angle += std::acos(m.normalized().y()) * 180 / std::numbers::pi / 7;
+    angles.push_back(std::acos(m.normalized().y()) * 180 / std::numbers::pi);
   }
+  std::sort(angles.begin(), angles.end());
+  EXPECT_NEAR(s.median_angle_from_subsatellite_deg, angles[3], 1e-9);  // 7 failures: the 4th
   for (auto n : s.angle_histogram) histogram_total += n;
   EXPECT_EQ(histogram_total, 7);
   EXPECT_NEAR(s.mean_angle_from_subsatellite_deg, mean_angle, 1e-9);
@@ -220,7 +224,9 @@ TEST(FractureAnalysis, FailureSummaryJson) {
   EXPECT_EQ(json.str(), "{\n  \"failures\": {\n    \"count\": 1,\n    \"fraction_shell\": " + JsonWriter::number(1.0 / 120) +
                             ",\n    \"hemisphere_fraction\": " + JsonWriter::number(s.hemisphere_fraction) +
                             ",\n    \"mean_angle_from_subsatellite_deg\": " +
-                            JsonWriter::number(s.mean_angle_from_subsatellite_deg) + ",\n    \"longest_crack\": " +
+                            JsonWriter::number(s.mean_angle_from_subsatellite_deg) +
+                            ",\n    \"median_angle_from_subsatellite_deg\": " +
+                            JsonWriter::number(s.median_angle_from_subsatellite_deg) + ",\n    \"longest_crack\": " +
                             JsonWriter::number(s.longest_crack_length) + ",\n    \"longest_crack_extent\": " +
                             JsonWriter::number(s.longest_crack_extent) + ",\n    \"clusters\": 1\n  }\n}\n");
   EXPECT_GT(s.longest_crack_length, 0.0);
