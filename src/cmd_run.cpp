@@ -92,6 +92,46 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
+/// A stage without time steps (build, stretch): its final file when that is current, else
+/// made anew and written.
+template <typename Make>
+Checkpoint instant_stage(const RunContext& ctx, const char* name, const fs::path& file, const std::string& fingerprint,
+                         const std::string& parent_hash, const char* doing, Make make) {
+  if (auto existing = reusable(file, fingerprint, parent_hash)) {
+    say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
+    return std::move(*existing);
+  }
+  say(ctx, fmt::format("{}: {}", name, doing));
+  Checkpoint made = make();
+  made.stage.labels[fingerprint_label] = fingerprint;
+  write_checkpoint(file, made);
+  return made;
+}
+
+/// A time-stepping stage (relax, encounter): its final file when that is current; else resumed
+/// from a matching mid-stage checkpoint or begun anew, run, written. Nothing when interrupted.
+template <typename Begin, typename Run>
+std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
+                                         const std::string& fingerprint, const std::string& parent_hash,
+                                         std::int64_t checkpoint_interval, Begin begin, Run run) {
+  if (auto existing = reusable(file, fingerprint, parent_hash)) {
+    say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
+    return existing;
+  }
+  const StepLoopOptions loop = loop_options(ctx, file, name, checkpoint_interval);
+  std::optional<Checkpoint> checkpoint = resumable(loop.mid_checkpoint, fingerprint, parent_hash);
+  if (checkpoint) {
+    say(ctx, fmt::format("{}: resuming from {} (step {})", name, loop.mid_checkpoint.string(), checkpoint->state.step));
+  } else {
+    checkpoint = begin();
+    checkpoint->stage.labels[fingerprint_label] = fingerprint;
+  }
+  if (run(*checkpoint, loop, file) == LoopOutcome::interrupted) return std::nullopt;
+  write_checkpoint(file, *checkpoint);
+  remove_quietly(loop.mid_checkpoint);
+  return checkpoint;
+}
+
 /// Refuses an output folder that holds another body, before anything is written.
 void check_same_body(const fs::path& build_file, const Config& config) {
   if (!fs::exists(build_file)) return;
@@ -151,88 +191,45 @@ int command_run(int argc, char** argv) {
   ctx.status_file = ctx.root / "status.json";
 
   // Body chain.
-  const fs::path build_file = body_dir / "build.h5";
-  Checkpoint built;
-  if (auto existing = reusable(build_file, build_fingerprint(config), "")) {
-    built = std::move(*existing);
-    say(ctx, fmt::format("build: up to date ({})", build_file.string()));
-  } else {
-    say(ctx, "build: building the body");
-    built = build_stage(config);
-    built.stage.labels[fingerprint_label] = build_fingerprint(config);
-    write_checkpoint(build_file, built);
-  }
-
-  const fs::path stretch_file = body_dir / "stretch.h5";
+  const Checkpoint built = instant_stage(ctx, "build", body_dir / "build.h5", build_fingerprint(config), "",
+                                         "building the body", [&] { return build_stage(config); });
   const std::string built_hash = state_hash(built.state);
-  Checkpoint stretched;
-  if (auto existing = reusable(stretch_file, stretch_fingerprint(config), built_hash)) {
-    stretched = std::move(*existing);
-    say(ctx, fmt::format("stretch: up to date ({})", stretch_file.string()));
-  } else {
-    say(ctx, "stretch: stretching and strengthening");
-    stretched = stretch_stage(built, config);
-    stretched.stage.labels[fingerprint_label] = stretch_fingerprint(config);
-    write_checkpoint(stretch_file, stretched);
-  }
+  const Checkpoint stretched =
+      instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), built_hash,
+                    "stretching and strengthening", [&] { return stretch_stage(built, config); });
 
-  const fs::path relax_file = body_dir / "relax.h5";
   const std::string stretched_hash = state_hash(stretched.state);
-  Checkpoint relaxed;
-  if (auto existing = reusable(relax_file, relax_fingerprint(config), stretched_hash)) {
-    relaxed = std::move(*existing);
-    say(ctx, fmt::format("relax: up to date ({})", relax_file.string()));
-  } else {
-    StepLoopOptions loop = loop_options(ctx, relax_file, "relax", config.relax.checkpoint_interval);
-    if (auto mid = resumable(loop.mid_checkpoint, relax_fingerprint(config), stretched_hash)) {
-      relaxed = std::move(*mid);
-      say(ctx, fmt::format("relax: resuming from {} (step {})", loop.mid_checkpoint.string(), relaxed.state.step));
-    } else {
-      relaxed = begin_relax(stretched, config);
-      relaxed.stage.labels[fingerprint_label] = relax_fingerprint(config);
-    }
-    if (run_relax(relaxed, config, loop) == LoopOutcome::interrupted) return exit_interrupted;
-    write_checkpoint(relax_file, relaxed);
-    remove_quietly(loop.mid_checkpoint);
-  }
+  const auto relaxed = stepping_stage(
+      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), stretched_hash,
+      config.relax.checkpoint_interval, [&] { return begin_relax(stretched, config); },
+      [&](Checkpoint& c, const StepLoopOptions& loop, const fs::path&) { return run_relax(c, config, loop); });
+  if (!relaxed) return exit_interrupted;
 
   // Encounters, each branching from the relaxed body, at dt * dt_factor.
   Config encounter_config = config;
   if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
   const fs::path encounter_root = dt_factor == 1.0 ? ctx.root : ctx.root / fmt::format("dt{}", dt_factor);
-  const std::string relaxed_hash = state_hash(relaxed.state);
+  const std::string relaxed_hash = state_hash(relaxed->state);
   std::vector<std::string> summary_lines;
   for (const auto& spec : encounters) {
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);
     const fs::path file = dir / "encounter.h5";
-    const std::string fingerprint = encounter_fingerprint(encounter_config, spec);
-    Checkpoint encounter;
-    if (auto existing = reusable(file, fingerprint, relaxed_hash)) {
-      encounter = std::move(*existing);
-      say(ctx, fmt::format("encounter {}: up to date ({})", spec.name, file.string()));
-    } else {
-      StepLoopOptions loop = loop_options(ctx, file, "encounter " + spec.name,
-                                          encounter_config.encounter.checkpoint_interval);
-      if (auto mid = resumable(loop.mid_checkpoint, fingerprint, relaxed_hash)) {
-        encounter = std::move(*mid);
-        say(ctx, fmt::format("encounter {}: resuming from {} (step {})", spec.name, loop.mid_checkpoint.string(),
-                             encounter.state.step));
-      } else {
-        encounter = begin_encounter(relaxed, encounter_config, spec);
-        encounter.stage.labels[fingerprint_label] = fingerprint;
-      }
-      if (run_encounter(encounter, encounter_config, loop, file) == LoopOutcome::interrupted) return exit_interrupted;
-      write_checkpoint(file, encounter);
-      remove_quietly(loop.mid_checkpoint);
-    }
-    analyze_if_stale(ctx, file, encounter, dir / "analysis", spec.name);
-    summary_lines.push_back(fracture_summary_line(spec.name, analyze_fractures(encounter.body, encounter.state)) +
+    const auto encounter = stepping_stage(
+        ctx, "encounter " + spec.name, file, encounter_fingerprint(encounter_config, spec), relaxed_hash,
+        encounter_config.encounter.checkpoint_interval,
+        [&] { return begin_encounter(*relaxed, encounter_config, spec); },
+        [&](Checkpoint& c, const StepLoopOptions& loop, const fs::path& out) {
+          return run_encounter(c, encounter_config, loop, out);
+        });
+    if (!encounter) return exit_interrupted;
+    analyze_if_stale(ctx, file, *encounter, dir / "analysis", spec.name);
+    summary_lines.push_back(fracture_summary_line(spec.name, analyze_fractures(encounter->body, encounter->state)) +
                             fmt::format("\n    figures: {}", (dir / "analysis").string()));
   }
 
   fmt::print("\nworkflow {} finished: checkpoints in {}\n", config.workflow.name, ctx.root.string());
-  const auto& probe = relaxed.stage.scalars;
+  const auto& probe = relaxed->stage.scalars;
   if (probe.count("stability_failures"))
     fmt::print("relaxed body: stability probe {} failures, largest shell strain {:.2e}\n",
                probe.at("stability_failures"), probe.count("stability_max_shell_strain") ? probe.at("stability_max_shell_strain") : NAN);

@@ -1,5 +1,7 @@
 #include "encounter_stage.hpp"
 
+#include "child_checkpoint.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -106,10 +108,9 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   const EncounterStart start = encounter_start(orbit, start_distance);
   const double time_after_pericenter = orbit.time_to_pericenter(end_distance);  // the orbit is symmetric
 
-  Checkpoint c;
-  c.config_toml = to_toml(config);
-  c.body = parent.body;
-  c.state = parent.state;  // body particles untouched; failed springs of an earlier pass stay failed
+  // Body particles untouched; failed springs of an earlier pass stay failed. Observables belong
+  // to this stage: a fresh failure log and timeseries (the parent's stay in the parent's file).
+  Checkpoint c = child_checkpoint(parent, "encounter", config);
   State& state = c.state;
   state.dt = dt;
   std::fill(state.springs.damping.begin(), state.springs.damping.end(), config.encounter.damping);
@@ -126,11 +127,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   state.perturber.velocity = {velocity.x(), velocity.y(), velocity.z()};
 
   StageInfo& stage = c.stage;
-  stage.stage = "encounter";
-  stage.complete = false;
-  stage.start_step = state.step;
   stage.end_step = state.step + steps_for_duration(start.time_to_pericenter + time_after_pericenter, dt);
-  stage.parent_hash = state_hash(parent.state);
   const std::int64_t pericenter_step = state.step + steps_for_duration(start.time_to_pericenter, dt);
   const Separation initial = separation(c.body, state);
   stage.scalars = {
@@ -154,9 +151,6 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   store_snapshot_steps(stage, plan_snapshots(stage.start_step, pericenter_step, stage.end_step, dt));
   stage.labels = {{encounter_keys::name_label, spec.name}};
 
-  // Observables belong to this stage: a fresh failure log and timeseries (the parent's stay in
-  // the parent's file), starting with the state at the start.
-  c.observables = {};
   c.observables.timeseries.push_back(sample_timeseries(c.body, state));
   return c;
 }

@@ -1,5 +1,7 @@
 #include "relax_stage.hpp"
 
+#include "child_checkpoint.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -134,14 +136,8 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   if (stretched.stage.stage != "stretch" || !stretched.stage.complete)
     throw InputError(fmt::format("relax needs a complete 'stretch' checkpoint, got {} '{}' checkpoint",
                                  stretched.stage.complete ? "a complete" : "an incomplete", stretched.stage.stage));
-  Checkpoint c = stretched;
-  c.stage = StageInfo{};
-  c.stage.stage = "relax";
-  c.stage.complete = false;
-  c.stage.parent_hash = state_hash(stretched.state);
-  c.config_toml = to_toml(config);
+  Checkpoint c = child_checkpoint(stretched, "relax", config);
   c.state.dt = config.integrator.dt;
-  c.stage.start_step = c.state.step;
   c.stage.end_step = c.state.step + steps_for_duration(config.relax.duration, c.state.dt);
   c.stage.scalars[start_time_key] = c.state.time;
   const std::int64_t creep_end =
@@ -149,7 +145,6 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   c.stage.scalars[creep_end_key] = static_cast<double>(creep_end);
   if (creep_end == c.stage.start_step) zero_crust_stress(c.body, c.state);  // settle only
   std::fill(c.state.springs.damping.begin(), c.state.springs.damping.end(), config.relax.damping);
-  c.observables = Observables{};
   c.observables.timeseries.push_back(sample_timeseries(c.body, c.state));
   return c;
 }

@@ -1,5 +1,7 @@
 #include "stretch_stage.hpp"
 
+#include "child_checkpoint.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -247,15 +249,8 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   if (built.stage.stage != "build" || !built.stage.complete)
     throw InputError(fmt::format("stretch needs a complete 'build' checkpoint, got {} '{}' checkpoint",
                                  built.stage.complete ? "a complete" : "an incomplete", built.stage.stage));
-  Checkpoint out = built;
-  out.stage = StageInfo{};
-  out.stage.stage = "stretch";
-  out.stage.complete = true;
-  out.stage.start_step = built.state.step;
-  out.stage.end_step = built.state.step;
-  out.stage.parent_hash = state_hash(built.state);
-  out.config_toml = to_toml(config);
-  out.observables = Observables{};
+  Checkpoint out = child_checkpoint(built, "stretch", config);
+  out.stage.complete = true;  // stretching takes no time steps
   auto& scalars = out.stage.scalars;
   if (!config.stretch.enabled) {
     scalars["stretch_factor"] = 1.0;

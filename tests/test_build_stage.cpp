@@ -6,6 +6,7 @@
 #include <set>
 
 #include "build_stage.hpp"
+#include "force_test_bodies.hpp"
 #include "derived_quantities.hpp"
 #include "errors.hpp"
 #include "hinge_geometry.hpp"
@@ -15,31 +16,7 @@ using namespace tidalcrust;
 namespace {
 
 /// Shell level 2 (162 nodes) and ~200 interior nodes.
-Config small_config() {
-  return parse_config(R"(
-[workflow]
-name = "small"
-seed = 3
-[interior]
-count = 200
-radius = 0.85
-min_separation = 0.16
-spring_distance = 0.36
-spring_constant = 0.1
-[shell]
-level = 2
-mass = 0.1
-spring_constant = 0.06
-bending_constant = 0.01
-[cross]
-distance = 0.3
-spring_constant = 0.007
-[integrator]
-dt = 0.003
-softening_fraction = 0.01
-)",
-                      "small.toml");
-}
+Config small_config() { return tidalcrust::testing::small_body_config(); }
 
 Vec3 at(const Checkpoint& c, std::int32_t i) { return vec3_at(c.state.position, static_cast<std::size_t>(i)); }
 
