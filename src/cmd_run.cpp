@@ -6,8 +6,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <set>
 
 #include "analysis_stage.hpp"
 #include "fracture_analysis.hpp"
@@ -18,6 +16,7 @@
 #include "encounter_stage.hpp"
 #include "errors.hpp"
 #include "relax_stage.hpp"
+#include "stage_command.hpp"
 #include "stage_fingerprint.hpp"
 #include "state_hash.hpp"
 #include "stretch_stage.hpp"
@@ -48,8 +47,13 @@ std::optional<Checkpoint> reusable(const fs::path& file, const std::string& fing
 /// they are only a shortcut, and the stage can always start again from its parent).
 std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fingerprint,
                                     const std::string& parent_hash) {
-  if (!is_valid_checkpoint(mid)) return std::nullopt;
-  Checkpoint existing = read_checkpoint(mid);
+  if (!fs::exists(mid)) return std::nullopt;
+  Checkpoint existing;
+  try {
+    existing = read_checkpoint(mid);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
   auto it = existing.stage.labels.find(fingerprint_label);
   if (it == existing.stage.labels.end() || it->second != fingerprint || existing.stage.parent_hash != parent_hash ||
       existing.stage.complete)
@@ -57,21 +61,12 @@ std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fing
   return existing;
 }
 
-void remove_quietly(const fs::path& file) {
-  std::error_code ignored;
-  fs::remove(file, ignored);
-  fs::path xdmf = file;
-  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
-}
-
 StepLoopOptions loop_options(const RunContext& ctx, const fs::path& final_file, std::string label,
                              std::int64_t interval) {
   StepLoopOptions loop;
   loop.label = std::move(label);
-  fs::path stem = final_file;
-  stem.replace_extension();
-  loop.mid_checkpoint = fs::path(stem.string() + ".mid.h5");
-  loop.diagnostic_checkpoint = fs::path(stem.string() + ".diagnostic.h5");
+  loop.mid_checkpoint = sibling_checkpoint(final_file, "mid");
+  loop.diagnostic_checkpoint = sibling_checkpoint(final_file, "diagnostic");
   loop.checkpoint_interval = interval;
   loop.status_file = ctx.status_file;
   loop.quiet = ctx.quiet;
@@ -128,7 +123,7 @@ std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::strin
   }
   if (run(*checkpoint, loop, file) == LoopOutcome::interrupted) return std::nullopt;
   write_checkpoint(file, *checkpoint);
-  remove_quietly(loop.mid_checkpoint);
+  remove_checkpoint_files(loop.mid_checkpoint);
   return checkpoint;
 }
 

@@ -20,6 +20,13 @@ fs::path sibling_checkpoint(const fs::path& out, const std::string& suffix) {
   return p;
 }
 
+void remove_checkpoint_files(const fs::path& file) {
+  std::error_code ignored;
+  fs::remove(file, ignored);
+  fs::path xdmf = file;
+  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
+}
+
 void check_output_path(const fs::path& out) {
   fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   if (!fs::is_directory(folder))
@@ -57,10 +64,7 @@ int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const fs::pa
     return exit_interrupted;
   }
   write_checkpoint(out, checkpoint);
-  std::error_code ignored;
-  fs::remove(loop.mid_checkpoint, ignored);
-  fs::path xdmf = loop.mid_checkpoint;
-  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
+  remove_checkpoint_files(loop.mid_checkpoint);
   fmt::print("{}: {} written (step {}, time {})\n", out.string(), checkpoint.stage.stage, checkpoint.state.step,
              checkpoint.state.time);
   return exit_ok;
