@@ -7,13 +7,15 @@
 
 namespace tidalcrust {
 
-/// Body identity: seed, interior, shell, cross and softening. Another value = another body.
+/// Body identity: seed, softening, interior, shell and cross geometry and stiffnesses. Another
+/// value = another body.
 std::string build_fingerprint(const Config& config);
-/// build + [stretch]
+/// [stretch] and the force-law keys.
 std::string stretch_fingerprint(const Config& config);
-/// stretch + [relax] + dt
+/// [relax] (but its checkpoint interval), dt, force-law and failure keys the probe uses.
 std::string relax_fingerprint(const Config& config);
-/// relax + [encounter] + the encounter's own table + the encounter time step
+/// [encounter] (but its checkpoint interval), the encounter's own table, force-law and failure
+/// keys and the encounter time step.
 std::string encounter_fingerprint(const Config& config, const EncounterSpec& spec);
 
 /// The first line that differs between two fingerprints, "a -> b", for messages.
