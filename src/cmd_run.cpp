@@ -9,6 +9,8 @@
 
 #include "analysis_stage.hpp"
 #include "fracture_analysis.hpp"
+#include "json_writer.hpp"
+#include "progress.hpp"
 #include "build_stage.hpp"
 #include "checkpoint.hpp"
 #include "cli_options.hpp"
@@ -223,6 +225,12 @@ int command_run(int argc, char** argv) {
                             fmt::format("\n    figures: {}", (dir / "analysis").string()));
   }
 
+  JsonWriter status;
+  status.begin_object().value("stage", "workflow " + config.workflow.name).value("state", "done");
+  status.value("dt_factor", dt_factor).begin_array("encounters");
+  for (const auto& spec : encounters) status.value({}, spec.name);
+  status.end_array().end_object();
+  write_status_file(ctx.status_file, status.str());
   fmt::print("\nworkflow {} finished: checkpoints in {}\n", config.workflow.name, ctx.root.string());
   const auto& probe = relaxed->stage.scalars;
   if (probe.count("stability_failures"))

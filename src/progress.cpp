@@ -58,16 +58,20 @@ void ProgressReporter::write_status(std::int64_t step, double rate, double eta, 
       .value("eta_seconds", eta)
       .value("pid", static_cast<std::int64_t>(getpid()))
       .end_object();
+  write_status_file(*status_file_, json.str());
+}
+
+void write_status_file(const std::filesystem::path& file, const std::string& json_text) {
   // Write beside and rename, so a reader never sees half a file.
-  auto tmp = *status_file_;
+  auto tmp = file;
   tmp += ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
-    out << json.str();
+    out << json_text;
     if (!out) return;  // a status file is a courtesy; never fail the run for it
   }
   std::error_code ignored;
-  std::filesystem::rename(tmp, *status_file_, ignored);
+  std::filesystem::rename(tmp, file, ignored);
 }
 
 }  // namespace tidalcrust

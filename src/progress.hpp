@@ -9,6 +9,10 @@
 
 namespace tidalcrust {
 
+/// Writes `json_text` to `file` atomically (beside, then renamed); a status file is a courtesy,
+/// so failures are ignored.
+void write_status_file(const std::filesystem::path& file, const std::string& json_text);
+
 class ProgressReporter {
  public:
   /// `status_file` empty: no status file. `label` e.g. "relax" or "encounter T5".

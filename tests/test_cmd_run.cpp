@@ -160,6 +160,9 @@ TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
                             "encounter B: up to date", "analyze A: up to date"})
     EXPECT_NE(again.out.find(stage), std::string::npos) << again.out;
   EXPECT_EQ(read_text_file(out / "A" / "encounter.h5"), a_bytes);
+  const std::string status = read_text_file(out / "status.json");
+  EXPECT_NE(status.find("\"stage\": \"workflow small\""), std::string::npos) << status;
+  EXPECT_NE(status.find("\"state\": \"done\""), std::string::npos) << status;
 
   // A changed encounter value reruns the encounters only.
   const auto changed = run_cli("run " + q(workflow) + " --set encounter.damping=0.02 --out " + q(out));
