@@ -89,6 +89,12 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
+/// The configuration a stage started with. A resumed stage keeps it even if values that do not
+/// affect it (they are not in its fingerprint) changed since.
+Config stored_config(const Checkpoint& checkpoint) {
+  return parse_config(checkpoint.config_toml, "/parameters/config");
+}
+
 /// A stage without time steps (build, stretch): its final file when that is current, else
 /// made anew and written.
 template <typename Make>
@@ -199,7 +205,9 @@ int command_run(int argc, char** argv) {
   const auto relaxed = stepping_stage(
       ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), stretched_hash,
       config.relax.checkpoint_interval, [&] { return begin_relax(stretched, config); },
-      [&](Checkpoint& c, const StepLoopOptions& loop, const fs::path&) { return run_relax(c, config, loop); });
+      [&](Checkpoint& c, const StepLoopOptions& loop, const fs::path&) {
+        return run_relax(c, stored_config(c), loop);
+      });
   if (!relaxed) return exit_interrupted;
 
   // Encounters, each branching from the relaxed body, at dt * dt_factor.
@@ -217,7 +225,7 @@ int command_run(int argc, char** argv) {
         encounter_config.encounter.checkpoint_interval,
         [&] { return begin_encounter(*relaxed, encounter_config, spec); },
         [&](Checkpoint& c, const StepLoopOptions& loop, const fs::path& out) {
-          return run_encounter(c, encounter_config, loop, out);
+          return run_encounter(c, stored_config(c), loop, out);
         });
     if (!encounter) return exit_interrupted;
     analyze_if_stale(ctx, file, *encounter, dir / "analysis", spec.name);

@@ -215,3 +215,40 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   EXPECT_FALSE(fs::exists(out / "A"));
   fs::remove_all(dir);
 }
+
+TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
+  const auto dir = scratch("sigint");
+  const auto workflow = small_workflow(dir);
+  const auto out = dir / "out";
+  // A long relaxation so that Ctrl-C lands inside it.
+  const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", out.string(),
+                                         "--set", "relax.duration=40.0"};
+  const pid_t pid = fork();
+  if (pid == 0) {
+    int devnull = ::open("/dev/null", O_WRONLY);
+    dup2(devnull, 1);
+    dup2(devnull, 2);
+    std::vector<char*> argv = {const_cast<char*>(TIDALCRUST_EXE)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(TIDALCRUST_EXE, argv.data());
+    _exit(127);
+  }
+  const auto mid = out / "body" / "relax.mid.h5";
+  for (int i = 0; i < 3000 && !fs::exists(mid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(mid));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);  // clean stop, its checkpoint written
+  const Checkpoint stopped = read_checkpoint(mid);
+  EXPECT_FALSE(stopped.stage.complete);
+  // Rerun with a value the relaxation does not read changed: it resumes, it does not restart.
+  const auto resumed = run_cli("run " + q(workflow) + " --out " + q(out) +
+                               " --set relax.duration=40.0 --set encounter.damping=0.02 --only A");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("relax: resuming from"), std::string::npos) << resumed.out;
+  EXPECT_FALSE(fs::exists(mid));
+  fs::remove_all(dir);
+}
