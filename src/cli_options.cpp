@@ -51,11 +51,17 @@ cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char**
   const std::vector<std::string> args = spell_single_letter_long_options(argc, argv);
   std::vector<const char*> pointers;
   for (const auto& arg : args) pointers.push_back(arg.c_str());
+  cxxopts::ParseResult parsed;
   try {
-    return options.parse(static_cast<int>(pointers.size()), pointers.data());
+    parsed = options.parse(static_cast<int>(pointers.size()), pointers.data());
   } catch (const cxxopts::exceptions::exception& err) {
     throw InputError(fmt::format("{}: {} (see --help)", options.program(), err.what()));
   }
+  // A stray word is a mistake (a forgotten --from, a misspelt option), never silently ignored.
+  if (!parsed.unmatched().empty())
+    throw InputError(fmt::format("{}: unexpected argument '{}' (see --help)", options.program(),
+                                 parsed.unmatched().front()));
+  return parsed;
 }
 
 Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,

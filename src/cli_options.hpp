@@ -24,7 +24,8 @@ CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
 /// Rewrites "--x" to "-x" and "--x=V" to "-x" "V" for single-letter options (up to a "--").
 std::vector<std::string> spell_single_letter_long_options(int argc, char** argv);
 
-/// Parses argv, turning cxxopts errors (unknown option, missing value) into InputError.
+/// Parses argv, turning cxxopts errors (unknown option, missing value) and stray arguments
+/// into InputError.
 /// Single-letter options are accepted as --x (see spell_single_letter_long_options).
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
 

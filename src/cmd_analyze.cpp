@@ -31,8 +31,6 @@ int command_analyze(int argc, char** argv) {
     fmt::print("{}", options.help());
     return exit_ok;
   }
-  if (!parsed.unmatched().empty())
-    throw InputError(fmt::format("unexpected argument '{}' (see --help)", parsed.unmatched().front()));
   if (!parsed.count("from")) throw InputError("--from ENC.h5 is required (see --help)");
   if (!parsed.count("out")) throw InputError("--out DIR is required (see --help)");
   const fs::path from = parsed["from"].as<std::string>();

@@ -140,8 +140,6 @@ int command_estimate(int argc, char** argv) {
     fmt::print("{}", options.help());
     return exit_ok;
   }
-  if (!parsed.unmatched().empty())
-    throw InputError(fmt::format("unexpected argument '{}' (see --help)", parsed.unmatched().front()));
 
   EncounterGeometry geometry;
   geometry.perturber_mass = positive_option(parsed, "m2", geometry.perturber_mass, /*allow_zero=*/true);

@@ -66,6 +66,7 @@ TEST(BuildCli, BadInputExitsTwoNamingTheProblemAndKeepsExistingFiles) {
       {"build --config '" + quick() + "' --set shell.level=9 --out '" + out.string() + "'", "shell.level"},
       {"build --config '" + quick() + "' --out '" + (dir / "no/such/folder/b.h5").string() + "'", "does not exist"},
       {"build --out '" + out.string() + "'", "--config"},
+      {"build --config '" + quick() + "' '" + out.string() + "'", "unexpected argument"},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);
