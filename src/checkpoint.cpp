@@ -264,6 +264,8 @@ void write_observables(hid_t root, const Observables& o) {
                       vector_column(rows, [](const S& s) -> const auto& { return s.momentum; }), {n, 3});
     h5::write_dataset(series.get(), "angular_momentum",
                       vector_column(rows, [](const S& s) -> const auto& { return s.angular_momentum; }), {n, 3});
+    h5::write_dataset(series.get(), "perturber_offset",
+                      vector_column(rows, [](const S& s) -> const auto& { return s.perturber_offset; }), {n, 3});
   }
 }
 
@@ -538,9 +540,10 @@ void read_observables(hid_t root, Observables& o) {
     auto energy = read_shaped<double>(root, "/observables/timeseries/kinetic_energy", {n}, n_from);
     auto momentum = read_shaped<double>(root, "/observables/timeseries/momentum", {n, 3}, n_from);
     auto angular = read_shaped<double>(root, "/observables/timeseries/angular_momentum", {n, 3}, n_from);
+    auto offset = read_shaped<double>(root, "/observables/timeseries/perturber_offset", {n, 3}, n_from);
     o.timeseries.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      o.timeseries[i] = {time.values[i], failed[i], energy[i], row3(momentum, i), row3(angular, i)};
+      o.timeseries[i] = {time.values[i], failed[i], energy[i], row3(momentum, i), row3(angular, i), row3(offset, i)};
   }
 }
 

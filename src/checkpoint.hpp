@@ -14,7 +14,7 @@
 
 namespace tidalcrust {
 
-inline constexpr std::int64_t checkpoint_format_version = 1;
+inline constexpr std::int64_t checkpoint_format_version = 2;  ///< 2: /observables/timeseries/perturber_offset
 
 /// One shell spring failure (paper section 2.6).
 struct FailureEvent {
@@ -25,13 +25,17 @@ struct FailureEvent {
   std::array<double, 3> position{};     ///< spring midpoint, R, same frame as State
 };
 
-/// A sample of the conserved quantities (body + perturber, about the origin).
+/// A sample of the conserved quantities (body + perturber, about the origin) and of where the
+/// perturber is.
 struct TimeseriesSample {
   double time = 0;
   std::int64_t failed = 0;              ///< failed springs so far
   double kinetic_energy = 0;
   std::array<double, 3> momentum{};
   std::array<double, 3> angular_momentum{};
+  /// Perturber position minus the body's centre of mass (orbital_frame.hpp), R; the simulated
+  /// track including the body's recoil. Zero when there is no perturber.
+  std::array<double, 3> perturber_offset{};
 };
 
 struct Observables {

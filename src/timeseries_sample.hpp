@@ -1,10 +1,12 @@
 #pragma once
-// One row of /observables/timeseries: the conserved totals (conservation.hpp) and the number
-// of failed springs at the current step. Shared by the time-stepping stages.
+// One row of /observables/timeseries: the conserved totals (conservation.hpp), the number of
+// failed springs and the perturber's offset from the body's centre of mass at the current step.
+// Shared by the time-stepping stages.
 #include <cstdint>
 
 #include "checkpoint.hpp"
 #include "conservation.hpp"
+#include "orbital_frame.hpp"
 
 namespace tidalcrust {
 
@@ -16,6 +18,10 @@ inline TimeseriesSample sample_timeseries(const Body& body, const State& state) 
   s.kinetic_energy = c.kinetic_energy;
   s.momentum = c.momentum;
   s.angular_momentum = c.angular_momentum;
+  if (state.perturber.present) {
+    const Vec3 com = body_center_of_mass(body, state);
+    for (int k = 0; k < 3; ++k) s.perturber_offset[k] = state.perturber.position[k] - com[k];
+  }
   return s;
 }
 

@@ -53,8 +53,8 @@ inline Checkpoint synthetic_checkpoint() {
   s.perturber = {true, 0.5, {3.0, -1.0, 0.0}, {-1.2, 0.4, 0.0}};
 
   c.observables.failures = {{2.1, 1050, 5, 0.0031, {0.0, 0.1, -0.9}}};
-  c.observables.timeseries = {{2.0, 0, 0.01, {1e-17, 0, 0}, {0, 0, 0.2}},
-                              {2.2, 1, 0.011, {0, -1e-17, 0}, {0, 1e-9, 0.2}}};
+  c.observables.timeseries = {{2.0, 0, 0.01, {1e-17, 0, 0}, {0, 0, 0.2}, {3.25, -1.5, 1e-16}},
+                              {2.2, 1, 0.011, {0, -1e-17, 0}, {0, 1e-9, 0.2}, {2.9, -0.7, -3e-17}}};
   return c;
 }
 

@@ -82,7 +82,8 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   for (std::size_t i = 0; i < a.observables.timeseries.size(); ++i) {
     const auto &x = a.observables.timeseries[i], &y = b.observables.timeseries[i];
     EXPECT_TRUE(same_bits(x.time, y.time) && x.failed == y.failed && same_bits(x.kinetic_energy, y.kinetic_energy) &&
-                same_bits(x.momentum, y.momentum) && same_bits(x.angular_momentum, y.angular_momentum))
+                same_bits(x.momentum, y.momentum) && same_bits(x.angular_momentum, y.angular_momentum) &&
+                same_bits(x.perturber_offset, y.perturber_offset))
         << "timeseries row " << i;
   }
 }
@@ -248,7 +249,8 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
     for (const char* key : {"version", "git_commit", "compiler", "build_flags"})
       EXPECT_FALSE(h5::read_string_attribute(p.get(), key).empty()) << key;
   }
-  for (const char* d : {"/observables/timeseries/momentum", "/observables/timeseries/angular_momentum"})
+  for (const char* d : {"/observables/timeseries/momentum", "/observables/timeseries/angular_momentum",
+                        "/observables/timeseries/perturber_offset"})
     EXPECT_EQ(h5::read_dataset<double>(root, d).dims, (std::vector<hsize_t>{2, 3})) << d;
   // Stored as little-endian IEEE float64 whatever the reader.
   h5::Dataset set(H5Dopen2(root, "/checkpoint/springs/rest_length", H5P_DEFAULT));

@@ -111,6 +111,7 @@ void expect_same_timeseries(const std::vector<TimeseriesSample>& a, const std::v
     EXPECT_EQ(a[i].kinetic_energy, b[i].kinetic_energy) << "sample " << i;
     EXPECT_EQ(a[i].momentum, b[i].momentum) << "sample " << i;
     EXPECT_EQ(a[i].angular_momentum, b[i].angular_momentum) << "sample " << i;
+    EXPECT_EQ(a[i].perturber_offset, b[i].perturber_offset) << "sample " << i;
   }
 }
 
@@ -183,6 +184,8 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
   EXPECT_EQ(c.observables.timeseries[0].time, c.state.time);
   EXPECT_EQ(c.observables.timeseries[0].momentum, totals.momentum);
   EXPECT_EQ(c.observables.timeseries[0].angular_momentum, totals.angular_momentum);
+  const Vec3 offset = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  EXPECT_EQ(c.observables.timeseries[0].perturber_offset, (std::array<double, 3>{offset.x(), offset.y(), offset.z()}));
 }
 
 TEST(EncounterStage, PerturberReachesPericenterAtQWithSpeedVq) {
@@ -198,6 +201,37 @@ TEST(EncounterStage, PerturberReachesPericenterAtQWithSpeedVq) {
   // It ends back at end_distance (same orbit, within the same 1%).
   const double end = (vec(r.done.state.perturber.position) - body_center_of_mass(r.done.body, r.done.state)).norm();
   EXPECT_NEAR(end, r.config.encounter.end_distance, 0.01 * r.config.encounter.end_distance);
+}
+
+TEST(EncounterStage, SampledPerturberOffsetsTraceTheOrbitAroundTheCentreOfMass) {
+  const StrongRun& r = strong_run();
+  const Checkpoint& c = r.done;
+  const auto& series = c.observables.timeseries;
+  ASSERT_GT(series.size(), 10u);
+  const Vec3 last = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  EXPECT_EQ(series.back().perturber_offset, (std::array<double, 3>{last.x(), last.y(), last.z()}));
+  // The closest sampled offset is no closer than the closest approach measured every step, and
+  // misses it by at most the chord sag over half a sample interval, (V_q h / 2)^2 / (2 q).
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < series.size(); ++i)
+    if (vec(series[i].perturber_offset).norm() < vec(series[nearest].perturber_offset).norm()) nearest = i;
+  const double q = r.spec.pericenter, vq = r.spec.pericenter_speed;
+  const double h = static_cast<double>(r.config.encounter.sample_interval) * c.state.dt;
+  const double closest_sampled = vec(series[nearest].perturber_offset).norm();
+  const double min_distance = c.stage.scalars.at("perturber_min_distance");
+  EXPECT_GE(closest_sampled, min_distance);
+  EXPECT_LE(closest_sampled - min_distance, 1.01 * (vq * h / 2) * (vq * h / 2) / (2 * q) + 1e-12);
+  // Pericenter on +y, moving along -x, in the xy plane.
+  ASSERT_GT(nearest, 0u);
+  ASSERT_LT(nearest + 1, series.size());
+  const Vec3 at = vec(series[nearest].perturber_offset);
+  EXPECT_NEAR(at.x(), 0, vq * h);
+  EXPECT_NEAR(at.y(), q, 0.01 * q);
+  const Vec3 along = vec(series[nearest + 1].perturber_offset) - vec(series[nearest - 1].perturber_offset);
+  EXPECT_LT(along.x(), 0);
+  EXPECT_LT(std::abs(along.y()), 0.1 * std::abs(along.x()));
+  // Out of the plane only by what the lumpy body's pull adds (about 0.002 R here).
+  for (const auto& sample : series) EXPECT_LT(std::abs(sample.perturber_offset[2]), 0.01 * q);
 }
 
 TEST(EncounterStage, StrongEncounterCracksTheCrustFacingThePerturber) {
