@@ -38,12 +38,18 @@ PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count);
 
 /// Figure 7 (fig:orbit): perturber track relative to the body centre in the orbital plane over
 /// the stage, the body as a black disc of radius R, red diamonds every 0.1 t_grav, open circles
-/// of radius M2^(1/3) R at `snapshot_times`, a red arrow for the direction of motion, and the
-/// stored perturber position of the checkpoint. The track is the two-body orbit
-/// (two_body_orbit.hpp, analytic) because the timeseries holds no perturber positions.
+/// of radius M2^(1/3) R at `snapshot_times`, a red arrow for the direction of motion at the
+/// closest approach, and the stored perturber position of the checkpoint. The track is the
+/// simulated one (recorded_track.hpp: the timeseries samples' perturber_offset, with the body's
+/// recoil and tidal effects), with the analytic two-body orbit (two_body_orbit.hpp) as a thin grey
+/// dashed reference; a checkpoint without such samples gets the analytic track alone.
 FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
                              const std::vector<double>& snapshot_times, const std::filesystem::path& stem,
                              const std::string& title);
+/// Where write_orbit_plot with the same arguments puts x, y (R relative to the centre of mass),
+/// in points.
+PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+                         const std::vector<double>& snapshot_times);
 
 /// Failed shell springs against t - t_peri (failure events; timeseries counts if there are none).
 FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericenter_time,

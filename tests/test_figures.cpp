@@ -15,6 +15,7 @@
 #include "orbital_frame.hpp"
 #include "recorded_encounter.hpp"
 #include "synthetic_encounter.hpp"
+#include "two_body_orbit.hpp"
 
 using namespace tidalcrust;
 using tidalcrust::testing::synthetic_encounter;
@@ -148,6 +149,46 @@ TEST(Figures, OrbitFailureAndConservationPlotsAreWritten) {
   expect_png_and_svg(write_orbit_plot(c, encounter, {0.8, 1.2, 1.6}, dir / "orbit", "orbit"));
   expect_png_and_svg(write_failure_history(c, encounter.pericenter_time, dir / "failures", "failures"));
   expect_png_and_svg(write_conservation_plot(c, encounter.pericenter_time, dir / "conservation", "conservation"));
+}
+
+TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
+  // A simulated track 0.8 R outside the analytic one (stage from t = 0 to 2, pericenter at 1.2),
+  // sampled every 0.02 t_grav.
+  Checkpoint c = synthetic_encounter(1);
+  const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
+  const TwoBodyOrbit orbit = perturber_orbit(encounter.perturber_mass, encounter.pericenter, encounter.pericenter_speed);
+  auto simulated = [&](double t) {
+    const Vec3 p = orbit.state_at_time(t - encounter.pericenter_time).position;
+    return Vec3(p + 0.8 * p.normalized());
+  };
+  for (int i = 0; i <= 100; ++i) {
+    TimeseriesSample s;
+    s.time = 0.02 * i;
+    const Vec3 p = simulated(s.time);
+    s.perturber_offset = {p.x(), p.y(), p.z()};
+    c.observables.timeseries.push_back(s);
+  }
+  // Halfway between the samples at t = 0.64 and 0.66, away from the diamonds (every 0.1) and
+  // from the analytic track.
+  const Vec3 between = 0.5 * (simulated(0.64) + simulated(0.66));
+  ASSERT_GT((between - orbit.state_at_time(0.65 - encounter.pericenter_time).position).norm(), 0.7);
+  const fs::path dir = fresh_dir("simulated_orbit");
+  {
+    const auto files = write_orbit_plot(c, encounter, {}, dir / "simulated", "simulated");
+    expect_png_and_svg(files);
+    const PlotAxes axes = orbit_plot_axes(c, encounter, {});
+    EXPECT_LT(Png(files[0]).luminance(axes.page_x(between.x()), axes.page_y(between.y())), 0.5);
+  }
+  // Without perturber offsets (an older kind of sample) the same point is empty paper: only the
+  // analytic track is drawn.
+  for (auto& s : c.observables.timeseries) s.perturber_offset = {};
+  {
+    const auto files = write_orbit_plot(c, encounter, {}, dir / "analytic", "analytic");
+    const PlotAxes axes = orbit_plot_axes(c, encounter, {});
+    EXPECT_GT(Png(files[0]).luminance(axes.page_x(between.x()), axes.page_y(between.y())), 0.9);
+    const Vec3 on_analytic = orbit.state_at_time(0.65 - encounter.pericenter_time).position;
+    EXPECT_LT(Png(files[0]).luminance(axes.page_x(on_analytic.x()), axes.page_y(on_analytic.y())), 0.5);
+  }
 }
 
 TEST(RecordedEncounter, RefusesOtherStagesAndMissingScalars) {
