@@ -9,13 +9,20 @@
 
 namespace tidalcrust {
 
+namespace {
+/// The one typeface of every figure, at `size` points.
+void select_font(cairo_t* cr, double size, bool bold) {
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
+                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, size);
+}
+}  // namespace
+
 void draw_text(cairo_t* cr, std::string_view text, double x, double y, double align_x, double align_y, double size,
                bool bold, double angle) {
   const std::string s(text);
   cairo_save(cr);
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
-                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
+  select_font(cr, size, bold);
   cairo_text_extents_t extents;
   cairo_text_extents(cr, s.c_str(), &extents);
   cairo_font_extents_t font;
@@ -32,9 +39,7 @@ void draw_text(cairo_t* cr, std::string_view text, double x, double y, double al
 double text_width(cairo_t* cr, std::string_view text, double size, bool bold) {
   const std::string s(text);
   cairo_save(cr);
-  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
-                         bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, size);
+  select_font(cr, size, bold);
   cairo_text_extents_t extents;
   cairo_text_extents(cr, s.c_str(), &extents);
   cairo_restore(cr);

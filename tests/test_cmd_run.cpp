@@ -91,8 +91,8 @@ std::map<std::string, std::string> hashes_below(const fs::path& root) {
   return hashes;
 }
 
-/// Starts `tidalcrust run ...` and SIGKILLs it after `delay`; true if it finished first.
-bool run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds delay) {
+/// Starts `tidalcrust ARGS` as a child process with its output discarded.
+pid_t start_cli(const std::vector<std::string>& args) {
   const pid_t pid = fork();
   if (pid == 0) {
     int devnull = ::open("/dev/null", O_WRONLY);
@@ -105,6 +105,12 @@ bool run_and_kill(const std::vector<std::string>& args, std::chrono::millisecond
     execv(TIDALCRUST_EXE, argv.data());
     _exit(127);
   }
+  return pid;
+}
+
+/// Starts `tidalcrust run ...` and SIGKILLs it after `delay`; true if it finished first.
+bool run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds delay) {
+  const pid_t pid = start_cli(args);
   const auto deadline = std::chrono::steady_clock::now() + delay;
   int status = 0;
   while (std::chrono::steady_clock::now() < deadline) {
@@ -223,17 +229,7 @@ TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
   // A long relaxation so that Ctrl-C lands inside it.
   const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", out.string(),
                                          "--set", "relax.duration=40.0"};
-  const pid_t pid = fork();
-  if (pid == 0) {
-    int devnull = ::open("/dev/null", O_WRONLY);
-    dup2(devnull, 1);
-    dup2(devnull, 2);
-    std::vector<char*> argv = {const_cast<char*>(TIDALCRUST_EXE)};
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(TIDALCRUST_EXE, argv.data());
-    _exit(127);
-  }
+  const pid_t pid = start_cli(args);
   const auto mid = out / "body" / "relax.mid.h5";
   for (int i = 0; i < 3000 && !fs::exists(mid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_TRUE(fs::exists(mid));
