@@ -5,9 +5,9 @@
 // little, with encounter damping and a perturber, so every force path does real work.
 #include <filesystem>
 
-#include "build_stage.hpp"
-#include "config.hpp"
-#include "random.hpp"
+#include "stages/build_stage.hpp"
+#include "model/config.hpp"
+#include "base/random.hpp"
 
 namespace tidalcrust::bench {
 

@@ -3,9 +3,9 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_body.hpp"
-#include "force_field.hpp"
-#include "leapfrog.hpp"
-#include "textbook_step.hpp"
+#include "forces/force_field.hpp"
+#include "integrate/leapfrog.hpp"
+#include "integrate/textbook_step.hpp"
 
 using namespace tidalcrust;
 using tidalcrust::bench::paper_t_body;

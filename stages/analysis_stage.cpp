@@ -1,6 +1,6 @@
 // Stage 5: fracture statistics, paper-style figures and conservation diagnostics of one
 // encounter (paper section 3): figures (PNG + SVG) and summary.json in one folder.
-#include "analysis_stage.hpp"
+#include "stages/analysis_stage.hpp"
 
 #include <fmt/format.h>
 
@@ -11,15 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "conservation_drift.hpp"
-#include "errors.hpp"
-#include "figures.hpp"
-#include "fracture_analysis.hpp"
-#include "fracture_comparison.hpp"
-#include "json_writer.hpp"
-#include "recorded_encounter.hpp"
-#include "snapshot_files.hpp"
-#include "state_hash.hpp"
+#include "analysis/conservation_drift.hpp"
+#include "base/errors.hpp"
+#include "figures/figures.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "analysis/fracture_comparison.hpp"
+#include "io/json_writer.hpp"
+#include "model/recorded_encounter.hpp"
+#include "io/snapshot_files.hpp"
+#include "io/state_hash.hpp"
+#include "io/checkpoint_file.hpp"
 
 namespace tidalcrust {
 

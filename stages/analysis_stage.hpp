@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "checkpoint.hpp"
-#include "fracture_analysis.hpp"
+#include "model/checkpoint.hpp"
+#include "analysis/fracture_analysis.hpp"
 
 namespace tidalcrust {
 

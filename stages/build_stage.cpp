@@ -1,15 +1,15 @@
-#include "build_stage.hpp"
+#include "stages/build_stage.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "errors.hpp"
-#include "hinge_geometry.hpp"
-#include "icosphere.hpp"
-#include "interior_builder.hpp"
-#include "neighbor_grid.hpp"
-#include "shell_hinges.hpp"
+#include "base/errors.hpp"
+#include "forces/hinge_geometry.hpp"
+#include "bodies/icosphere.hpp"
+#include "bodies/interior_builder.hpp"
+#include "bodies/neighbor_grid.hpp"
+#include "bodies/shell_hinges.hpp"
 
 namespace tidalcrust {
 namespace {

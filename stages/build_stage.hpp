@@ -1,8 +1,8 @@
 #pragma once
 // Stage 1 of the pipeline: the body as built from the configuration (paper sections 2.2,
 // 2.4, 2.5, 2.7), before stretching. Particles: interior nodes, then shell nodes.
-#include "checkpoint.hpp"
-#include "config.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
 
 namespace tidalcrust {
 

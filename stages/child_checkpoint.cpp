@@ -1,6 +1,6 @@
-#include "child_checkpoint.hpp"
+#include "stages/child_checkpoint.hpp"
 
-#include "state_hash.hpp"
+#include "io/state_hash.hpp"
 
 namespace tidalcrust {
 

@@ -2,8 +2,8 @@
 // How every stage after build starts: from its parent checkpoint, with fresh bookkeeping.
 #include <string>
 
-#include "checkpoint.hpp"
-#include "config.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
 
 namespace tidalcrust {
 

@@ -1,6 +1,6 @@
-#include "encounter_stage.hpp"
+#include "stages/encounter_stage.hpp"
 
-#include "child_checkpoint.hpp"
+#include "stages/child_checkpoint.hpp"
 
 #include <fmt/format.h>
 
@@ -10,17 +10,18 @@
 #include <string>
 #include <vector>
 
-#include "encounter_snapshot_steps.hpp"
-#include "snapshot_files.hpp"
-#include "errors.hpp"
-#include "force_field.hpp"
-#include "leapfrog.hpp"
-#include "orbital_frame.hpp"
-#include "recorded_encounter.hpp"
-#include "shell_failure.hpp"
-#include "state_hash.hpp"
-#include "timeseries_sample.hpp"
-#include "two_body_orbit.hpp"
+#include "model/encounter_snapshot_steps.hpp"
+#include "io/snapshot_files.hpp"
+#include "base/errors.hpp"
+#include "forces/force_field.hpp"
+#include "integrate/leapfrog.hpp"
+#include "physics/orbital_frame.hpp"
+#include "model/recorded_encounter.hpp"
+#include "physics/shell_failure.hpp"
+#include "io/state_hash.hpp"
+#include "physics/timeseries_sample.hpp"
+#include "physics/two_body_orbit.hpp"
+#include "io/checkpoint_file.hpp"
 
 namespace tidalcrust {
 namespace {

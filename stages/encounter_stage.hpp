@@ -4,9 +4,9 @@
 // spring beyond eps_S fails (k -> F_Sk k). Many encounters branch from one relaxed body.
 #include <filesystem>
 
-#include "checkpoint.hpp"
-#include "config.hpp"
-#include "step_loop.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+#include "stages/step_loop.hpp"
 
 namespace tidalcrust {
 

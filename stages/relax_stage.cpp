@@ -1,21 +1,22 @@
-#include "relax_stage.hpp"
+#include "stages/relax_stage.hpp"
 
-#include "child_checkpoint.hpp"
+#include "stages/child_checkpoint.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <set>
 
-#include "conservation.hpp"
-#include "crust_relaxation.hpp"
-#include "errors.hpp"
-#include "force_field.hpp"
-#include "leapfrog.hpp"
-#include "shell_failure.hpp"
-#include "stability_probe.hpp"
-#include "state_hash.hpp"
-#include "timeseries_sample.hpp"
+#include "physics/conservation.hpp"
+#include "physics/crust_relaxation.hpp"
+#include "base/errors.hpp"
+#include "forces/force_field.hpp"
+#include "integrate/leapfrog.hpp"
+#include "physics/shell_failure.hpp"
+#include "stages/stability_probe.hpp"
+#include "io/state_hash.hpp"
+#include "physics/timeseries_sample.hpp"
+#include "io/checkpoint_file.hpp"
 
 namespace tidalcrust {
 namespace {

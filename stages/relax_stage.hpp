@@ -3,9 +3,9 @@
 // failures) during which shell rest lengths move toward their current lengths and hinge rest
 // angles are reset on step schedules; then the stability probe (encounter damping, failures
 // on, no perturber) whose results are stored in the relaxed checkpoint.
-#include "checkpoint.hpp"
-#include "config.hpp"
-#include "step_loop.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+#include "stages/step_loop.hpp"
 
 namespace tidalcrust {
 

@@ -1,10 +1,10 @@
-#include "stability_probe.hpp"
+#include "stages/stability_probe.hpp"
 
 #include <algorithm>
 
-#include "force_field.hpp"
-#include "leapfrog.hpp"
-#include "shell_failure.hpp"
+#include "forces/force_field.hpp"
+#include "integrate/leapfrog.hpp"
+#include "physics/shell_failure.hpp"
 
 namespace tidalcrust {
 

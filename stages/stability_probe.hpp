@@ -3,9 +3,9 @@
 // low damping with the crust failure rule switched on. A well relaxed body loses no spring.
 #include <cstdint>
 
-#include "checkpoint.hpp"
-#include "config.hpp"
-#include "step_loop.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+#include "stages/step_loop.hpp"
 
 namespace tidalcrust {
 

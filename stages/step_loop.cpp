@@ -1,12 +1,13 @@
-#include "step_loop.hpp"
+#include "stages/step_loop.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-#include "errors.hpp"
-#include "progress.hpp"
-#include "stop_signal.hpp"
+#include "base/errors.hpp"
+#include "io/progress.hpp"
+#include "io/stop_signal.hpp"
+#include "io/checkpoint_file.hpp"
 
 namespace tidalcrust {
 

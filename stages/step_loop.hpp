@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "checkpoint.hpp"
+#include "model/checkpoint.hpp"
 
 namespace tidalcrust {
 

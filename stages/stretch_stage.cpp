@@ -1,6 +1,6 @@
-#include "stretch_stage.hpp"
+#include "stages/stretch_stage.hpp"
 
-#include "child_checkpoint.hpp"
+#include "stages/child_checkpoint.hpp"
 
 #include <fmt/format.h>
 
@@ -10,12 +10,12 @@
 #include <functional>
 #include <vector>
 
-#include "derived_quantities.hpp"
-#include "errors.hpp"
-#include "force_field.hpp"
-#include "hydrostatic_pressure.hpp"
-#include "state_hash.hpp"
-#include "vec3.hpp"
+#include "model/derived_quantities.hpp"
+#include "base/errors.hpp"
+#include "forces/force_field.hpp"
+#include "physics/hydrostatic_pressure.hpp"
+#include "io/state_hash.hpp"
+#include "base/vec3.hpp"
 
 namespace tidalcrust {
 namespace {

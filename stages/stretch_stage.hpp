@@ -3,8 +3,8 @@
 // radial acceleration of the surface vanishes, then strengthen springs toward the centre so
 // that the spring pressure follows the hydrostatic P(r) = (2/3) pi G rho^2 (R^2 - r^2);
 // cross springs start slightly compressed.
-#include "checkpoint.hpp"
-#include "config.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
 
 namespace tidalcrust {
 

@@ -1,0 +1,158 @@
+#include "analysis/fracture_analysis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "base/errors.hpp"
+#include "physics/orbital_frame.hpp"
+#include "bodies/shell_topology.hpp"
+
+namespace tidalcrust {
+
+namespace {
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+bool is_failed_shell_spring(const Body& body, const State& state, std::size_t s) {
+  return body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::shell) &&
+         state.springs.failed[s] != 0;
+}
+
+/// Union-find over spring indices with path halving; the root is the smallest index.
+struct DisjointSets {
+  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::size_t> parent;
+};
+
+double great_circle_extent(const std::vector<Vec3>& points) {
+  std::vector<Vec3> directions;
+  directions.reserve(points.size());
+  for (const Vec3& p : points) directions.push_back(p.normalized());
+  double largest = 0;
+  for (std::size_t i = 0; i < directions.size(); ++i)
+    for (std::size_t j = i + 1; j < directions.size(); ++j)
+      largest = std::max(largest, std::acos(std::clamp(directions[i].dot(directions[j]), -1.0, 1.0)));
+  return largest;
+}
+}  // namespace
+
+std::vector<double> FractureSummary::angles_from_subsatellite_deg() const {
+  std::vector<double> angles;
+  angles.reserve(failed.size());
+  for (const auto& f : failed) angles.push_back(f.angle_from_subsatellite_deg);
+  return angles;
+}
+
+FractureSummary analyze_fractures(const Body& body, const State& state) {
+  if (state.springs.failed.size() != body.spring_count() || state.position.size() != 3 * body.particle_count())
+    throw InputError(fmt::format("state: {} failed flags and {} positions for a body of {} springs and {} particles",
+                                 state.springs.failed.size(), state.position.size() / 3, body.spring_count(),
+                                 body.particle_count()));
+  const ShellTopology topology = shell_topology(body);
+  const Vec3 center = body_center_of_mass(body, state);
+  auto position = [&](std::int32_t i) { return Vec3(vec3_at(state.position, static_cast<std::size_t>(i)) - center); };
+
+  FractureSummary summary;
+  summary.shell_springs = body.count_springs(SpringKind::shell);
+  std::size_t on_subsatellite_hemisphere = 0;
+  double angle_sum = 0;
+  for (std::size_t s = 0; s < body.spring_count(); ++s) {
+    if (!is_failed_shell_spring(body, state, s)) continue;
+    FailedShellSpring f;
+    f.spring = static_cast<std::int32_t>(s);
+    f.midpoint = 0.5 * (position(body.springs[s][0]) + position(body.springs[s][1]));
+    f.longitude_deg = longitude_deg(f.midpoint);
+    f.latitude_deg = latitude_deg(f.midpoint);
+    f.angle_from_subsatellite_deg = angle_from_subsatellite_deg(f.midpoint);
+    on_subsatellite_hemisphere += f.midpoint.dot(subsatellite_direction) > 0;
+    angle_sum += f.angle_from_subsatellite_deg;
+    const auto bin = std::min(summary.angle_bins - 1,
+                              static_cast<std::size_t>(f.angle_from_subsatellite_deg / summary.angle_bin_width_deg));
+    ++summary.angle_histogram[bin];
+    summary.failed.push_back(f);
+  }
+  const double count = static_cast<double>(summary.failed.size());
+  summary.fraction_shell = summary.shell_springs ? count / static_cast<double>(summary.shell_springs) : nan;
+  summary.hemisphere_fraction = count > 0 ? static_cast<double>(on_subsatellite_hemisphere) / count : nan;
+  summary.mean_angle_from_subsatellite_deg = count > 0 ? angle_sum / count : nan;
+  std::vector<double> angles = summary.angles_from_subsatellite_deg();
+  std::sort(angles.begin(), angles.end());
+  const std::size_t n = angles.size();
+  summary.median_angle_from_subsatellite_deg =
+      n == 0 ? nan : (n % 2 ? angles[n / 2] : 0.5 * (angles[n / 2 - 1] + angles[n / 2]));
+
+  // Dual-lattice bars, and clusters: failed edges of one face are joined at its centroid.
+  DisjointSets sets(body.spring_count());
+  for (std::size_t f = 0; f < body.faces.size(); ++f) {
+    const auto& face = body.faces[f];
+    const Vec3 centroid = (position(face[0]) + position(face[1]) + position(face[2])) / 3.0;
+    std::int32_t first_failed = -1;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t s = topology.face_edge_spring[f][k];
+      if (!is_failed_shell_spring(body, state, static_cast<std::size_t>(s))) continue;
+      const Vec3 midpoint = 0.5 * (position(face[k]) + position(face[(k + 1) % 3]));
+      summary.bars.push_back({static_cast<std::int32_t>(f), s, centroid, midpoint});
+      if (first_failed < 0) first_failed = s;
+      sets.unite(static_cast<std::size_t>(first_failed), static_cast<std::size_t>(s));
+    }
+  }
+
+  std::vector<std::int64_t> cluster_of_root(body.spring_count(), -1);
+  for (const auto& f : summary.failed) {
+    const std::size_t root = sets.find(static_cast<std::size_t>(f.spring));
+    if (cluster_of_root[root] < 0) {
+      cluster_of_root[root] = static_cast<std::int64_t>(summary.clusters.size());
+      summary.clusters.emplace_back();
+    }
+    summary.clusters[static_cast<std::size_t>(cluster_of_root[root])].springs.push_back(f.spring);
+  }
+  std::vector<std::vector<Vec3>> cluster_centroids(summary.clusters.size());
+  for (const auto& bar : summary.bars) {
+    const auto c = static_cast<std::size_t>(cluster_of_root[sets.find(static_cast<std::size_t>(bar.spring))]);
+    summary.clusters[c].length += (bar.edge_midpoint - bar.centroid).norm();
+    auto& centroids = cluster_centroids[c];
+    // Bars of one face are consecutive and share the centroid: store it once.
+    if (centroids.empty() || centroids.back() != bar.centroid) centroids.push_back(bar.centroid);
+  }
+  for (std::size_t c = 0; c < summary.clusters.size(); ++c)
+    summary.clusters[c].extent = great_circle_extent(cluster_centroids[c]);
+  // Clusters were created in order of their smallest spring; a stable sort keeps that for ties.
+  std::stable_sort(summary.clusters.begin(), summary.clusters.end(),
+                   [](const CrackCluster& a, const CrackCluster& b) { return a.length > b.length; });
+  if (!summary.clusters.empty()) {
+    summary.longest_crack_length = summary.clusters.front().length;
+    summary.longest_crack_extent = summary.clusters.front().extent;
+  }
+  return summary;
+}
+
+std::vector<std::pair<std::string, double>> failure_summary_fields(const FractureSummary& summary) {
+  return {{"count", static_cast<double>(summary.count())},
+          {"fraction_shell", summary.fraction_shell},
+          {"hemisphere_fraction", summary.hemisphere_fraction},
+          {"mean_angle_from_subsatellite_deg", summary.mean_angle_from_subsatellite_deg},
+          {"median_angle_from_subsatellite_deg", summary.median_angle_from_subsatellite_deg},
+          {"longest_crack", summary.longest_crack_length},
+          {"longest_crack_extent", summary.longest_crack_extent},
+          {"clusters", static_cast<double>(summary.clusters.size())}};
+}
+
+void add_failure_summary(JsonWriter& json, const FractureSummary& summary) {
+  json.begin_object("failures");
+  for (const auto& [key, value] : failure_summary_fields(summary)) json.value(key, value);
+  json.end_object();
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,77 @@
+#pragma once
+// Fracture statistics of a shell (paper section 3, Figures 6 and 8): which shell springs failed,
+// where they lie in the orbital frame (orbital_frame.hpp), how they cluster into cracks and how
+// long the cracks are. Cracks are drawn and measured on the dual lattice (section 2.6, Figure 4):
+// a failed edge shows as a bar from the centroid of each of its two faces to the edge midpoint,
+// so two failed edges of one triangle make a bent bar and three make a three-pronged fork.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "model/body.hpp"
+#include "io/json_writer.hpp"
+#include "model/state.hpp"
+#include "base/vec3.hpp"
+
+namespace tidalcrust {
+
+struct FailedShellSpring {
+  std::int32_t spring = 0;              ///< index into Body::springs
+  Vec3 midpoint = Vec3::Zero();         ///< relative to the body's centre of mass, R
+  double longitude_deg = 0;             ///< (-180, 180], subsatellite point at +90
+  double latitude_deg = 0;              ///< [-90, 90], orbital plane at 0
+  double angle_from_subsatellite_deg = 0;
+};
+
+/// Half of a dual-lattice bar: inside face `face`, from its centroid to the midpoint of the
+/// failed edge `spring`. Positions relative to the body's centre of mass, R.
+struct CrackBar {
+  std::int32_t face = 0;
+  std::int32_t spring = 0;
+  Vec3 centroid = Vec3::Zero();
+  Vec3 edge_midpoint = Vec3::Zero();
+};
+
+/// Failed springs connected through shared faces (two failed edges of one triangle touch).
+struct CrackCluster {
+  std::vector<std::int32_t> springs;  ///< ascending spring indices
+  double length = 0;  ///< sum of its dual-lattice bar lengths, R
+  double extent = 0;  ///< largest great-circle distance between two of its face centroids,
+                      ///< measured on the unit sphere (radians = R)
+};
+
+struct FractureSummary {
+  static constexpr double angle_bin_width_deg = 10;
+  static constexpr std::size_t angle_bins = 18;  ///< 0..180 degrees
+
+  std::size_t shell_springs = 0;
+  std::vector<FailedShellSpring> failed;  ///< ascending spring index
+  std::vector<CrackBar> bars;             ///< by face, then edge
+  std::vector<CrackCluster> clusters;     ///< longest first (ties: lowest first spring)
+  double fraction_shell = 0;        ///< failed / shell springs; NaN without shell springs
+  double hemisphere_fraction = 0;   ///< share of failed springs with midpoint . (+y) > 0; NaN if none
+  double mean_angle_from_subsatellite_deg = 0;  ///< NaN if none failed
+  double median_angle_from_subsatellite_deg = 0;  ///< NaN if none failed (robust to a few far cracks)
+  double longest_crack_length = 0;  ///< length of the longest cluster, R (0 if none)
+  double longest_crack_extent = 0;  ///< its great-circle extent, R (0 if none)
+  std::array<std::int64_t, angle_bins> angle_histogram{};  ///< failed springs per 10-degree bin
+
+  std::size_t count() const { return failed.size(); }
+  std::vector<double> angles_from_subsatellite_deg() const;
+};
+
+/// Analyses the failed shell springs of `state` (State::springs.failed, shell kind only).
+/// Throws InputError if the shell faces and springs do not match.
+FractureSummary analyze_fractures(const Body& body, const State& state);
+
+/// Writes design.md's `failures {count, fraction_shell, hemisphere_fraction,
+/// mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg, longest_crack, longest_crack_extent, clusters}` object
+/// (lengths in R, clusters = number of clusters; undefined values are null).
+void add_failure_summary(JsonWriter& json, const FractureSummary& summary);
+/// The same fields as (key, value) pairs, in output order (counts are whole numbers).
+std::vector<std::pair<std::string, double>> failure_summary_fields(const FractureSummary& summary);
+
+}  // namespace tidalcrust

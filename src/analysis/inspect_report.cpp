@@ -1,0 +1,171 @@
+#include "analysis/inspect_report.hpp"
+
+#include "analysis/fracture_analysis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "model/config.hpp"
+#include "physics/conservation.hpp"
+#include "model/derived_quantities.hpp"
+#include "io/json_writer.hpp"
+#include "io/state_hash.hpp"
+#include "io/checkpoint_file.hpp"
+
+namespace tidalcrust {
+
+namespace {
+
+std::vector<double> as_vector(const std::array<double, 3>& a) { return {a.begin(), a.end()}; }
+
+ReportSection counts_section(const Checkpoint& c) {
+  const Body& b = c.body;
+  const std::int64_t failed =
+      std::accumulate(c.state.springs.failed.begin(), c.state.springs.failed.end(), std::int64_t{0});
+  ReportSection s{"counts", {}};
+  s.add("interior", b.count_species(Species::interior))
+      .add("shell", b.count_species(Species::shell))
+      .add("springs_interior", b.count_springs(SpringKind::interior))
+      .add("springs_shell", b.count_springs(SpringKind::shell))
+      .add("springs_cross", b.count_springs(SpringKind::cross))
+      .add("hinges", b.hinge_count())
+      .add("faces", b.faces.size())
+      .add("failed", failed);
+  return s;
+}
+
+ReportSection derived_section(const Checkpoint& c, const std::string& file) {
+  const Config config = parse_config(c.config_toml, file + ":/parameters/config");
+  const DerivedQuantities q = derive_quantities(c.body, c.state, config.interior.radius);
+  ReportSection s{"derived", {}};
+  s.add("E_I", q.E_I).add("L_I", q.L_I).add("k_I", q.k_I).add("L_S", q.L_S).add("k_S", q.k_S).add("M_S", q.M_S);
+  s.add("L_C", q.L_C).add("k_C", q.k_C).add("V_IP", q.V_IP).add("V_SP", q.V_SP).add("V_Co", q.V_Co);
+  s.add("h_S", q.h_S).add("dt_max", q.dt_max);
+  return s;
+}
+
+ReportSection conservation_section(const Checkpoint& c) {
+  const Conservation totals = measure_conservation(c.body, c.state);
+  ReportSection s{"conservation", {}};
+  s.add("momentum", as_vector(totals.momentum))
+      .add("angular_momentum", as_vector(totals.angular_momentum))
+      .add("kinetic_energy", totals.kinetic_energy);
+  return s;
+}
+
+/// Adds scalars[name] as `key` when the stage recorded it.
+void add_scalar_if_present(ReportSection& s, const Checkpoint& c, const char* name, const char* key) {
+  if (auto it = c.stage.scalars.find(name); it != c.stage.scalars.end()) s.add(key, it->second);
+}
+
+std::string value_text(const ReportValue& v, bool for_table) {
+  auto number = [&](double x) { return for_table ? fmt::format("{:.6g}", x) : JsonWriter::number(x); };
+  switch (v.kind) {
+    case ReportValue::Kind::integer: return fmt::format("{}", v.integer);
+    case ReportValue::Kind::number: return number(v.number);
+    case ReportValue::Kind::flag: return v.flag ? "true" : "false";
+    case ReportValue::Kind::text: return for_table ? v.text : JsonWriter::quote(v.text);
+    case ReportValue::Kind::numbers: {
+      std::string out = "[";
+      for (std::size_t i = 0; i < v.numbers.size(); ++i) out += (i ? ", " : "") + number(v.numbers[i]);
+      return out + "]";
+    }
+  }
+  return {};
+}
+
+void write_entries(JsonWriter& json, const ReportSection& s) {
+  for (const auto& [key, v] : s.entries) {
+    switch (v.kind) {
+      case ReportValue::Kind::integer: json.value(key, v.integer); break;
+      case ReportValue::Kind::number: json.value(key, v.number); break;
+      case ReportValue::Kind::flag: json.value(key, v.flag); break;
+      case ReportValue::Kind::text: json.value(key, std::string_view(v.text)); break;
+      case ReportValue::Kind::numbers: json.numbers(key, v.numbers); break;
+    }
+  }
+}
+
+}  // namespace
+
+ReportSection& InspectReport::section(const std::string& name) {
+  for (auto& s : sections)
+    if (s.name == name) return s;
+  sections.push_back({name, {}});
+  return sections.back();
+}
+
+void add_failures_section(const Checkpoint& c, InspectReport& r) {
+  if (c.stage.stage != "encounter") return;
+  ReportSection& failures = r.section("failures");
+  for (const auto& [key, value] : failure_summary_fields(analyze_fractures(c.body, c.state))) {
+    if (key == "count" || key == "clusters") failures.add(key, static_cast<std::int64_t>(value));
+    else failures.add(key, value);
+  }
+}
+
+InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
+  InspectReport r;
+  r.top.add("format_version", checkpoint_format_version)
+      .add("stage", c.stage.stage)
+      .add("complete", c.stage.complete)
+      .add("time", c.state.time)
+      .add("step", c.state.step)
+      .add("dt", c.state.dt)
+      .add("state_hash", state_hash(c.state))
+      .add("parent_hash", c.stage.parent_hash);
+  r.sections.push_back(counts_section(c));
+  r.sections.push_back(derived_section(c, file));
+  r.sections.push_back(conservation_section(c));
+  ReportSection& scalars = r.section("scalars");
+  for (const auto& [name, value] : c.stage.scalars) scalars.add(name, value);
+  ReportSection& labels = r.section("labels");
+  for (const auto& [name, value] : c.stage.labels) labels.add(name, value);
+
+  if (c.stage.stage == "encounter" || c.state.perturber.present) {
+    ReportSection& p = r.section("perturber");
+    if (c.state.perturber.present) p.add("mass", c.state.perturber.mass);
+    add_scalar_if_present(p, c, "perturber_min_distance", "min_distance");
+    add_scalar_if_present(p, c, "perturber_speed_at_min", "speed_at_min");
+  }
+  if (c.stage.stage == "relax") {
+    ReportSection& s = r.section("stability");
+    if (auto it = c.stage.scalars.find("stability_failures"); it != c.stage.scalars.end())
+      s.add("failures", static_cast<std::int64_t>(it->second));
+    add_scalar_if_present(s, c, "stability_max_shell_strain", "max_shell_strain");
+  }
+  add_failures_section(c, r);
+  return r;
+}
+
+std::string inspect_report_json(const InspectReport& r) {
+  JsonWriter json;
+  json.begin_object();
+  write_entries(json, r.top);
+  for (const auto& s : r.sections) {
+    json.begin_object(s.name);
+    write_entries(json, s);
+    json.end_object();
+  }
+  json.end_object();
+  return json.str();
+}
+
+std::string inspect_report_table(const InspectReport& r) {
+  std::size_t width = 0;
+  for (const auto& [key, value] : r.top.entries) width = std::max(width, key.size());
+  for (const auto& s : r.sections)
+    for (const auto& [key, value] : s.entries) width = std::max(width, key.size() + 2);
+  std::string out;
+  for (const auto& [key, value] : r.top.entries) out += fmt::format("{:<{}}  {}\n", key, width, value_text(value, true));
+  for (const auto& s : r.sections) {
+    out += s.name + (s.entries.empty() ? "  (none)\n" : "\n");
+    for (const auto& [key, value] : s.entries)
+      out += fmt::format("  {:<{}}  {}\n", key, width - 2, value_text(value, true));
+  }
+  return out;
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,96 @@
+#pragma once
+// What `tidalcrust inspect` shows about one checkpoint (design.md "inspect --json"), built
+// once from a Checkpoint and rendered either as JSON or as an aligned text table. Other parts
+// of the program extend it by adding sections (see add_failures_section).
+#include <concepts>
+#include <cstdint>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "model/checkpoint.hpp"
+
+namespace tidalcrust {
+
+/// One value of the report: an integer, a number, a flag, a text or a list of numbers.
+struct ReportValue {
+  enum class Kind { integer, number, flag, text, numbers };
+  Kind kind = Kind::integer;
+  std::int64_t integer = 0;
+  double number = 0;
+  bool flag = false;
+  std::string text;
+  std::vector<double> numbers;
+};
+
+/// An ordered list of named values; `name` is the JSON key of the nested object.
+struct ReportSection {
+  std::string name;
+  std::vector<std::pair<std::string, ReportValue>> entries;
+
+  ReportSection& add(std::string key, double value) {
+    ReportValue v;
+    v.kind = ReportValue::Kind::number;
+    v.number = value;
+    return put(std::move(key), std::move(v));
+  }
+  ReportSection& add(std::string key, std::string value) {
+    ReportValue v;
+    v.kind = ReportValue::Kind::text;
+    v.text = std::move(value);
+    return put(std::move(key), std::move(v));
+  }
+  ReportSection& add(std::string key, const char* value) { return add(std::move(key), std::string(value)); }
+  ReportSection& add(std::string key, std::vector<double> values) {
+    ReportValue v;
+    v.kind = ReportValue::Kind::numbers;
+    v.numbers = std::move(values);
+    return put(std::move(key), std::move(v));
+  }
+  /// Any integer (counts, steps) is stored as int64; bool is a flag.
+  template <std::integral T>
+  ReportSection& add(std::string key, T value) {
+    ReportValue v;
+    if constexpr (std::is_same_v<T, bool>) {
+      v.kind = ReportValue::Kind::flag;
+      v.flag = value;
+    } else {
+      v.kind = ReportValue::Kind::integer;
+      v.integer = static_cast<std::int64_t>(value);
+    }
+    return put(std::move(key), std::move(v));
+  }
+
+ private:
+  ReportSection& put(std::string key, ReportValue value) {
+    entries.emplace_back(std::move(key), std::move(value));
+    return *this;
+  }
+};
+
+struct InspectReport {
+  ReportSection top;                    ///< top-level keys (format_version, stage, ...)
+  std::vector<ReportSection> sections;  ///< nested objects, in output order
+
+  /// The section called `name`, appended if it does not exist yet.
+  ReportSection& section(const std::string& name);
+};
+
+/// Builds the full report: top-level stage keys, counts, derived (Table 3 quantities with r_I
+/// from the stored configuration), conservation, scalars, labels, and for encounters the
+/// perturber, for relaxed bodies the stability probe, plus add_failures_section.
+/// `file` names the checkpoint in error messages (e.g. an unparsable stored configuration).
+InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::string& file);
+
+/// Hook for the fracture statistics of an encounter (`failures {count, fraction_shell, ...}`):
+/// adds nothing yet; the analysis code fills it in.
+void add_failures_section(const Checkpoint& checkpoint, InspectReport& report);
+
+/// One JSON object (json_writer.hpp); doubles read back to the same bits.
+std::string inspect_report_json(const InspectReport& report);
+
+/// Aligned "key  value" lines, sections indented below their names.
+std::string inspect_report_table(const InspectReport& report);
+
+}  // namespace tidalcrust

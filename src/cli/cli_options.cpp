@@ -1,0 +1,81 @@
+#include "cli/cli_options.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <cctype>
+#include <cmath>
+
+#include "base/errors.hpp"
+
+namespace tidalcrust {
+
+void add_common_options(cxxopts::Options& options) {
+  options.add_options("common")
+      ("config", "replace the stored configuration with this TOML file", cxxopts::value<std::string>())
+      ("set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())
+      ("threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))
+      ("dt-factor", "scale the time step by this factor", cxxopts::value<double>()->default_value("1.0"))
+      ("h,help", "show this help");
+}
+
+CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
+  CommonOptions common;
+  if (parsed.count("config")) common.config_file = parsed["config"].as<std::string>();
+  if (parsed.count("set")) common.overrides = parsed["set"].as<std::vector<std::string>>();
+  common.threads = parsed["threads"].as<int>();
+  common.dt_factor = parsed["dt-factor"].as<double>();
+  if (common.threads < 0) throw InputError(fmt::format("--threads must be >= 0, got {}", common.threads));
+  if (!std::isfinite(common.dt_factor) || common.dt_factor <= 0)
+    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", common.dt_factor));
+  return common;
+}
+
+std::vector<std::string> spell_single_letter_long_options(int argc, char** argv) {
+  std::vector<std::string> args(argv, argv + argc);
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--") break;
+    const bool single_letter = arg.size() >= 3 && arg.compare(0, 2, "--") == 0 &&
+                               std::isalnum(static_cast<unsigned char>(arg[2])) && (arg.size() == 3 || arg[3] == '=');
+    if (!single_letter) continue;
+    std::string value = arg.size() > 3 ? arg.substr(4) : "";
+    const bool has_value = arg.size() > 3;
+    args[i] = std::string("-") + arg[2];
+    if (has_value) args.insert(args.begin() + static_cast<std::ptrdiff_t>(++i), value);
+  }
+  return args;
+}
+
+cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv) {
+  const std::vector<std::string> args = spell_single_letter_long_options(argc, argv);
+  std::vector<const char*> pointers;
+  for (const auto& arg : args) pointers.push_back(arg.c_str());
+  cxxopts::ParseResult parsed;
+  try {
+    parsed = options.parse(static_cast<int>(pointers.size()), pointers.data());
+  } catch (const cxxopts::exceptions::exception& err) {
+    throw InputError(fmt::format("{}: {} (see --help)", options.program(), err.what()));
+  }
+  // A stray word is a mistake (a forgotten --from, a misspelt option), never silently ignored.
+  if (!parsed.unmatched().empty())
+    throw InputError(fmt::format("{}: unexpected argument '{}' (see --help)", options.program(),
+                                 parsed.unmatched().front()));
+  return parsed;
+}
+
+Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
+                      const CommonOptions& common) {
+  Config config = common.config_file ? load_config(*common.config_file)
+                                     : parse_config(stored_toml, stored_origin);
+  for (const auto& assignment : common.overrides) apply_override(config, assignment);
+  if (common.dt_factor != 1.0) scale_time_step(config, common.dt_factor);
+  validate(config, "--set/--dt-factor");
+  return config;
+}
+
+void apply_thread_count(int threads) {
+  if (threads > 0) omp_set_num_threads(threads);
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,40 @@
+#pragma once
+// Options shared by the stage commands: --config, --set, --threads, --dt-factor.
+#include <cxxopts.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/config.hpp"
+
+namespace tidalcrust {
+
+struct CommonOptions {
+  std::optional<std::filesystem::path> config_file;  ///< --config replaces the stored config
+  std::vector<std::string> overrides;                ///< --set section.key=value
+  int threads = 0;                                   ///< 0: OpenMP default
+  double dt_factor = 1.0;                            ///< scales integrator.dt
+};
+
+void add_common_options(cxxopts::Options& options);
+CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
+
+/// cxxopts 3.1 only accepts long options of two or more letters; the CLI has --q (design.md).
+/// Rewrites "--x" to "-x" and "--x=V" to "-x" "V" for single-letter options (up to a "--").
+std::vector<std::string> spell_single_letter_long_options(int argc, char** argv);
+
+/// Parses argv, turning cxxopts errors (unknown option, missing value) and stray arguments
+/// into InputError.
+/// Single-letter options are accepted as --x (see spell_single_letter_long_options).
+cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
+
+/// The configuration a stage runs with: `stored` (TOML text from the input checkpoint),
+/// replaced by --config when given, then each --set applied, then --dt-factor.
+Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
+                      const CommonOptions& common);
+
+/// Sets the OpenMP thread count (0 leaves the default). Results never depend on it.
+void apply_thread_count(int threads);
+
+}  // namespace tidalcrust

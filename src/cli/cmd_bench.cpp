@@ -1,0 +1,161 @@
+// tidalcrust bench: time full integration steps (all forces) of the configured body, and in
+// the same run the textbook step at the same N, so the speed-up is measured under the same
+// machine load.
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cxxopts.hpp>
+#include <string>
+#include <vector>
+
+#include "stages/build_stage.hpp"
+#include "cli/cli_options.hpp"
+#include "cli/commands.hpp"
+#include "base/errors.hpp"
+#include "forces/force_field.hpp"
+#include "io/json_writer.hpp"
+#include "integrate/leapfrog.hpp"
+#include "integrate/textbook_step.hpp"
+
+namespace tidalcrust {
+namespace {
+
+constexpr const char* default_workflow = "workflows/paper-T.toml";
+
+using Clock = std::chrono::steady_clock;
+
+double milliseconds_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// Median over `repeats` of the mean milliseconds per call of `run(calls)`.
+template <typename Run>
+double median_ms_per_call(int repeats, std::int64_t calls, Run&& run) {
+  std::vector<double> samples;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = Clock::now();
+    run(calls);
+    samples.push_back(milliseconds_since(start) / static_cast<double>(calls));
+  }
+  return median(samples);
+}
+
+}  // namespace
+
+int command_bench(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust bench",
+                           "Time full integration steps (springs, hinges, gravity, perturber) of the body built "
+                           "from --config (default workflows/paper-T.toml, relative to the current folder), and the "
+                           "textbook step at the same N in the same run.");
+  add_common_options(options);
+  options.add_options("bench")
+      ("steps", "steps per timed repeat", cxxopts::value<std::int64_t>()->default_value("20"))
+      ("repeats", "timed repeats (the median is reported)", cxxopts::value<int>()->default_value("5"))
+      ("textbook-steps", "steps per repeat of the textbook step (0: skip it)",
+       cxxopts::value<std::int64_t>()->default_value("3"))
+      ("json", "print one JSON object");
+  const auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) {
+    fmt::print("{}\n", options.help());
+    return exit_ok;
+  }
+  CommonOptions common = read_common_options(parsed);
+  if (!common.config_file) common.config_file = default_workflow;
+  const std::int64_t steps = parsed["steps"].as<std::int64_t>();
+  const int repeats = parsed["repeats"].as<int>();
+  const std::int64_t textbook_steps = parsed["textbook-steps"].as<std::int64_t>();
+  if (steps < 1) throw InputError(fmt::format("--steps must be >= 1, got {}", steps));
+  if (repeats < 1) throw InputError(fmt::format("--repeats must be >= 1, got {}", repeats));
+  if (textbook_steps < 0) throw InputError(fmt::format("--textbook-steps must be >= 0, got {}", textbook_steps));
+  const Config config = resolve_config("", "", common);
+  apply_thread_count(common.threads);
+
+  const auto build_start = Clock::now();
+  Checkpoint body = build_stage(config);
+  const double build_ms = milliseconds_since(build_start);
+  State& state = body.state;
+  // Every force path switched on: encounter damping and a perturber at the start distance.
+  for (double& g : state.springs.damping) g = config.encounter.damping;
+  state.perturber.present = true;
+  state.perturber.mass = config.encounters.empty() ? 0.5 : config.encounters.front().perturber_mass;
+  state.perturber.position = {config.encounter.start_distance, 0.0, 0.0};
+  state.perturber.velocity = {0.0, 1.0, 0.0};
+
+  ForceField forces(body.body, force_options(config));
+  State run = state;
+  Leapfrog leapfrog(forces, StepClock::starting_at(run));
+  leapfrog.advance(run, 2);  // warm-up: caches, thread pool
+  const double ms_per_step = median_ms_per_call(repeats, steps, [&](std::int64_t n) { leapfrog.advance(run, n); });
+
+  // The kernels one by one, for the breakdown.
+  Accelerations scratch;
+  std::vector<double> gravity(state.position.size());
+  const double* x = state.position.data();
+  const double* v = state.velocity.data();
+  const double springs_ms = median_ms_per_call(repeats, steps, [&](std::int64_t n) {
+    for (std::int64_t i = 0; i < n; ++i) forces.compute_spring_forces(x, v, state.springs);
+  });
+  const double hinges_ms = median_ms_per_call(repeats, steps, [&](std::int64_t n) {
+    for (std::int64_t i = 0; i < n; ++i) forces.compute_hinge_forces(x, state.hinges);
+  });
+  const double gravity_ms = median_ms_per_call(repeats, steps, [&](std::int64_t n) {
+    for (std::int64_t i = 0; i < n; ++i) forces.compute_gravity(x, gravity.data());
+  });
+
+  double textbook_ms = 0;
+  if (textbook_steps > 0) {
+    TextbookStep textbook(body.body, state, force_options(config));
+    textbook_ms = median_ms_per_call(std::min(repeats, 3), textbook_steps, [&](std::int64_t n) {
+      for (std::int64_t i = 0; i < n; ++i) textbook.step(state.springs, state.hinges, state.dt);
+    });
+  }
+  const int threads = omp_get_max_threads();
+  const double speedup = textbook_ms > 0 ? textbook_ms / ms_per_step : 0.0;
+
+  if (parsed.count("json")) {
+    JsonWriter json;
+    json.begin_object()
+        .value("workflow", config.workflow.name)
+        .value("particles", body.body.particle_count())
+        .value("springs", body.body.spring_count())
+        .value("hinges", body.body.hinge_count())
+        .value("threads", threads)
+        .value("steps", steps)
+        .value("repeats", repeats)
+        .value("ms_per_step", ms_per_step)
+        .begin_object("kernels_ms")
+        .value("springs", springs_ms)
+        .value("hinges", hinges_ms)
+        .value("gravity", gravity_ms)
+        .end_object()
+        .value("textbook_ms_per_step", textbook_ms)
+        .value("textbook", "one thread, array of particle structs, pair loop over half the pairs; same forces "
+                           "(springs, hinges, gravity, perturber) and same drift-kick-drift")
+        .value("speedup", speedup)
+        .value("build_ms", build_ms)
+        .end_object();
+    fmt::print("{}", json.str());
+  } else {
+    fmt::print("workflow: {}\n", config.workflow.name);
+    fmt::print("particles: {}\nsprings: {}\nhinges: {}\nthreads: {}\n", body.body.particle_count(),
+               body.body.spring_count(), body.body.hinge_count(), threads);
+    fmt::print("ms_per_step: {:.3f}  (median of {} x {} steps; springs {:.3f}, hinges {:.3f}, gravity {:.3f})\n",
+               ms_per_step, repeats, steps, springs_ms, hinges_ms, gravity_ms);
+    if (textbook_ms > 0) {
+      fmt::print("textbook_ms_per_step: {:.3f}  (one thread, particle structs, half-pair loop; same forces)\n",
+                 textbook_ms);
+      fmt::print("speedup: {:.2f}\n", speedup);
+    }
+  }
+  return exit_ok;
+}
+
+}  // namespace tidalcrust

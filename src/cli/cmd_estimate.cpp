@@ -1,0 +1,193 @@
+// tidalcrust estimate: Table 1 units of a body and the impulse estimates of paper section 1.1.
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cxxopts.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/cli_options.hpp"
+#include "cli/commands.hpp"
+#include "physics/encounter_estimates.hpp"
+#include "base/errors.hpp"
+#include "io/json_writer.hpp"
+#include "physics/physical_units.hpp"
+
+namespace tidalcrust {
+namespace {
+
+/// Reads a number option as text so that malformed values ("abc", "nan") are reported
+/// with the option's name.
+std::optional<double> number_option(const cxxopts::ParseResult& parsed, const char* name) {
+  if (!parsed.count(name)) return std::nullopt;
+  const std::string text = parsed[name].as<std::string>();
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
+    throw InputError(fmt::format("--{}: expected a finite number, got '{}'", name, text));
+  return value;
+}
+
+double positive_option(const cxxopts::ParseResult& parsed, const char* name, double fallback,
+                       bool allow_zero = false) {
+  const double value = number_option(parsed, name).value_or(fallback);
+  if (value < 0 || (!allow_zero && value == 0))
+    throw InputError(fmt::format("--{} must be {} 0, got {}", name, allow_zero ? ">=" : ">", value));
+  return value;
+}
+
+/// One body's units and the encounter estimates for it.
+struct BodyReport {
+  PhysicalBody body;
+  BodyScales scales;
+  double e_g_over_E = 0;
+  EncounterEstimates estimates;
+};
+
+BodyReport report_for(const PhysicalBody& body, const EncounterGeometry& encounter, double youngs_GPa) {
+  BodyReport r{body, body_scales(body), 0, {}};
+  const double youngs = youngs_in_e_g(youngs_GPa, r.scales);
+  r.e_g_over_E = 1.0 / youngs;
+  r.estimates = estimate_encounter(encounter, youngs);
+  return r;
+}
+
+void write_body_json(JsonWriter& json, const BodyReport& r) {
+  const auto& e = r.estimates;
+  json.value("body", r.body.name)
+      .value("mass_kg", r.body.mass_kg)
+      .value("radius_km", r.body.radius_km)
+      .value("e_g_GPa", r.scales.e_g_GPa)
+      .value("t_grav_s", r.scales.t_grav_s)
+      .value("rho_g_cm3", r.scales.density_g_cm3)
+      .value("v_c_km_s", r.scales.v_c_km_s)
+      .value("e_g_over_E", r.e_g_over_E)
+      .value("delta_v", e.delta_v)
+      .value("delta_v_km_s", e.delta_v * r.scales.v_c_km_s)
+      .value("strain", e.strain)
+      .value("t_enc_s", e.encounter_time * r.scales.t_grav_s)
+      .value("t_elas_s", e.elastic_time * r.scales.t_grav_s)
+      .value("t_enc_over_t_elas", e.time_ratio)
+      .value("strain_rate_per_s", e.strain_rate / r.scales.t_grav_s);
+}
+
+void write_inputs_json(JsonWriter& json, const EncounterGeometry& g, double youngs_GPa) {
+  json.begin_object("encounter")
+      .value("m2", g.perturber_mass)
+      .value("q", g.pericenter)
+      .value("vq", g.pericenter_speed)
+      .value("youngs_GPa", youngs_GPa)
+      .end_object();
+}
+
+std::string inputs_line(const EncounterGeometry& g, double youngs_GPa) {
+  return fmt::format("encounter M2 = {:g} M, q = {:g} R, V_q = {:.4g} v_c; E = {:g} GPa", g.perturber_mass,
+                     g.pericenter, g.pericenter_speed, youngs_GPa);
+}
+
+void print_body(const BodyReport& r, const EncounterGeometry& g, double youngs_GPa) {
+  const auto& s = r.scales;
+  const auto& e = r.estimates;
+  fmt::print("body {} (mass {:.4g} kg, radius {:g} km)\n", r.body.name, r.body.mass_kg, r.body.radius_km);
+  fmt::print("  e_g     = {:.4g} GPa   (unit of moduli, G M^2/R^4)\n", s.e_g_GPa);
+  fmt::print("  t_grav  = {:.5g} s     (unit of time, sqrt(R^3/GM))\n", s.t_grav_s);
+  fmt::print("  rho     = {:.4g} g/cm^3\n", s.density_g_cm3);
+  fmt::print("  v_c     = {:.4g} km/s  (unit of velocity, sqrt(GM/R))\n", s.v_c_km_s);
+  fmt::print("{}; e_g/E = {:.3g}\n", inputs_line(g, youngs_GPa), r.e_g_over_E);
+  fmt::print("  delta_v          = {:.3g} v_c = {:.3g} km/s   (eq. 3)\n", e.delta_v, e.delta_v * s.v_c_km_s);
+  fmt::print("  strain           = {:.3g}   (eq. 5)\n", e.strain);
+  fmt::print("  t_enc            = {:.4g} s,  t_elas = {:.4g} s\n", e.encounter_time * s.t_grav_s,
+             e.elastic_time * s.t_grav_s);
+  fmt::print("  t_enc/t_elas     = {:.3g}   (eq. 11 as printed, which takes t_enc ~ q/V_q)\n", e.time_ratio);
+  fmt::print("  strain rate      = {:.3g} /s   (eq. 10)\n", e.strain_rate / s.t_grav_s);
+}
+
+void print_table(const std::vector<BodyReport>& reports, const EncounterGeometry& g, double youngs_GPa) {
+  fmt::print("Table 1 (Quillen et al. 2016) and section 1.1 estimates; {}\n", inputs_line(g, youngs_GPa));
+  fmt::print("{:<8} {:>10} {:>8} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>12} {:>10}\n", "body", "mass_kg",
+             "R_km", "e_g_GPa", "t_grav_s", "rho", "v_c", "e_g/E", "strain", "t_enc/t_elas", "rate_1/s");
+  for (const auto& r : reports) {
+    fmt::print("{:<8} {:>10.3g} {:>8g} {:>9.3g} {:>9.4g} {:>7.3g} {:>7.3g} {:>7.3g} {:>7.3g} {:>12.3g} {:>10.3g}\n",
+               r.body.name, r.body.mass_kg, r.body.radius_km, r.scales.e_g_GPa, r.scales.t_grav_s,
+               r.scales.density_g_cm3, r.scales.v_c_km_s, r.e_g_over_E, r.estimates.strain,
+               r.estimates.time_ratio, r.estimates.strain_rate / r.scales.t_grav_s);
+  }
+}
+
+}  // namespace
+
+int command_estimate(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust estimate",
+                           "Physical units of a body (paper Table 1) and the impulse estimates of a tidal "
+                           "encounter (paper section 1.1). Without --body or --mass: all Table 1 bodies.");
+  options.add_options()
+      ("body", "a Table 1 body: Tethys, Dione, Rhea, Ariel, Titania, Charon, Mars", cxxopts::value<std::string>())
+      ("mass", "body mass (kg), with --radius", cxxopts::value<std::string>())
+      ("radius", "body radius (km), with --mass", cxxopts::value<std::string>())
+      ("m2", "perturber mass (body masses; default 1)", cxxopts::value<std::string>())
+      ("q", "--q: pericenter distance (body radii; default 2)", cxxopts::value<std::string>())
+      ("vq", "speed at pericenter (v_c = sqrt(GM/R); default sqrt(2): parabolic at q = 2, M2 = 1)",
+       cxxopts::value<std::string>())
+      ("youngs", "Young's modulus of the crust (GPa; default 0.9, Vaughan 1995)", cxxopts::value<std::string>())
+      ("json", "print one JSON object")
+      ("h,help", "show this help");
+  const auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) {
+    fmt::print("{}", options.help());
+    return exit_ok;
+  }
+
+  EncounterGeometry geometry;
+  geometry.perturber_mass = positive_option(parsed, "m2", geometry.perturber_mass, /*allow_zero=*/true);
+  geometry.pericenter = positive_option(parsed, "q", geometry.pericenter);
+  geometry.pericenter_speed = positive_option(parsed, "vq", geometry.pericenter_speed);
+  const double youngs_GPa = positive_option(parsed, "youngs", ice_youngs_modulus_GPa);
+
+  const bool has_mass = parsed.count("mass") > 0, has_radius = parsed.count("radius") > 0;
+  if (parsed.count("body") && (has_mass || has_radius))
+    throw InputError("--body cannot be combined with --mass/--radius");
+  if (has_mass != has_radius)
+    throw InputError(has_mass ? "--mass needs --radius (km)" : "--radius needs --mass (kg)");
+
+  std::vector<BodyReport> reports;
+  if (parsed.count("body")) {
+    reports.push_back(report_for(find_table1_body(parsed["body"].as<std::string>()), geometry, youngs_GPa));
+  } else if (has_mass) {
+    const double mass = positive_option(parsed, "mass", 0);
+    const double radius = positive_option(parsed, "radius", 0);
+    reports.push_back(report_for(body_from_mass_radius(mass, radius), geometry, youngs_GPa));
+  } else {
+    for (const auto& body : table1_bodies()) reports.push_back(report_for(body, geometry, youngs_GPa));
+  }
+  const bool single = parsed.count("body") || has_mass;
+
+  if (parsed.count("json")) {
+    JsonWriter json;
+    json.begin_object();
+    write_inputs_json(json, geometry, youngs_GPa);
+    if (single) {
+      write_body_json(json, reports.front());
+    } else {
+      json.begin_array("bodies");
+      for (const auto& r : reports) {
+        json.begin_object();
+        write_body_json(json, r);
+        json.end_object();
+      }
+      json.end_array();
+    }
+    json.end_object();
+    fmt::print("{}", json.str());
+  } else if (single) {
+    print_body(reports.front(), geometry, youngs_GPa);
+  } else {
+    print_table(reports, geometry, youngs_GPa);
+  }
+  return exit_ok;
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,39 @@
+// tidalcrust inspect CKPT.h5 [--json]: validate a checkpoint and summarise it.
+#include <cxxopts.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "io/checkpoint_file.hpp"
+#include "cli/cli_options.hpp"
+#include "cli/commands.hpp"
+#include "base/errors.hpp"
+#include "analysis/inspect_report.hpp"
+
+namespace tidalcrust {
+
+int command_inspect(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust inspect", "Validate a checkpoint and print its stage, counts, Table 3 "
+                                                 "quantities and conservation totals");
+  options.add_options()("json", "print one JSON object")("h,help", "show this help")(
+      "checkpoint", "checkpoint file", cxxopts::value<std::vector<std::string>>());
+  options.parse_positional({"checkpoint"});
+  options.positional_help("CKPT.h5");
+  const auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) {
+    fmt::print("{}", options.help());
+    return exit_ok;
+  }
+  if (!parsed.count("checkpoint") || parsed["checkpoint"].as<std::vector<std::string>>().size() != 1)
+    throw InputError("expected exactly one checkpoint file (usage: tidalcrust inspect CKPT.h5 [--json])");
+  const std::string file = parsed["checkpoint"].as<std::vector<std::string>>().front();
+
+  const Checkpoint checkpoint = read_checkpoint(file);
+  const InspectReport report = build_inspect_report(checkpoint, file);
+  fmt::print("{}", parsed.count("json") ? inspect_report_json(report) : inspect_report_table(report));
+  return exit_ok;
+}
+
+}  // namespace tidalcrust

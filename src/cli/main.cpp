@@ -1,0 +1,67 @@
+// tidalcrust: crustal failure on icy moons during strong tidal encounters.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string_view>
+
+#include "cli/commands.hpp"
+#include "base/errors.hpp"
+
+namespace {
+
+void print_usage() {
+  std::fputs(
+      "usage: tidalcrust COMMAND [OPTIONS]\n"
+      "  run WORKFLOW.toml [--out DIR] [--threads N] [--dt-factor F] [--only NAME]...\n"
+      "  build     --config WORKFLOW.toml --out BODY.h5\n"
+      "  stretch   --from BODY.h5 --out STRETCHED.h5\n"
+      "  relax     --from STRETCHED.h5 --out RELAXED.h5\n"
+      "  encounter --from RELAXED.h5 --out ENC.h5 (--encounter NAME | --m2 M --q Q --vq V)\n"
+      "  analyze   --from ENC.h5 --out DIR\n"
+      "  inspect CKPT.h5 [--json]\n"
+      "  compare A.h5 B.h5 [--json]\n"
+      "  estimate [--body NAME | --mass KG --radius KM] [--json]\n"
+      "  bench [--config WORKFLOW.toml] [--steps N] [--json]\n"
+      "Each command takes --help.\n",
+      stderr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace tidalcrust;
+  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    print_usage();
+    return argc < 2 ? exit_bad_input : exit_ok;
+  }
+  const std::string_view name = argv[1];
+  struct Entry {
+    std::string_view name;
+    int (*run)(int, char**);
+  };
+  static const Entry entries[] = {
+      {"run", command_run},         {"build", command_build},     {"stretch", command_stretch},
+      {"relax", command_relax},     {"encounter", command_encounter}, {"analyze", command_analyze},
+      {"inspect", command_inspect}, {"compare", command_compare}, {"estimate", command_estimate},
+      {"bench", command_bench}};
+  for (const auto& entry : entries) {
+    if (entry.name != name) continue;
+    try {
+      return entry.run(argc - 1, argv + 1);
+    } catch (const InputError& err) {
+      fmt::print(stderr, "tidalcrust {}: error: {}\n", name, err.what());
+      return exit_bad_input;
+    } catch (const SimulationError& err) {
+      fmt::print(stderr, "tidalcrust {}: simulation failed: {}\n", name, err.what());
+      return exit_simulation_failure;
+    } catch (const std::exception& err) {
+      fmt::print(stderr, "tidalcrust {}: internal error: {}\n", name, err.what());
+      return exit_simulation_failure;
+    }
+  }
+  fmt::print(stderr, "tidalcrust: unknown command '{}'\n", name);
+  print_usage();
+  return exit_bad_input;
+}

@@ -1,0 +1,94 @@
+#include "cli/stage_command.hpp"
+
+#include <fmt/format.h>
+
+#include "base/errors.hpp"
+#include "io/checkpoint_file.hpp"
+
+namespace tidalcrust {
+
+namespace fs = std::filesystem;
+
+std::string required_option(const cxxopts::ParseResult& parsed, const char* name) {
+  if (!parsed.count(name)) throw InputError(fmt::format("missing required option --{}", name));
+  return parsed[name].as<std::string>();
+}
+
+fs::path sibling_checkpoint(const fs::path& out, const std::string& suffix) {
+  fs::path p = out;
+  p.replace_extension();
+  p += "." + suffix + ".h5";
+  return p;
+}
+
+void remove_checkpoint_files(const fs::path& file) {
+  std::error_code ignored;
+  fs::remove(file, ignored);
+  fs::path xdmf = file;
+  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
+}
+
+void check_output_path(const fs::path& out) {
+  fs::path folder = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(folder))
+    throw InputError(fmt::format("{}: output folder does not exist", folder.string()));
+  if (out.extension() != ".h5") throw InputError(fmt::format("{}: output file must end in .h5", out.string()));
+}
+
+void add_loop_options(cxxopts::Options& options) {
+  options.add_options("stepping")
+      ("checkpoint-every", "steps between mid-stage checkpoints (default: from the configuration)",
+       cxxopts::value<std::int64_t>())
+      ("stop-after-step", "testing aid: stop as if interrupted right after this global step",
+       cxxopts::value<std::int64_t>()->default_value("-1"))
+      ("quiet", "no progress lines");
+}
+
+StepLoopOptions loop_options_for(const cxxopts::ParseResult& parsed, const fs::path& out, std::string label,
+                                 std::int64_t default_interval) {
+  StepLoopOptions loop;
+  loop.label = std::move(label);
+  loop.mid_checkpoint = sibling_checkpoint(out, "mid");
+  loop.diagnostic_checkpoint = sibling_checkpoint(out, "diagnostic");
+  loop.stop_after_step = parsed["stop-after-step"].as<std::int64_t>();
+  loop.quiet = parsed.count("quiet") > 0;
+  loop.checkpoint_interval =
+      parsed.count("checkpoint-every") ? parsed["checkpoint-every"].as<std::int64_t>() : default_interval;
+  if (loop.checkpoint_interval < 0) throw InputError("--checkpoint-every must be >= 0");
+  return loop;
+}
+
+int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const fs::path& out, const StepLoopOptions& loop) {
+  if (outcome == LoopOutcome::interrupted) {
+    fmt::print(stderr, "stopped at step {}; resume with --from {}\n", checkpoint.state.step,
+               loop.mid_checkpoint.string());
+    return exit_interrupted;
+  }
+  write_checkpoint(out, checkpoint);
+  remove_checkpoint_files(loop.mid_checkpoint);
+  fmt::print("{}: {} written (step {}, time {})\n", out.string(), checkpoint.stage.stage, checkpoint.state.step,
+             checkpoint.state.time);
+  return exit_ok;
+}
+
+Config stage_config(const Checkpoint& input, const fs::path& from, const CommonOptions& common, bool resuming) {
+  if (resuming) {
+    if (common.config_file || !common.overrides.empty() || common.dt_factor != 1.0)
+      throw InputError(fmt::format("{}: is a mid-stage checkpoint; it resumes with its own configuration "
+                                   "(drop --config, --set and --dt-factor)", from.string()));
+    return parse_config(input.config_toml, from.string() + ":/parameters/config");
+  }
+  return resolve_config(input.config_toml, from.string() + ":/parameters/config", common);
+}
+
+void require_stage(const Checkpoint& input, const fs::path& from, std::initializer_list<const char*> allowed,
+                   const char* command) {
+  for (const char* stage : allowed)
+    if (input.stage.stage == stage) return;
+  std::string names;
+  for (const char* stage : allowed) names += (names.empty() ? "" : " or ") + std::string(stage);
+  throw InputError(fmt::format("{}: is a '{}' checkpoint; {} needs a {} checkpoint", from.string(),
+                               input.stage.stage, command, names));
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,37 @@
+#pragma once
+// Pieces shared by the single-stage commands (build, stretch, relax, encounter).
+#include <cxxopts.hpp>
+#include <filesystem>
+#include <initializer_list>
+#include <string>
+
+#include "model/checkpoint.hpp"
+#include "cli/cli_options.hpp"
+#include "stages/step_loop.hpp"
+
+namespace tidalcrust {
+
+/// The value of a required option; InputError naming it when missing.
+std::string required_option(const cxxopts::ParseResult& parsed, const char* name);
+/// A file beside `out`: out.h5 -> out.<suffix>.h5
+std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix);
+/// Removes a checkpoint and its .xdmf sidecar if they exist (a finished stage's mid file).
+void remove_checkpoint_files(const std::filesystem::path& file);
+/// The output folder must exist and the name end in .h5 (checked before any work).
+void check_output_path(const std::filesystem::path& out);
+/// --checkpoint-every, --stop-after-step, --quiet.
+void add_loop_options(cxxopts::Options& options);
+StepLoopOptions loop_options_for(const cxxopts::ParseResult& parsed, const std::filesystem::path& out,
+                                 std::string label, std::int64_t default_interval);
+/// Writes the finished stage and removes its mid-stage file; 130 after an interruption.
+int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const std::filesystem::path& out,
+                 const StepLoopOptions& loop);
+/// The configuration for a stage: from the input checkpoint, --config and --set. A mid-stage
+/// checkpoint resumes with exactly the configuration it started with.
+Config stage_config(const Checkpoint& input, const std::filesystem::path& from, const CommonOptions& common,
+                    bool resuming);
+/// InputError unless the input checkpoint is of one of the allowed stages.
+void require_stage(const Checkpoint& input, const std::filesystem::path& from,
+                   std::initializer_list<const char*> allowed, const char* command);
+
+}  // namespace tidalcrust

@@ -1,0 +1,66 @@
+#pragma once
+// The paper-style figures of an encounter (paper section 3), each written as <stem>.png and
+// <stem>.svg (figure_output.hpp). All positions are taken relative to the body's centre of
+// mass in the map frame of orbital_frame.hpp (orbital plane = equator, subsatellite point +y).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "model/checkpoint.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "figures/plot_axes.hpp"
+#include "model/recorded_encounter.hpp"
+
+namespace tidalcrust {
+
+using FigureFiles = std::vector<std::filesystem::path>;
+
+/// Figure 8 (fig:lat): cylindrical map, longitude -180..180 deg, latitude -90..90 deg, cracks as
+/// dual-lattice bars (Figure 4; faces across the dateline drawn on both sides), subsatellite
+/// point (+90, 0) marked by a yellow ring.
+FigureFiles write_fracture_map(const FractureSummary& fractures, const std::filesystem::path& stem,
+                               const std::string& title);
+/// Where write_fracture_map puts longitude (x, degrees) and latitude (y, degrees), in points.
+PlotAxes fracture_map_axes();
+
+/// Figure 6 (fig:T5): one panel per checkpoint (all of one body, in the given order), each an
+/// orthographic view of the hemisphere centred on the subsatellite point. The viewer sits on the
+/// +y axis in the orbital plane, looking toward -y, north (+z) up, so +x points left and the
+/// perturber crosses from left to right (the paper's viewer at -y sees a frame turned by pi about
+/// x, where it moves right to left). Lambert-shaded triangles, crack bars in black, the perturber
+/// as a translucent magenta disc of radius M2^(1/3) R (same density as the body), hidden by the
+/// body when behind it. Panels are labelled with t - t_peri.
+FigureFiles write_hemisphere_views(const std::vector<const Checkpoint*>& snapshots, double pericenter_time,
+                                   const std::filesystem::path& stem, const std::string& title);
+/// Where panel `index` of write_hemisphere_views (of `panel_count`) puts screen coordinates
+/// (x = -x_body, y = z_body, R relative to the centre of mass), in points.
+PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count);
+
+/// Figure 7 (fig:orbit): perturber track relative to the body centre in the orbital plane over
+/// the stage, the body as a black disc of radius R, red diamonds every 0.1 t_grav, open circles
+/// of radius M2^(1/3) R at `snapshot_times`, a red arrow for the direction of motion at the
+/// closest approach, and the stored perturber position of the checkpoint. The track is the
+/// simulated one (recorded_track.hpp: the timeseries samples' perturber_offset, with the body's
+/// recoil and tidal effects), with the analytic two-body orbit (two_body_orbit.hpp) as a thin grey
+/// dashed reference; a checkpoint without such samples gets the analytic track alone.
+FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+                             const std::vector<double>& snapshot_times, const std::filesystem::path& stem,
+                             const std::string& title);
+/// Where write_orbit_plot with the same arguments puts x, y (R relative to the centre of mass),
+/// in points.
+PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+                         const std::vector<double>& snapshot_times);
+
+/// Failed shell springs against t - t_peri (failure events; timeseries counts if there are none).
+FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericenter_time,
+                                  const std::filesystem::path& stem, const std::string& title);
+
+/// Conservation diagnostics against t - t_peri from the timeseries: (K - K0)/K0 of the kinetic
+/// energy, |P - P0| and |L - L0| (body + perturber, about the origin).
+FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericenter_time,
+                                    const std::filesystem::path& stem, const std::string& title);
+
+/// Time at which the stage started: state time minus the steps taken since StageInfo::start_step.
+double stage_start_time(const Checkpoint& checkpoint);
+
+}  // namespace tidalcrust

@@ -1,0 +1,282 @@
+#include "forces/force_field.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "model/derived_quantities.hpp"
+#include "base/errors.hpp"
+#include "forces/perturber_gravity.hpp"
+#include "forces/spring_force.hpp"
+
+namespace tidalcrust {
+namespace {
+
+Vec3 point(const double* position, std::int32_t i) {
+  const double* p = position + 3 * static_cast<std::size_t>(i);
+  return {p[0], p[1], p[2]};
+}
+
+/// CSR incidence from a list of (particle, entry) pairs visited in entry order.
+void build_incidence(std::size_t particles, const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                     std::vector<std::int32_t>& offset, std::vector<std::int32_t>& entry) {
+  offset.assign(particles + 1, 0);
+  for (const auto& [p, e] : pairs) ++offset[static_cast<std::size_t>(p) + 1];
+  for (std::size_t p = 0; p < particles; ++p) offset[p + 1] += offset[p];
+  entry.resize(pairs.size());
+  std::vector<std::int32_t> fill(offset.begin(), offset.end() - 1);
+  for (const auto& [p, e] : pairs) entry[static_cast<std::size_t>(fill[static_cast<std::size_t>(p)]++)] = e;
+}
+
+void check_index(std::int32_t index, std::size_t particles, const char* what, std::size_t element) {
+  if (index < 0 || static_cast<std::size_t>(index) >= particles)
+    throw InputError(fmt::format("{} {} refers to particle {}, but the body has {} particles", what,
+                                 element, index, particles));
+}
+
+}  // namespace
+
+ForceOptions force_options(const Config& config) {
+  ForceOptions options;
+  options.cross_nonlinear = config.cross.nonlinear;
+  options.cross_strain_scale = config.cross.strain_scale;
+  options.cross_min_force_factor = config.cross.min_force_factor;
+  return options;
+}
+
+ForceField::ForceField(const Body& body, ForceOptions options)
+    : body_(body), options_(options), gravity_(body.mass, body.softening) {
+  const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
+  if (body.spring_kind.size() != ns)
+    throw InputError(fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
+  reduced_mass_.resize(ns);
+  nonlinear_.resize(ns);
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  pairs.reserve(2 * ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    const auto [i, j] = body.springs[s];
+    check_index(i, n, "spring", s);
+    check_index(j, n, "spring", s);
+    reduced_mass_[s] = reduced_mass(body.mass[static_cast<std::size_t>(i)], body.mass[static_cast<std::size_t>(j)]);
+    nonlinear_[s] = options.cross_nonlinear && body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::cross);
+    pairs.emplace_back(i, static_cast<std::int32_t>(2 * s));
+    pairs.emplace_back(j, static_cast<std::int32_t>(2 * s + 1));
+  }
+  build_incidence(n, pairs, spring_offset_, spring_entry_);
+  pairs.clear();
+  for (std::size_t h = 0; h < nh; ++h)
+    for (std::size_t v = 0; v < 4; ++v) {
+      check_index(body.hinges[h][v], n, "hinge", h);
+      pairs.emplace_back(body.hinges[h][v], static_cast<std::int32_t>(4 * h + v));
+    }
+  build_incidence(n, pairs, hinge_offset_, hinge_entry_);
+  spring_force_.assign(3 * ns, 0.0);
+  hinge_force_.assign(12 * nh, 0.0);
+}
+
+void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                              const SpringState& springs) {
+  const auto* ends = body_.springs.data();
+  const double* rest = springs.rest_length.data();
+  const double* stiffness = springs.stiffness.data();
+  const double* damping = springs.damping.data();
+  const double* mu = reduced_mass_.data();
+  const std::uint8_t* nonlinear = nonlinear_.data();
+  const double strain_scale = options_.cross_strain_scale, min_factor = options_.cross_min_force_factor;
+  double* force = spring_force_.data();
+  for (std::size_t s = begin; s < end; ++s) {
+    const std::size_t i = 3 * static_cast<std::size_t>(ends[s][0]), j = 3 * static_cast<std::size_t>(ends[s][1]);
+    const double dx = position[i] - position[j], dy = position[i + 1] - position[j + 1],
+                 dz = position[i + 2] - position[j + 2];
+    const double dvx = velocity[i] - velocity[j], dvy = velocity[i + 1] - velocity[j + 1],
+                 dvz = velocity[i + 2] - velocity[j + 2];
+    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double factor =
+        nonlinear[s] ? cross_spring_factor((length - rest[s]) / rest[s], strain_scale, min_factor) : 1.0;
+    const double c = spring_force_coefficient(length, dx * dvx + dy * dvy + dz * dvz, rest[s], stiffness[s],
+                                              damping[s] * mu[s], factor);
+    force[3 * s] = -c * dx;
+    force[3 * s + 1] = -c * dy;
+    force[3 * s + 2] = -c * dz;
+  }
+}
+
+std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position,
+                                     const HingeState& hinges) {
+  const auto* corners = body_.hinges.data();
+  const double* stiffness = hinges.stiffness.data();
+  const HalfRestAngle* rest = half_rest_.data();
+  double* force = hinge_force_.data();
+  std::int64_t collapsed = -1;
+  for (std::size_t h = begin; h < end; ++h) {
+    const auto& c = corners[h];
+    const HingeForces f = tidalcrust::hinge_forces(point(position, c[0]), point(position, c[1]),
+                                                   point(position, c[2]), point(position, c[3]), rest[h], stiffness[h]);
+    if (f.collapsed && collapsed < 0) collapsed = static_cast<std::int64_t>(h);
+    for (std::size_t v = 0; v < 4; ++v)
+      for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
+  }
+  return collapsed;
+}
+
+void ForceField::gather(std::size_t p, bool with_gravity, double* acceleration) const {
+  double f[3] = {0, 0, 0};
+  for (std::int32_t e = spring_offset_[p]; e < spring_offset_[p + 1]; ++e) {
+    const std::int32_t slot = spring_entry_[static_cast<std::size_t>(e)];
+    const double* fs = spring_force_.data() + 3 * static_cast<std::size_t>(slot >> 1);
+    // +F on the first particle, -F on the second; f + (-1 * F) is bitwise f - F, and no branch.
+    const double sign = (slot & 1) ? -1.0 : 1.0;
+    for (int k = 0; k < 3; ++k) f[k] += sign * fs[k];
+  }
+  for (std::int32_t e = hinge_offset_[p]; e < hinge_offset_[p + 1]; ++e) {
+    const double* fh = hinge_force_.data() + 3 * static_cast<std::size_t>(hinge_entry_[static_cast<std::size_t>(e)]);
+    for (int k = 0; k < 3; ++k) f[k] += fh[k];
+  }
+  const double inv_mass = 1.0 / body_.mass[p];
+  double g[3] = {0, 0, 0};
+  if (with_gravity) gravity_.sum_blocks(p, g);
+  for (int k = 0; k < 3; ++k) acceleration[3 * p + k] = f[k] * inv_mass + g[k];
+}
+
+void ForceField::compute_spring_forces(const double* position, const double* velocity, const SpringState& springs) {
+  const std::size_t ns = body_.spring_count();
+  const std::size_t chunks = (ns + spring_chunk - 1) / spring_chunk;
+#pragma omp parallel for schedule(static) if (ns >= options_.min_parallel_items)
+  for (std::size_t c = 0; c < chunks; ++c)
+    spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
+}
+
+void ForceField::refresh_half_rest_angles(const HingeState& hinges) {
+  const std::size_t nh = body_.hinge_count();
+  if (cached_rest_angle_.size() != nh) {
+    cached_rest_angle_.assign(nh, std::nan(""));  // NaN never compares equal: all recomputed
+    half_rest_.resize(nh);
+  }
+  for (std::size_t h = 0; h < nh; ++h) {
+    // Bitwise comparison: the table is a pure function of the rest angle's bits.
+    if (std::memcmp(&cached_rest_angle_[h], &hinges.rest_angle[h], sizeof(double)) != 0) {
+      cached_rest_angle_[h] = hinges.rest_angle[h];
+      half_rest_[h] = HalfRestAngle::of(hinges.rest_angle[h]);
+    }
+  }
+}
+
+std::int64_t ForceField::compute_hinge_forces(const double* position, const HingeState& hinges) {
+  refresh_half_rest_angles(hinges);
+  const std::size_t nh = body_.hinge_count();
+  const std::size_t chunks = (nh + hinge_chunk - 1) / hinge_chunk;
+  std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel for schedule(static) reduction(min : collapsed) if (4 * nh >= options_.min_parallel_items)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+    if (h >= 0) collapsed = std::min(collapsed, h);
+  }
+  return collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
+}
+
+ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
+                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
+  const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
+  if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || springs.damping.size() != ns ||
+      hinges.rest_angle.size() != nh || hinges.stiffness.size() != nh)
+    throw InputError(fmt::format("state does not match the body: {} springs and {} hinges in the body, "
+                                 "{} rest lengths, {} stiffnesses, {} damping rates, {} rest angles, "
+                                 "{} hinge stiffnesses in the state",
+                                 ns, nh, springs.rest_length.size(), springs.stiffness.size(),
+                                 springs.damping.size(), hinges.rest_angle.size(), hinges.stiffness.size()));
+  out.body.resize(3 * n);
+  refresh_half_rest_angles(hinges);
+  const bool self_gravity = options_.self_gravity;
+  if (self_gravity) gravity_.load_positions(position);
+
+  // One parallel region per pass: first every independent piece of work (gravity blocks, the
+  // largest, then spring and hinge chunks) from one dynamic queue, then the per-particle gather.
+  const std::size_t gravity_items = self_gravity ? static_cast<std::size_t>(DirectGravity::block_count) : 0;
+  const std::size_t spring_items = (ns + spring_chunk - 1) / spring_chunk;
+  const std::size_t hinge_items = (nh + hinge_chunk - 1) / hinge_chunk;
+  const std::size_t items = gravity_items + spring_items + hinge_items;
+  const bool parallel = n * n / 128 + ns + 4 * nh >= options_.min_parallel_items;
+  std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
+  double* acc = out.body.data();
+#pragma omp parallel if (parallel)
+  {
+#pragma omp for schedule(dynamic, 1) reduction(min : collapsed)
+    for (std::size_t item = 0; item < items; ++item) {
+      if (item < gravity_items) {
+        gravity_.accumulate_block(static_cast<int>(item));
+      } else if (item < gravity_items + spring_items) {
+        const std::size_t c = item - gravity_items;
+        spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
+      } else {
+        const std::size_t c = item - gravity_items - spring_items;
+        const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+        if (h >= 0) collapsed = std::min(collapsed, h);
+      }
+    }
+    // Dynamic too: a thread that the OS pauses (other jobs on the cores) holds up little.
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t p = 0; p < n; ++p) gather(p, self_gravity, acc);
+  }
+  ForceAlarms alarms;
+  alarms.collapsed_hinge = collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
+
+  out.perturber = {0, 0, 0};
+  if (perturber.present)
+    out.perturber = add_perturber_gravity(body_.mass, body_.softening, position, perturber, acc);
+
+  for (std::size_t p = 0; p < n; ++p)
+    if (!std::isfinite(acc[3 * p] + acc[3 * p + 1] + acc[3 * p + 2])) {
+      alarms.nonfinite_particle = static_cast<std::int64_t>(p);
+      break;
+    }
+  if (!std::isfinite(out.perturber[0] + out.perturber[1] + out.perturber[2]) && alarms.nonfinite_particle < 0)
+    alarms.nonfinite_particle = 0;  // the perturber only blows up together with some particle
+  return alarms;
+}
+
+std::string ForceField::describe(const ForceAlarms& alarms, const double* position, const State& state) const {
+  std::string what;
+  if (alarms.collapsed_hinge >= 0) {
+    const auto h = static_cast<std::size_t>(alarms.collapsed_hinge);
+    const auto& c = body_.hinges[h];
+    const Vec3 x1 = point(position, c[0]), x2 = point(position, c[1]), x3 = point(position, c[2]),
+               x4 = point(position, c[3]);
+    const double l2 = (x4 - x3).squaredNorm();
+    const double a1 = (x1 - x3).cross(x1 - x4).norm(), a2 = (x2 - x4).cross(x2 - x3).norm();
+    what = fmt::format("hinge {} (wings {}, {}, edge {}-{}): a shell triangle collapsed (|N|/L^2 = {:.3g} and "
+                       "{:.3g}, limit {:.0e})",
+                       h, c[0], c[1], c[2], c[3], a1 / l2, a2 / l2, collapsed_face_fraction);
+  } else if (alarms.nonfinite_particle >= 0) {
+    const auto p = static_cast<std::size_t>(alarms.nonfinite_particle);
+    std::string source = "gravity or the perturber";
+    for (std::int32_t e = spring_offset_[p]; e < spring_offset_[p + 1]; ++e) {
+      const std::size_t s = static_cast<std::size_t>(spring_entry_[e] >> 1);
+      if (!std::isfinite(spring_force_[3 * s] + spring_force_[3 * s + 1] + spring_force_[3 * s + 2])) {
+        source = fmt::format("spring {} ({}-{})", s, body_.springs[s][0], body_.springs[s][1]);
+        break;
+      }
+    }
+    what = fmt::format("particle {} ({}) has a non-finite acceleration, first from {}", p,
+                       body_.species[p] == static_cast<std::uint8_t>(Species::shell) ? "shell" : "interior", source);
+  } else {
+    what = "no force alarm";
+  }
+  return what + "; " + likely_blow_up_cause(body_, state);
+}
+
+std::string likely_blow_up_cause(const Body& body, const State& state) {
+  const double bound = derive_quantities(body, state, 1.0).dt_max;
+  if (bound > 0 && state.dt > bound)
+    return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
+                       "(eq. 13: dt_max = {:.4g})",
+                       state.dt, bound);
+  return fmt::format("dt = {:.4g} is within the spring stability bound (eq. 13: dt_max = {:.4g}); likely cause: "
+                     "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
+                     "or dt too close to the bound",
+                     state.dt, bound);
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,118 @@
+#pragma once
+// All accelerations of one step: springs (eqs. 12-14, optional eq. 26 for cross springs),
+// hinges (eq. 22), self-gravity (direct sum, Plummer softening) and the perturber, which
+// pulls every particle and is pulled back. Units: G = M = R = 1, accelerations G M / R^2.
+//
+// Determinism: every spring and hinge force is computed into its own slot, then each particle
+// GATHERS its forces over a fixed incidence list (springs in index order, then hinges in
+// index order), divides by its mass and adds gravity, then the perturber's pull. No atomics,
+// no scatter: the result is bitwise independent of the thread count.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/body.hpp"
+#include "model/config.hpp"
+#include "forces/gravity.hpp"
+#include "forces/hinge_force.hpp"
+#include "model/state.hpp"
+
+namespace tidalcrust {
+
+/// Switches of the force model that come from the configuration rather than the State.
+struct ForceOptions {
+  bool cross_nonlinear = false;       ///< apply f(eps) of eq. 26 to cross springs
+  double cross_strain_scale = 0.03;   ///< eps_C
+  double cross_min_force_factor = 0.1;///< F_Ck
+  bool self_gravity = true;           ///< false only for tests of the other forces
+  /// A pass with less work than this (N^2/128 + springs + 4 hinges) runs on one thread:
+  /// below it the fork/join costs more than it saves, and far more when the cores are
+  /// oversubscribed. Results never depend on it (tests set 1 to exercise the threads).
+  std::size_t min_parallel_items = 16384;
+};
+
+/// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor).
+ForceOptions force_options(const Config& config);
+
+/// Accelerations of the body particles and of the perturber.
+struct Accelerations {
+  std::vector<double> body;                ///< [N*3] G M / R^2
+  std::array<double, 3> perturber{0, 0, 0};///< zero when no perturber is present
+};
+
+/// What the force pass noticed that means the run is blowing up (cheap, computed in the
+/// force loops; lowest index of each kind, -1 if none).
+struct ForceAlarms {
+  std::int64_t collapsed_hinge = -1;     ///< a face with |N| < collapsed_face_fraction L^2
+  std::int64_t nonfinite_particle = -1;  ///< NaN or infinite acceleration
+  bool any() const { return collapsed_hinge >= 0 || nonfinite_particle >= 0; }
+};
+
+class ForceField {
+ public:
+  /// Keeps a reference to `body`, which must outlive the ForceField.
+  explicit ForceField(const Body& body, ForceOptions options = {});
+
+  /// Accelerations at positions [N*3] (R) and velocities [N*3] (sqrt(GM/R); they enter
+  /// only through spring damping). Returns the blow-up alarms of this pass.
+  ForceAlarms compute(const double* position, const double* velocity, const SpringState& springs,
+                      const HingeState& hinges, const Perturber& perturber, Accelerations& out);
+  ForceAlarms compute(const State& state, Accelerations& out) {
+    return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
+                   state.perturber, out);
+  }
+
+  // The pieces of compute(), public for tests and micro-benchmarks.
+  /// Fills spring_forces(): force on the first particle of each spring (the second feels -F).
+  void compute_spring_forces(const double* position, const double* velocity, const SpringState& springs);
+  /// Fills hinge_forces(): the four forces of each hinge. Returns the lowest collapsed hinge or -1.
+  std::int64_t compute_hinge_forces(const double* position, const HingeState& hinges);
+  /// Self-gravity accelerations [N*3].
+  void compute_gravity(const double* position, double* acceleration) { gravity_.accelerations(position, acceleration); }
+
+  /// Springs and hinges per unit of parallel work.
+  static constexpr std::size_t spring_chunk = 2048;
+  static constexpr std::size_t hinge_chunk = 512;
+
+  const std::vector<double>& spring_forces() const { return spring_force_; }  ///< [Ns*3] G M^2/R^2
+  const std::vector<double>& hinge_forces() const { return hinge_force_; }    ///< [Nh*4*3] G M^2/R^2
+
+  /// A sentence naming the element that went wrong and a likely cause, for SimulationError.
+  std::string describe(const ForceAlarms& alarms, const double* position, const State& state) const;
+
+  const Body& body() const { return body_; }
+  const ForceOptions& options() const { return options_; }
+
+ private:
+  void refresh_half_rest_angles(const HingeState& hinges);
+  void spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                    const SpringState& springs);
+  /// Returns the lowest collapsed hinge in [begin, end), or -1.
+  std::int64_t hinge_range(std::size_t begin, std::size_t end, const double* position, const HingeState& hinges);
+  /// Acceleration of particle p into acceleration[3p..3p+2]: spring forces, then hinge forces
+  /// (each in index order), divided by the mass, plus self-gravity when `with_gravity`.
+  void gather(std::size_t p, bool with_gravity, double* acceleration) const;
+
+  const Body& body_;
+  ForceOptions options_;
+  DirectGravity gravity_;
+  std::vector<double> reduced_mass_;    ///< [Ns] m_i m_j/(m_i+m_j)
+  std::vector<std::uint8_t> nonlinear_; ///< [Ns] 1 where eq. 26 applies
+  // Incidence (CSR): for particle p, entries [offset[p], offset[p+1]) list the slots whose
+  // forces act on it, in increasing order. Spring entry 2s+0 / 2s+1: +F / -F of spring s.
+  // Hinge entry 4h+v: force on vertex v of hinge h.
+  std::vector<std::int32_t> spring_offset_, spring_entry_;
+  std::vector<std::int32_t> hinge_offset_, hinge_entry_;
+  std::vector<double> spring_force_;
+  std::vector<double> hinge_force_;
+  std::vector<double> cached_rest_angle_;  ///< rest angles the half-angle table was made from
+  std::vector<HalfRestAngle> half_rest_;
+};
+
+/// The likely cause of a blow-up, for error messages: compares state.dt with the stability
+/// bound of the stiffest spring (eq. 13, derive_quantities().dt_max).
+std::string likely_blow_up_cause(const Body& body, const State& state);
+
+}  // namespace tidalcrust

@@ -1,0 +1,86 @@
+#pragma once
+// Hinge (bending) force law of Bridson, Marino & Fedkiw 2003, section 4 (paper eq. 22).
+// Units: positions R, k_e in G M^2/R^2 as in the paper (Bridson's k_e is a force times a
+// length; with R = 1 the numbers agree), forces in G M^2/R^2.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>  // cross()
+
+#include "base/vec3.hpp"
+
+namespace tidalcrust {
+
+/// Forces on the four vertices of a hinge, in Body::hinges order {wing_1, wing_2, edge_a, edge_b}.
+struct HingeForces {
+  std::array<Vec3, 4> on;
+  bool collapsed = false;  ///< a face is (nearly) degenerate: see collapsed_face_fraction
+};
+
+/// A face counts as collapsed (hinge forces ~ 1/|N|^2 blow up) when twice its area |N| falls
+/// below this fraction of L^2, L the hinge edge: a wing vertex within ~1e-3 L of the edge line
+/// (an equilateral face has |N| = 0.87 L^2).
+inline constexpr double collapsed_face_fraction = 1e-3;
+
+/// sin and cos of half the rest angle: the only trigonometry the force needs, computed once
+/// per rest angle rather than every step.
+struct HalfRestAngle {
+  double sin = 0;
+  double cos = 1;
+  static HalfRestAngle of(double rest_angle) { return {std::sin(0.5 * rest_angle), std::cos(0.5 * rest_angle)}; }
+};
+
+/// Bridson's four forces F_i = |F| u_i with |F| = k_e L^2 / (|N1| + |N2|) sin((theta - theta_rest)/2)
+/// (eq. 22), where x1, x2 are the wings, x3-x4 the shared edge, E = x4 - x3, L = |E|,
+/// N1 = (x1-x3) x (x1-x4), N2 = (x2-x4) x (x2-x3) (|N| is twice the face area), and
+///   u1 = L N1/|N1|^2,  u2 = L N2/|N2|^2,
+///   u3 = (x1-x4).E/L N1/|N1|^2 + (x2-x4).E/L N2/|N2|^2,
+///   u4 = -(x1-x3).E/L N1/|N1|^2 - (x2-x3).E/L N2/|N2|^2.
+/// theta follows hinge_angle() (hinge_geometry.hpp); u_i = -d theta/d x_i, so the force drives
+/// theta back to theta_rest. The u_i sum to zero and exert no net torque (momentum and angular
+/// momentum conserved). sin and cos of theta/2 come from half-angle formulas, no atan2.
+inline HingeForces hinge_forces(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec3& x4,
+                                HalfRestAngle rest, double stiffness) {
+  const Vec3 e = x4 - x3;
+  const Vec3 n1 = (x1 - x3).cross(x1 - x4);
+  const Vec3 n2 = (x2 - x4).cross(x2 - x3);
+  const double n1_sq = n1.squaredNorm();
+  const double n2_sq = n2.squaredNorm();
+  const double n1_norm = std::sqrt(n1_sq);
+  const double n2_norm = std::sqrt(n2_sq);
+  const double length = e.norm();
+  const double inv_length = 1 / length;
+  const double inv_normal_product = 1 / (n1_norm * n2_norm);
+  // Both normals are perpendicular to the edge, so n1 x n2 is parallel to it.
+  const double cos_theta = n1.dot(n2) * inv_normal_product;
+  const double sin_theta = n1.cross(n2).dot(e) * (inv_normal_product * inv_length);
+  // Half angles, each from the formula without cancellation on its side of pi/2.
+  double sin_half, cos_half;
+  if (cos_theta >= 0) {
+    cos_half = std::sqrt(0.5 * (1 + cos_theta));
+    sin_half = sin_theta / (2 * cos_half);
+  } else {
+    sin_half = std::copysign(std::sqrt(0.5 * (1 - cos_theta)), sin_theta);
+    cos_half = sin_theta / (2 * sin_half);
+  }
+  const double sin_half_difference = sin_half * rest.cos - cos_half * rest.sin;
+  const double magnitude = stiffness * length * length / (n1_norm + n2_norm) * sin_half_difference;
+
+  const Vec3 w1 = n1 * (1 / n1_sq);  // N1/|N1|^2
+  const Vec3 w2 = n2 * (1 / n2_sq);
+  HingeForces f;
+  f.collapsed = !(std::min(n1_norm, n2_norm) >= collapsed_face_fraction * length * length);
+  f.on[0] = (magnitude * length) * w1;
+  f.on[1] = (magnitude * length) * w2;
+  f.on[2] = (magnitude * (x1 - x4).dot(e) * inv_length) * w1 + (magnitude * (x2 - x4).dot(e) * inv_length) * w2;
+  f.on[3] = (-magnitude * (x1 - x3).dot(e) * inv_length) * w1 - (magnitude * (x2 - x3).dot(e) * inv_length) * w2;
+  return f;
+}
+
+inline HingeForces hinge_forces(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec3& x4,
+                                double rest_angle, double stiffness) {
+  return hinge_forces(x1, x2, x3, x4, HalfRestAngle::of(rest_angle), stiffness);
+}
+
+}  // namespace tidalcrust

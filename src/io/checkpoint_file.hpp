@@ -1,0 +1,26 @@
+#pragma once
+// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (H5MD 1.1 compatible), written
+// atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
+#include <cstdint>
+#include <filesystem>
+
+#include "model/checkpoint.hpp"
+
+namespace tidalcrust {
+
+inline constexpr std::int64_t checkpoint_format_version = 2;  ///< 2: /observables/timeseries/perturber_offset
+
+/// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
+/// Never overwrites a valid checkpoint in place. Equal checkpoints give byte-identical files.
+/// Also writes the .xdmf sidecar beside it. Throws InputError if the folder is not writable.
+void write_checkpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
+
+/// Reads and validates (format version, dataset shapes, stage name, state_hash).
+/// Throws InputError naming the file and the dataset for a missing, truncated, corrupt or
+/// tampered file.
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+/// True if `file` exists and read_checkpoint would succeed (used by restart logic).
+bool is_valid_checkpoint(const std::filesystem::path& file);
+
+}  // namespace tidalcrust

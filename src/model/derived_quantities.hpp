@@ -1,0 +1,27 @@
+#pragma once
+// Table 3 quantities computed from a stored body with the paper's equations 15-25.
+#include "model/body.hpp"
+#include "model/state.hpp"
+
+namespace tidalcrust {
+
+struct DerivedQuantities {
+  double E_I = 0;   ///< interior Young's modulus, eq. 15: (1/6V) sum k L^2 over interior springs, e_g
+  double L_I = 0;   ///< mean interior rest length, R
+  double k_I = 0;   ///< mean interior spring constant, G M^2/R^3
+  double L_S = 0;   ///< mean shell rest length, R
+  double k_S = 0;   ///< mean shell spring constant
+  double M_S = 0;   ///< shell mass, M
+  double L_C = 0;   ///< mean cross rest length, R
+  double k_C = 0;   ///< mean cross spring constant
+  double V_IP = 0;  ///< interior P-wave speed, eq. 16, sqrt(GM/R)
+  double V_SP = 0;  ///< shell P-wave speed, eq. 19: sqrt(k_S 4 pi R^2 / M_S)
+  double V_Co = 0;  ///< shell-interior coupling speed, eq. 25: sqrt(k_C N_C / M_S) L_C
+  double h_S = 0;   ///< crust thickness from E_2D = (2/sqrt 3) k_S = E_S h_S with E_S = E_I, R
+  double dt_max = 0;  ///< stability bound, eq. 13: min over springs sqrt(mu / (k b)), t_grav
+};
+
+/// `interior_radius` is r_I (the volume V of eq. 15 is that of the sphere of radius r_I).
+DerivedQuantities derive_quantities(const Body& body, const State& state, double interior_radius);
+
+}  // namespace tidalcrust

@@ -1,0 +1,83 @@
+#include "model/stage_fingerprint.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <initializer_list>
+#include <sstream>
+#include <string_view>
+
+namespace tidalcrust {
+namespace {
+
+enum class Keys { only, all_but };
+
+/// The "key = value" lines of one section of the resolved configuration, restricted to (or
+/// excluding) the given keys, without the unit comments.
+std::string keys_of(const Config& config, std::string_view section, Keys mode,
+                    std::initializer_list<std::string_view> keys) {
+  std::istringstream lines(section_toml(config, section));
+  std::string out, line;
+  while (std::getline(lines, line)) {
+    const auto eq = line.find(" = ");
+    if (eq == std::string::npos) continue;  // the [section] header
+    const std::string_view key(line.data(), eq);
+    const bool listed = std::find(keys.begin(), keys.end(), key) != keys.end();
+    if (listed == (mode == Keys::only)) out += fmt::format("{}.{}\n", section, line.substr(0, line.find("  #")));
+  }
+  return out;
+}
+
+/// What the force law reads beyond the stored springs (the optional cross-spring law, eq. 26).
+std::string force_law(const Config& config) {
+  return keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
+}
+
+/// What the force law and the failure rule read during a time-stepping stage.
+std::string dynamics(const Config& config) {
+  return force_law(config) + keys_of(config, "shell", Keys::only, {"failure_strain", "failed_stiffness_factor"});
+}
+
+}  // namespace
+
+// Each later stage also records its parent's state_hash, so a fingerprint only needs what the
+// stage itself reads. Checkpoint intervals change no result and are left out.
+
+std::string build_fingerprint(const Config& config) {
+  return fmt::format("workflow.seed = {}\nintegrator.softening_fraction = {}\n", config.workflow.seed,
+                     config.integrator.softening_fraction) +
+         keys_of(config, "interior", Keys::all_but, {}) +
+         keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
+         keys_of(config, "cross", Keys::only, {"distance", "spring_constant"});
+}
+
+std::string stretch_fingerprint(const Config& config) {
+  return keys_of(config, "stretch", Keys::all_but, {}) + force_law(config);
+}
+
+std::string relax_fingerprint(const Config& config) {
+  // The stability probe uses the encounter failure interval and every eps_S an encounter asks for.
+  std::string text = keys_of(config, "relax", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
+                     keys_of(config, "encounter", Keys::only, {"fail_interval", "sample_interval"}) +
+                     fmt::format("integrator.dt = {}\n", config.integrator.dt);
+  for (const auto& e : config.encounters)
+    if (e.failure_strain) text += fmt::format("encounters.{}.failure_strain = {}\n", e.name, *e.failure_strain);
+  return text;
+}
+
+std::string encounter_fingerprint(const Config& config, const EncounterSpec& spec) {
+  return keys_of(config, "encounter", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
+         encounter_toml(spec) + fmt::format("integrator.dt = {}\n", config.integrator.dt);
+}
+
+std::string first_difference(const std::string& old_text, const std::string& new_text) {
+  std::istringstream a(old_text), b(new_text);
+  std::string la, lb;
+  while (true) {
+    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
+    if (!ga && !gb) return "";
+    if (la != lb) return fmt::format("'{}' -> '{}'", ga ? la : "", gb ? lb : "");
+  }
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,279 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+
+#include "base/errors.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "analysis/fracture_comparison.hpp"
+#include "physics/orbital_frame.hpp"
+#include "bodies/shell_topology.hpp"
+#include "support/synthetic_encounter.hpp"
+
+using namespace tidalcrust;
+using tidalcrust::testing::spring_between;
+using tidalcrust::testing::synthetic_encounter;
+
+namespace {
+
+Vec3 face_centroid(const Checkpoint& c, std::size_t f) {
+  Vec3 sum = Vec3::Zero();
+  for (auto i : c.body.faces[f]) sum += vec3_at(c.state.position, static_cast<std::size_t>(i));
+  return sum / 3.0;
+}
+
+/// The edge (vertex pair) shared by two faces, or {-1, -1}.
+std::array<std::int32_t, 2> shared_edge(const Body& body, std::size_t f, std::size_t g) {
+  std::vector<std::int32_t> common;
+  for (auto a : body.faces[f])
+    for (auto b : body.faces[g])
+      if (a == b) common.push_back(a);
+  if (common.size() != 2) return {-1, -1};
+  return {common[0], common[1]};
+}
+
+/// A strip of `length` faces walking from the face nearest +y toward -x (each consecutive pair
+/// shares an edge), found by brute force without shell_topology.
+std::vector<std::size_t> strip_toward_minus_x(const Checkpoint& c, int length) {
+  std::size_t current = 0;
+  for (std::size_t f = 1; f < c.body.faces.size(); ++f)
+    if (face_centroid(c, f).y() > face_centroid(c, current).y()) current = f;
+  std::vector<std::size_t> strip{current};
+  while (static_cast<int>(strip.size()) < length) {
+    std::size_t best = c.body.faces.size();
+    for (std::size_t g = 0; g < c.body.faces.size(); ++g) {
+      if (std::find(strip.begin(), strip.end(), g) != strip.end()) continue;
+      if (shared_edge(c.body, current, g)[0] < 0) continue;
+      if (best == c.body.faces.size() || face_centroid(c, g).x() < face_centroid(c, best).x()) best = g;
+    }
+    strip.push_back(current = best);
+  }
+  return strip;
+}
+
+}  // namespace
+
+TEST(OrbitalFrame, SubsatellitePointIsAtLongitude90) {
+  EXPECT_DOUBLE_EQ(longitude_deg({0, 1, 0}), 90.0);
+  EXPECT_DOUBLE_EQ(longitude_deg({1, 0, 0}), 0.0);
+  EXPECT_DOUBLE_EQ(longitude_deg({-1, 0, 0}), 180.0);
+  EXPECT_DOUBLE_EQ(longitude_deg({0, -1, 0}), -90.0);
+  EXPECT_DOUBLE_EQ(latitude_deg({0, 0, 2}), 90.0);
+  EXPECT_DOUBLE_EQ(latitude_deg({3, 0, 0}), 0.0);
+  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, 4, 0}), 0.0);
+  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, 0, 1}), 90.0);
+  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, -1, 0}), 180.0);
+}
+
+TEST(ShellTopology, EveryShellEdgeHasTwoFaces) {
+  const Checkpoint c = synthetic_encounter(2);
+  const ShellTopology t = shell_topology(c.body);
+  EXPECT_EQ(c.body.count_springs(SpringKind::shell), 30u * 16u);
+  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
+    const bool shell = c.body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::shell);
+    EXPECT_EQ(t.spring_faces[s][0] >= 0 && t.spring_faces[s][1] >= 0, shell) << s;
+  }
+  for (std::size_t f = 0; f < c.body.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(t.face_edge_spring[f][k], spring_between(c.body, c.body.faces[f][k], c.body.faces[f][(k + 1) % 3]));
+}
+
+TEST(ShellTopology, FaceEdgeWithoutSpringIsInputError) {
+  Checkpoint c = synthetic_encounter(1);
+  c.body.spring_kind[0] = static_cast<std::uint8_t>(SpringKind::interior);
+  EXPECT_THROW(shell_topology(c.body), InputError);
+}
+
+TEST(FractureAnalysis, NoFailures) {
+  const FractureSummary s = analyze_fractures(synthetic_encounter(1).body, synthetic_encounter(1).state);
+  EXPECT_EQ(s.count(), 0u);
+  EXPECT_EQ(s.fraction_shell, 0.0);
+  EXPECT_TRUE(std::isnan(s.hemisphere_fraction));
+  EXPECT_TRUE(s.clusters.empty());
+  EXPECT_EQ(s.longest_crack_length, 0.0);
+}
+
+TEST(FractureAnalysis, LineOfFailedSpringsIsOneCrack) {
+  Checkpoint c = synthetic_encounter(2);
+  // Move the whole body: analysis is relative to the centre of mass.
+  for (std::size_t i = 0; i < c.body.particle_count(); ++i) set_vec3(c.state.position, i, vec3_at(c.state.position, i) + Vec3(5, -3, 2));
+  const auto strip = strip_toward_minus_x(c, 7);
+  double expected_length = 0;
+  std::set<std::int32_t> failed;
+  for (std::size_t i = 1; i < strip.size(); ++i) {
+    const auto edge = shared_edge(c.body, strip[i - 1], strip[i]);
+    const std::int32_t s = spring_between(c.body, edge[0], edge[1]);
+    ASSERT_GE(s, 0);
+    c.state.springs.failed[static_cast<std::size_t>(s)] = 1;
+    failed.insert(s);
+    const Vec3 m = 0.5 * (vec3_at(c.state.position, edge[0]) + vec3_at(c.state.position, edge[1]));
+    expected_length += (face_centroid(c, strip[i - 1]) - m).norm() + (m - face_centroid(c, strip[i])).norm();
+  }
+  // A lone failed spring on the far side (-y) makes a second, shorter crack.
+  std::int32_t far = -1;
+  double lowest_y = 0;
+  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
+    if (c.body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const double y = vec3_at(c.state.position, c.body.springs[s][0]).y() + vec3_at(c.state.position, c.body.springs[s][1]).y();
+    if (far < 0 || y < lowest_y) far = static_cast<std::int32_t>(s), lowest_y = y;
+  }
+  c.state.springs.failed[static_cast<std::size_t>(far)] = 1;
+  // Failed flags on non-shell springs are ignored.
+  c.state.springs.failed.back() = 1;
+
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  ASSERT_EQ(s.count(), 7u);
+  EXPECT_EQ(s.shell_springs, 480u);
+  EXPECT_DOUBLE_EQ(s.fraction_shell, 7.0 / 480.0);
+  EXPECT_DOUBLE_EQ(s.hemisphere_fraction, 6.0 / 7.0);
+  ASSERT_EQ(s.clusters.size(), 2u);
+  EXPECT_EQ(std::set<std::int32_t>(s.clusters[0].springs.begin(), s.clusters[0].springs.end()), failed);
+  EXPECT_EQ(s.clusters[1].springs, std::vector<std::int32_t>{far});
+  EXPECT_NEAR(s.longest_crack_length, expected_length, 1e-12);
+  EXPECT_NEAR(s.clusters[0].length, expected_length, 1e-12);
+  // End to end: from the first to the last face of the strip, on the unit sphere.
+  const Vec3 offset(5, -3, 2);
+  const double ends = std::acos((face_centroid(c, strip.front()) - offset).normalized().dot(
+      (face_centroid(c, strip.back()) - offset).normalized()));
+  EXPECT_NEAR(s.longest_crack_extent, ends, 1e-6);
+  EXPECT_EQ(s.bars.size(), 2u * 7u);  // two half-bars per failed edge on a closed shell
+  // The strip starts at +y and walks along the equator toward -x: longitudes from ~90 upward.
+  double mean_angle = 0;
+  std::vector<double> angles;
+  std::int64_t histogram_total = 0;
+  for (const auto& f : s.failed) {
+    const Vec3 m = 0.5 * (vec3_at(c.state.position, c.body.springs[f.spring][0]) +
+                          vec3_at(c.state.position, c.body.springs[f.spring][1])) - offset;
+    EXPECT_NEAR(f.longitude_deg, std::atan2(m.y(), m.x()) * 180 / std::numbers::pi, 1e-9);
+    mean_angle += std::acos(m.normalized().y()) * 180 / std::numbers::pi / 7;
+    angles.push_back(std::acos(m.normalized().y()) * 180 / std::numbers::pi);
+  }
+  std::sort(angles.begin(), angles.end());
+  EXPECT_NEAR(s.median_angle_from_subsatellite_deg, angles[3], 1e-9);  // 7 failures: the 4th
+  for (auto n : s.angle_histogram) histogram_total += n;
+  EXPECT_EQ(histogram_total, 7);
+  EXPECT_NEAR(s.mean_angle_from_subsatellite_deg, mean_angle, 1e-9);
+  EXPECT_GT(s.angle_histogram.back() + s.angle_histogram[s.angle_bins - 2], 0);  // the far spring
+}
+
+TEST(FractureAnalysis, EdgesShareAClusterOnlyThroughACommonFace) {
+  Checkpoint c = synthetic_encounter(1);
+  const auto& face = c.body.faces[0];
+  const std::int32_t ab = spring_between(c.body, face[0], face[1]);
+  const std::int32_t bc = spring_between(c.body, face[1], face[2]);
+  c.state.springs.failed[static_cast<std::size_t>(ab)] = 1;
+  c.state.springs.failed[static_cast<std::size_t>(bc)] = 1;
+  EXPECT_EQ(analyze_fractures(c.body, c.state).clusters.size(), 1u);
+
+  // An edge at vertex a that shares no face with edge ab: touches ab only at a node.
+  c.state.springs.failed[static_cast<std::size_t>(bc)] = 0;
+  std::int32_t other = -1;
+  for (std::size_t s = 0; s < c.body.spring_count() && other < 0; ++s) {
+    if (c.body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const auto e = c.body.springs[s];
+    if (static_cast<std::int32_t>(s) == ab || (e[0] != face[0] && e[1] != face[0])) continue;
+    const std::int32_t x = e[0] == face[0] ? e[1] : e[0];
+    bool common_face = false;
+    for (const auto& g : c.body.faces) {
+      const auto has = [&](std::int32_t v) { return std::find(g.begin(), g.end(), v) != g.end(); };
+      common_face |= has(face[0]) && has(face[1]) && has(x);
+    }
+    if (!common_face) other = static_cast<std::int32_t>(s);
+  }
+  ASSERT_GE(other, 0);
+  c.state.springs.failed[static_cast<std::size_t>(other)] = 1;
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  EXPECT_EQ(s.clusters.size(), 2u);
+}
+
+TEST(FractureAnalysis, AllSpringsFailedShowTheDualLattice) {
+  Checkpoint c = synthetic_encounter(2);
+  double expected = 0, y_positive = 0;
+  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
+    if (c.body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    c.state.springs.failed[s] = 1;
+    const Vec3 m = 0.5 * (vec3_at(c.state.position, c.body.springs[s][0]) + vec3_at(c.state.position, c.body.springs[s][1]));
+    y_positive += m.y() - body_center_of_mass(c.body, c.state).y() > 0;
+  }
+  for (std::size_t f = 0; f < c.body.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)  // a three-pronged fork on every face
+      expected += (face_centroid(c, f) - 0.5 * (vec3_at(c.state.position, c.body.faces[f][k]) +
+                                                  vec3_at(c.state.position, c.body.faces[f][(k + 1) % 3]))).norm();
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  EXPECT_EQ(s.count(), 480u);
+  EXPECT_EQ(s.fraction_shell, 1.0);
+  EXPECT_EQ(s.clusters.size(), 1u);
+  EXPECT_EQ(s.bars.size(), 3u * c.body.faces.size());
+  EXPECT_NEAR(s.longest_crack_length, expected, 1e-10);
+  EXPECT_DOUBLE_EQ(s.hemisphere_fraction, y_positive / 480.0);
+  EXPECT_GT(s.longest_crack_extent, 0.95 * std::numbers::pi);  // spans the globe
+  EXPECT_NEAR(s.mean_angle_from_subsatellite_deg, 90.0, 1e-9);  // symmetric about the xz-plane
+}
+
+TEST(FractureAnalysis, FailureSummaryJson) {
+  Checkpoint c = synthetic_encounter(1);
+  c.state.springs.failed[0] = 1;
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  JsonWriter json;
+  json.begin_object();
+  add_failure_summary(json, s);
+  json.end_object();
+  EXPECT_EQ(json.str(), "{\n  \"failures\": {\n    \"count\": 1,\n    \"fraction_shell\": " + JsonWriter::number(1.0 / 120) +
+                            ",\n    \"hemisphere_fraction\": " + JsonWriter::number(s.hemisphere_fraction) +
+                            ",\n    \"mean_angle_from_subsatellite_deg\": " +
+                            JsonWriter::number(s.mean_angle_from_subsatellite_deg) +
+                            ",\n    \"median_angle_from_subsatellite_deg\": " +
+                            JsonWriter::number(s.median_angle_from_subsatellite_deg) + ",\n    \"longest_crack\": " +
+                            JsonWriter::number(s.longest_crack_length) + ",\n    \"longest_crack_extent\": " +
+                            JsonWriter::number(s.longest_crack_extent) + ",\n    \"clusters\": 1\n  }\n}\n");
+  EXPECT_GT(s.longest_crack_length, 0.0);
+}
+
+TEST(FractureComparison, SelfComparisonIsIdentical) {
+  Checkpoint c = synthetic_encounter(2);
+  for (std::size_t s = 0; s < 480; s += 7) c.state.springs.failed[s] = 1;
+  const FractureComparison r = compare_fractures(c.body, c.state, c.state);
+  EXPECT_EQ(r.jaccard, 1.0);
+  EXPECT_EQ(r.ks_distance, 0.0);
+  EXPECT_EQ(r.common_failed, r.a.count());
+  EXPECT_EQ(r.either_failed, r.b.count());
+}
+
+TEST(FractureComparison, OverlapAndDistance) {
+  Checkpoint a = synthetic_encounter(1), b = synthetic_encounter(1);
+  for (std::size_t s : {0, 1, 2, 3}) a.state.springs.failed[s] = 1;
+  for (std::size_t s : {2, 3, 4, 5, 6, 7}) b.state.springs.failed[s] = 1;
+  const FractureComparison r = compare_fractures(a.body, a.state, b.state);
+  EXPECT_EQ(r.common_failed, 2u);
+  EXPECT_EQ(r.either_failed, 8u);
+  EXPECT_DOUBLE_EQ(r.jaccard, 0.25);
+  EXPECT_GE(r.ks_distance, 0.0);
+  EXPECT_LE(r.ks_distance, 1.0);
+}
+
+TEST(FractureComparison, KolmogorovSmirnovDistance) {
+  EXPECT_EQ(kolmogorov_smirnov_distance({1, 2, 3}, {4, 5, 6}), 1.0);
+  EXPECT_EQ(kolmogorov_smirnov_distance({1, 2, 3, 4}, {3, 4, 5, 6}), 0.5);
+  EXPECT_EQ(kolmogorov_smirnov_distance({3, 1, 2}, {2, 3, 1}), 0.0);
+  EXPECT_EQ(kolmogorov_smirnov_distance({1, 1, 2}, {1, 2, 2}), 1.0 / 3);
+  EXPECT_EQ(kolmogorov_smirnov_distance({}, {}), 0.0);
+  EXPECT_TRUE(std::isnan(kolmogorov_smirnov_distance({}, {1.0})));
+}
+
+TEST(FractureComparison, DifferentBodiesAreRefused) {
+  const Checkpoint a = synthetic_encounter(1), b = synthetic_encounter(2);
+  try {
+    require_same_body(a.body, b.body, "A.h5", "B.h5");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("A.h5"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("particle counts"), std::string::npos);
+  }
+  Checkpoint c = synthetic_encounter(1);
+  std::swap(c.body.springs[0], c.body.springs[1]);
+  EXPECT_THROW(require_same_body(a.body, c.body, "A.h5", "C.h5"), InputError);
+  EXPECT_NO_THROW(require_same_body(a.body, synthetic_encounter(1).body, "A.h5", "A2.h5"));
+}

@@ -1,0 +1,250 @@
+// `tidalcrust run` as a user meets it: interrupted at random moments (SIGKILL) and rerun, it
+// ends with checkpoints bit-identical to an uninterrupted run and never leaves a corrupt file
+// under a final name; a finished workflow reruns as a no-op; a changed value reruns exactly the
+// stages it affects; bad input exits 2 and touches nothing.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+#include <thread>
+
+#include "io/checkpoint_file.hpp"
+#include "support/cli_runner.hpp"
+#include "io/state_hash.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  auto dir = fs::temp_directory_path() / ("tidalcrust_run_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// The quick body with short stages, frequent mid-stage checkpoints and two encounters.
+fs::path small_workflow(const fs::path& dir) {
+  const auto file = dir / "small.toml";
+  std::ofstream(file) << R"([workflow]
+name = "small"
+seed = 3
+[interior]
+count = 150
+radius = 0.85
+min_separation = 0.2
+spring_distance = 0.46
+spring_constant = 0.3
+[shell]
+level = 2
+bending_constant = 0.03
+[cross]
+distance = 0.4
+spring_constant = 0.03
+[integrator]
+dt = 0.005
+[relax]
+duration = 0.5
+probe_duration = 0.2
+settle_duration = 0.2
+checkpoint_interval = 15
+[encounter]
+start_distance = 2.2
+end_distance = 2.2
+checkpoint_interval = 15
+[[encounters]]
+name = "A"
+perturber_mass = 1.0
+pericenter = 1.5
+pericenter_speed = 1.6
+[[encounters]]
+name = "B"
+perturber_mass = 0.5
+pericenter = 1.8
+pericenter_speed = 1.7
+)";
+  return file;
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+/// Every .h5 below root, by relative path, with its state_hash; fails on an invalid one.
+std::map<std::string, std::string> hashes_below(const fs::path& root) {
+  std::map<std::string, std::string> hashes;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.path().extension() != ".h5") continue;
+    const std::string rel = fs::relative(entry.path(), root).string();
+    EXPECT_TRUE(is_valid_checkpoint(entry.path())) << rel;
+    if (rel.find(".mid.") != std::string::npos) continue;  // mid files are shortcuts, not results
+    hashes[rel] = state_hash(read_checkpoint(entry.path()).state);
+  }
+  return hashes;
+}
+
+/// Starts `tidalcrust ARGS` as a child process with its output discarded.
+pid_t start_cli(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    int devnull = ::open("/dev/null", O_WRONLY);
+    dup2(devnull, 1);
+    dup2(devnull, 2);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(TIDALCRUST_EXE));
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(TIDALCRUST_EXE, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// Starts `tidalcrust run ...` and SIGKILLs it after `delay`; true if it finished first.
+bool run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds delay) {
+  const pid_t pid = start_cli(args);
+  const auto deadline = std::chrono::steady_clock::now() + delay;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+}  // namespace
+
+TEST(RunWorkflow, KilledAtRandomMomentsEndsBitIdenticalToStraightRun) {
+  const auto dir = scratch("kill");
+  const auto workflow = small_workflow(dir);
+  const auto straight = run_cli("run " + q(workflow) + " --quiet --out " + q(dir / "straight"));
+  ASSERT_EQ(straight.exit_code, 0) << straight.err;
+  const auto expected = hashes_below(dir / "straight");
+  for (const char* final_file : {"body/build.h5", "body/stretch.h5", "body/relax.h5", "A/encounter.h5", "B/encounter.h5"})
+    EXPECT_EQ(expected.count(final_file), 1u) << final_file;
+
+  std::mt19937_64 random(12345);  // fixed: the test is repeatable
+  const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", (dir / "killed").string()};
+  int kills = 0;
+  bool finished = false;
+  for (int attempt = 0; attempt < 60 && !finished; ++attempt) {
+    // Random moments; the window widens with each attempt so that pieces that are not
+    // checkpointed (start-up, analysis) also finish on a slow, loaded machine.
+    const auto delay = std::chrono::milliseconds(20 + static_cast<int>(random() % (200 + 50 * attempt)));
+    finished = run_and_kill(args, delay);
+    kills += finished ? 0 : 1;
+    // No corrupt or half-written file under a final name, ever.
+    if (fs::exists(dir / "killed")) hashes_below(dir / "killed");
+  }
+  ASSERT_TRUE(finished);
+  EXPECT_GE(kills, 3);
+  EXPECT_EQ(hashes_below(dir / "killed"), expected);
+  fs::remove_all(dir);
+}
+
+TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
+  const auto dir = scratch("rerun");
+  const auto workflow = small_workflow(dir);
+  const auto out = dir / "out";
+  ASSERT_EQ(run_cli("run " + q(workflow) + " --quiet --out " + q(out)).exit_code, 0);
+  const std::string relax_bytes = read_text_file(out / "body" / "relax.h5");
+  const std::string a_bytes = read_text_file(out / "A" / "encounter.h5");
+
+  const auto again = run_cli("run " + q(workflow) + " --out " + q(out));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  for (const char* stage : {"build: up to date", "stretch: up to date", "relax: up to date", "encounter A: up to date",
+                            "encounter B: up to date", "analyze A: up to date"})
+    EXPECT_NE(again.out.find(stage), std::string::npos) << again.out;
+  EXPECT_EQ(read_text_file(out / "A" / "encounter.h5"), a_bytes);
+  const std::string status = read_text_file(out / "status.json");
+  EXPECT_NE(status.find("\"stage\": \"workflow small\""), std::string::npos) << status;
+  EXPECT_NE(status.find("\"state\": \"done\""), std::string::npos) << status;
+
+  // A changed encounter value reruns the encounters only.
+  const auto changed = run_cli("run " + q(workflow) + " --set encounter.damping=0.02 --out " + q(out));
+  ASSERT_EQ(changed.exit_code, 0) << changed.err;
+  EXPECT_NE(changed.out.find("relax: up to date"), std::string::npos) << changed.out;
+  EXPECT_EQ(changed.out.find("encounter A: up to date"), std::string::npos) << changed.out;
+  EXPECT_EQ(read_text_file(out / "body" / "relax.h5"), relax_bytes);
+  EXPECT_NE(read_text_file(out / "A" / "encounter.h5"), a_bytes);
+
+  // Half dt: encounters into their own folder, branching from the same relaxed body.
+  const auto half = run_cli("run " + q(workflow) + " --quiet --dt-factor 0.5 --only A --out " + q(out));
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  const auto half_dt = read_checkpoint(out / "dt0.5" / "A" / "encounter.h5");
+  EXPECT_DOUBLE_EQ(half_dt.state.dt, 0.0025);
+  EXPECT_EQ(half_dt.stage.parent_hash, state_hash(read_checkpoint(out / "body" / "relax.h5").state));
+  EXPECT_FALSE(fs::exists(out / "dt0.5" / "B"));
+  EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "fracture_map.png"));
+  fs::remove_all(dir);
+}
+
+TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
+  const auto dir = scratch("bad");
+  const auto workflow = small_workflow(dir);
+  const auto out = dir / "out";
+  ASSERT_EQ(run_cli("run " + q(workflow) + " --quiet --only B --out " + q(out)).exit_code, 0);
+  const std::string build_bytes = read_text_file(out / "body" / "build.h5");
+
+  const auto unknown = dir / "unknown.toml";
+  std::ofstream(unknown) << "[workflow]\nname = \"small\"\n[relax]\ndamping = 50.0\ndampnig = 1.0\n";
+  const auto malformed = dir / "malformed.toml";
+  std::ofstream(malformed) << "[workflow\nname = 1\n";
+  struct Case {
+    std::string args, expected;
+  } cases[] = {
+      {"run " + q(unknown) + " --out " + q(out), "relax.dampnig"},
+      {"run " + q(malformed) + " --out " + q(out), "malformed.toml:1"},
+      {"run " + q(workflow) + " --dt-factor -0.5 --out " + q(out), "--dt-factor"},
+      {"run " + q(workflow) + " --only Z --out " + q(out), "unknown encounter 'Z'"},
+      {"run " + q(workflow) + " --set workflow.seed=4 --out " + q(out), "different body"},
+      {"run " + q(dir / "missing.toml") + " --out " + q(out), "missing.toml"},
+  };
+  for (const auto& c : cases) {
+    const auto r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(read_text_file(out / "body" / "build.h5"), build_bytes);
+  EXPECT_FALSE(fs::exists(out / "A"));
+  fs::remove_all(dir);
+}
+
+TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
+  const auto dir = scratch("sigint");
+  const auto workflow = small_workflow(dir);
+  const auto out = dir / "out";
+  // A long relaxation so that Ctrl-C lands inside it.
+  const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", out.string(),
+                                         "--set", "relax.duration=40.0"};
+  const pid_t pid = start_cli(args);
+  const auto mid = out / "body" / "relax.mid.h5";
+  for (int i = 0; i < 3000 && !fs::exists(mid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_TRUE(fs::exists(mid));
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);  // clean stop, its checkpoint written
+  const Checkpoint stopped = read_checkpoint(mid);
+  EXPECT_FALSE(stopped.stage.complete);
+  // Rerun with a value the relaxation does not read changed: it resumes, it does not restart.
+  const auto resumed = run_cli("run " + q(workflow) + " --out " + q(out) +
+                               " --set relax.duration=40.0 --set encounter.damping=0.02 --only A");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("relax: resuming from"), std::string::npos) << resumed.out;
+  EXPECT_FALSE(fs::exists(mid));
+  fs::remove_all(dir);
+}

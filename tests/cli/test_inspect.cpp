@@ -1,0 +1,180 @@
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "support/bad_checkpoints.hpp"
+#include "support/cli_runner.hpp"
+#include "stages/build_stage.hpp"
+#include "io/checkpoint_file.hpp"
+#include "model/config.hpp"
+#include "physics/conservation.hpp"
+#include "base/errors.hpp"
+#include "analysis/inspect_report.hpp"
+#include "io/json_writer.hpp"
+#include "io/state_hash.hpp"
+#include "support/synthetic_checkpoint.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(InspectReport, JsonHasEveryKeyOfTheDesign) {
+  const Checkpoint c = synthetic_checkpoint();
+  const std::string json = inspect_report_json(build_inspect_report(c, "synthetic.h5"));
+  for (const char* key : {"format_version", "stage", "complete", "time", "step", "dt", "state_hash", "parent_hash",
+                          "counts", "interior", "shell", "springs_interior", "springs_shell", "springs_cross",
+                          "hinges", "faces", "failed", "derived", "E_I", "L_I", "k_I", "L_S", "k_S", "M_S", "L_C",
+                          "k_C", "V_IP", "V_SP", "V_Co", "h_S", "dt_max", "conservation", "momentum",
+                          "angular_momentum", "kinetic_energy", "scalars", "labels", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "longest_crack", "clusters",
+                          "min_distance", "speed_at_min"})
+    EXPECT_TRUE(contains(json, JsonWriter::quote(key) + ": ")) << key;
+  EXPECT_TRUE(contains(json, "\"state_hash\": \"" + state_hash(c.state) + "\""));
+  EXPECT_TRUE(contains(json, "\"stage\": \"encounter\""));
+  EXPECT_TRUE(contains(json, "\"note\": \"synthetic \\\"test\\\" & <body>\""));
+  EXPECT_FALSE(contains(json, "\"stability\""));
+}
+
+TEST(InspectReport, CountsAndTotalsAreExact) {
+  const Checkpoint c = synthetic_checkpoint();
+  const InspectReport r = build_inspect_report(c, "synthetic.h5");
+  auto find = [&](const std::string& section, const std::string& key) -> const ReportValue& {
+    for (const auto& s : r.sections)
+      if (s.name == section)
+        for (const auto& [k, v] : s.entries)
+          if (k == key) return v;
+    throw std::runtime_error("no " + section + "." + key);
+  };
+  EXPECT_EQ(find("counts", "interior").integer, 1);
+  EXPECT_EQ(find("counts", "shell").integer, 4);
+  EXPECT_EQ(find("counts", "springs_interior").integer, 0);
+  EXPECT_EQ(find("counts", "springs_shell").integer, 6);
+  EXPECT_EQ(find("counts", "springs_cross").integer, 4);
+  EXPECT_EQ(find("counts", "hinges").integer, 3);
+  EXPECT_EQ(find("counts", "faces").integer, 4);
+  EXPECT_EQ(find("counts", "failed").integer, 1);
+  const Conservation totals = measure_conservation(c.body, c.state);
+  EXPECT_EQ(find("conservation", "kinetic_energy").number, totals.kinetic_energy);
+  EXPECT_EQ(find("conservation", "momentum").numbers,
+            std::vector<double>(totals.momentum.begin(), totals.momentum.end()));
+  EXPECT_EQ(find("derived", "M_S").number, 0.5);
+  EXPECT_EQ(find("derived", "k_S").number, 0.06);
+  EXPECT_EQ(find("perturber", "mass").number, 0.5);
+  EXPECT_EQ(find("perturber", "min_distance").number, 1.84);
+}
+
+TEST(InspectReport, RelaxedBodyShowsStabilityAndNoPerturber) {
+  Checkpoint c = synthetic_checkpoint();
+  c.stage.stage = "relax";
+  c.state.perturber = Perturber{};
+  c.stage.scalars = {{"stability_failures", 0.0}, {"stability_max_shell_strain", 0.0021}};
+  const std::string json = inspect_report_json(build_inspect_report(c, "relaxed.h5"));
+  EXPECT_TRUE(contains(json, "\"stability\": {\n    \"failures\": 0,\n    \"max_shell_strain\": 0.0021\n  }"))
+      << json;
+  EXPECT_FALSE(contains(json, "\"perturber\""));
+  const std::string table = inspect_report_table(build_inspect_report(c, "relaxed.h5"));
+  EXPECT_TRUE(contains(table, "\nstability\n  failures  ")) << table;
+}
+
+TEST(InspectReport, UnparsableStoredConfigurationNamesTheDataset) {
+  Checkpoint c = synthetic_checkpoint();
+  c.config_toml = "[interior]\nradius = \"big\"\n";
+  try {
+    build_inspect_report(c, "odd.h5");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& err) {
+    EXPECT_TRUE(contains(err.what(), "odd.h5:/parameters/config")) << err.what();
+  }
+}
+
+TEST(InspectCli, JsonOfAWrittenCheckpoint) {
+  const ScratchFolder scratch("inspect_json");
+  const fs::path& dir = scratch.path;
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(dir / "enc.h5", c);
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
+  for (const char* key : {"\"counts\": {", "\"derived\": {", "\"conservation\": {", "\"perturber\": {",
+                          "\"springs_cross\": 4", "\"time\": 2.25", "\"step\": 1125"})
+    EXPECT_TRUE(contains(r.out, key)) << key;
+}
+
+TEST(InspectCli, TableIsAlignedAndNamesEveryKey) {
+  const ScratchFolder scratch("inspect_table");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "enc.h5", synthetic_checkpoint());
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5"));
+  EXPECT_EQ(r.exit_code, 0);
+  // Every "key value" line has its value in one common column.
+  std::size_t column = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto gap = line.find("  ", line.find_first_not_of(' '));
+    if (gap == std::string::npos) continue;  // a section title
+    const auto value = line.find_first_not_of(' ', gap);
+    if (column == 0) column = value;
+    EXPECT_EQ(value, column) << line;
+  }
+  EXPECT_GT(column, 0u);
+  EXPECT_TRUE(contains(r.out, "state_hash" + std::string(column - 10, ' ') + state_hash(synthetic_checkpoint().state)))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "\ncounts\n  interior" + std::string(column - 10, ' ') + "1\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\nfailures\n")) << r.out;
+}
+
+TEST(InspectCli, BuiltQuickBodyCountsMatch) {
+  const ScratchFolder scratch("inspect_quick");
+  const fs::path& dir = scratch.path;
+  const Config config = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml");
+  Checkpoint c = build_stage(config);
+  c.config_toml = to_toml(config);
+  write_checkpoint(dir / "body.h5", c);
+  const CliResult r = run_cli("inspect " + quoted(dir / "body.h5") + " --json");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(contains(r.out, "\"stage\": \"build\""));
+  EXPECT_TRUE(contains(r.out, fmt::format("\"interior\": {}", config.interior.count)));
+  EXPECT_TRUE(contains(r.out, "\"shell\": 642"));
+  EXPECT_TRUE(contains(r.out, "\"springs_shell\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"faces\": 1280"));
+  EXPECT_TRUE(contains(r.out, "\"hinges\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"failed\": 0"));
+  EXPECT_FALSE(contains(r.out, "\"E_I\": 0,"));  // a real interior has a modulus
+}
+
+TEST(InspectCli, BadFilesExitWithCode2AndAOneLineMessage) {
+  const ScratchFolder scratch("inspect_bad");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
+  for (const auto& bad : make_bad_checkpoints(dir / "valid.h5", dir)) {
+    const CliResult json = run_cli("inspect " + quoted(bad.file) + " --json");
+    EXPECT_EQ(json.exit_code, 2) << bad.what;
+    EXPECT_EQ(std::count(json.err.begin(), json.err.end(), '\n'), 1) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.file.string() + ": ")) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.expected_message)) << bad.what << ": " << json.err;
+    const CliResult stdout_only = run_cli("inspect " + quoted(bad.file));
+    EXPECT_EQ(stdout_only.exit_code, 2) << bad.what;
+    EXPECT_EQ(stdout_only.out, "") << bad.what;
+  }
+}
+
+TEST(InspectCli, UsageErrorsExitWithCode2) {
+  EXPECT_EQ(run_cli("inspect").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect a.h5 b.h5").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect --bogus x.h5").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
+}

@@ -1,0 +1,229 @@
+#include <cairo.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "analysis/conservation_drift.hpp"
+#include "base/errors.hpp"
+#include "figures/figure_output.hpp"
+#include "figures/figures.hpp"
+#include "physics/orbital_frame.hpp"
+#include "model/recorded_encounter.hpp"
+#include "support/synthetic_encounter.hpp"
+#include "physics/two_body_orbit.hpp"
+
+using namespace tidalcrust;
+using tidalcrust::testing::synthetic_encounter;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("tidalcrust_figures_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void expect_png_and_svg(const FigureFiles& files) {
+  ASSERT_EQ(files.size(), 2u);
+  const std::string png = read_file(files[0]);
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  const std::string svg = read_file(files[1]);
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+struct Png {
+  explicit Png(const fs::path& file) : surface(cairo_image_surface_create_from_png(file.c_str()), cairo_surface_destroy) {}
+  /// Luminance 0 (black) .. 1 (white) at the pixel under page point (x, y), in points.
+  double luminance(double x, double y) const {
+    cairo_surface_flush(surface.get());
+    const int px = static_cast<int>(x * png_pixels_per_point), py = static_cast<int>(y * png_pixels_per_point);
+    const auto* row = cairo_image_surface_get_data(surface.get()) + py * cairo_image_surface_get_stride(surface.get());
+    const std::uint32_t argb = reinterpret_cast<const std::uint32_t*>(row)[px];
+    const double r = (argb >> 16 & 0xff) / 255.0, g = (argb >> 8 & 0xff) / 255.0, b = (argb & 0xff) / 255.0;
+    return 0.299 * r + 0.587 * g + 0.114 * b;
+  }
+  std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> surface;
+};
+
+/// Fails the shell spring whose midpoint is closest to direction `d`; returns its index.
+std::int32_t fail_spring_near(Checkpoint& c, const Vec3& d) {
+  std::int32_t best = -1;
+  double best_dot = -2;
+  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
+    if (c.body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const Vec3 m = 0.5 * (vec3_at(c.state.position, c.body.springs[s][0]) + vec3_at(c.state.position, c.body.springs[s][1]));
+    if (m.normalized().dot(d.normalized()) > best_dot) best_dot = m.normalized().dot(d.normalized()), best = static_cast<std::int32_t>(s);
+  }
+  c.state.springs.failed[static_cast<std::size_t>(best)] = 1;
+  return best;
+}
+
+}  // namespace
+
+TEST(Figures, FractureMapDrawsCrackBarsWhereTheyAre) {
+  Checkpoint c = synthetic_encounter(3);
+  fail_spring_near(c, {-0.6, 0.2, 0.5});
+  fail_spring_near(c, {-1, -0.01, 0.1});  // faces close to the dateline (longitude 180)
+  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  const fs::path dir = fresh_dir("map");
+  const auto files = write_fracture_map(fractures, dir / "map", "test map");
+  expect_png_and_svg(files);
+  const Png png(files[0]);
+  const PlotAxes axes = fracture_map_axes();
+  for (const auto& bar : fractures.bars) {
+    const Vec3 middle = 0.5 * (bar.centroid + bar.edge_midpoint);
+    const double lon = longitude_deg(middle), lat = latitude_deg(middle);
+    EXPECT_LT(png.luminance(axes.page_x(lon), axes.page_y(lat)), 0.35) << lon << " " << lat;
+  }
+  // Ice where nothing failed (between graticule lines), and the ring at the subsatellite point.
+  EXPECT_GT(png.luminance(axes.page_x(-100), axes.page_y(-40)), 0.8);
+  const double ring = png.luminance(axes.page_x(90) + 8, axes.page_y(0));
+  EXPECT_LT(ring, 0.85);
+}
+
+TEST(Figures, HemisphereViewShowsCracksFacingTheViewer) {
+  Checkpoint c = synthetic_encounter(3);
+  fail_spring_near(c, {0.3, 1, 0.4});
+  Checkpoint later = c;
+  later.state.time = 2.5;
+  later.state.perturber.position = {-1.9, 1.5, 0};  // off to the right on screen, partly in view
+  const fs::path dir = fresh_dir("hemisphere");
+  const auto files = write_hemisphere_views({&c, &later}, 1.2, dir / "hemisphere", "test views");
+  expect_png_and_svg(files);
+  const Png png(files[0]);
+  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  for (std::size_t panel = 0; panel < 2; ++panel) {
+    const PlotAxes axes = hemisphere_panel_axes(panel, 2);
+    for (const auto& bar : fractures.bars) {
+      const Vec3 middle = 0.5 * (bar.centroid + bar.edge_midpoint);
+      EXPECT_LT(png.luminance(axes.page_x(-middle.x()), axes.page_y(middle.z())), 0.3);
+    }
+    // Lit ice on the upper left of the disc, away from the crack; space outside it.
+    EXPECT_GT(png.luminance(axes.page_x(-0.5), axes.page_y(-0.3)), 0.5);
+    EXPECT_LT(png.luminance(axes.page_x(-1.4), axes.page_y(-1.4)), 0.1);
+  }
+  // The perturber (radius 0.5^(1/3) = 0.79 at screen x = 1.9) tints space magenta at x = 1.3,
+  // in the second panel only.
+  auto magenta = [&](std::size_t panel) {
+    const PlotAxes axes = hemisphere_panel_axes(panel, 2);
+    cairo_surface_flush(png.surface.get());
+    const int px = static_cast<int>(axes.page_x(1.3) * png_pixels_per_point);
+    const int py = static_cast<int>(axes.page_y(0.2) * png_pixels_per_point);
+    const auto* row = cairo_image_surface_get_data(png.surface.get()) + py * cairo_image_surface_get_stride(png.surface.get());
+    const std::uint32_t argb = reinterpret_cast<const std::uint32_t*>(row)[px];
+    return static_cast<int>(argb >> 16 & 0xff) - static_cast<int>(argb >> 8 & 0xff);  // red minus green
+  };
+  EXPECT_GT(magenta(1), 30);
+  EXPECT_LT(magenta(0), 5);
+}
+
+TEST(Figures, OrbitFailureAndConservationPlotsAreWritten) {
+  Checkpoint c = synthetic_encounter(1);
+  for (int i = 0; i < 20; ++i) {
+    TimeseriesSample s;
+    s.time = 0.1 * i;
+    s.failed = i / 4;
+    s.kinetic_energy = 0.1 + 1e-4 * i;
+    s.momentum = {1e-15 * i, 0, 0};
+    s.angular_momentum = {0, 0, 2.0 + 1e-13 * i};
+    c.observables.timeseries.push_back(s);
+  }
+  for (int i = 0; i < 5; ++i) c.observables.failures.push_back({1.0 + 0.1 * i, 500 + 50 * i, i, 0.004, {0, 1, 0}});
+  const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
+  const fs::path dir = fresh_dir("series");
+  expect_png_and_svg(write_orbit_plot(c, encounter, {0.8, 1.2, 1.6}, dir / "orbit", "orbit"));
+  expect_png_and_svg(write_failure_history(c, encounter.pericenter_time, dir / "failures", "failures"));
+  expect_png_and_svg(write_conservation_plot(c, encounter.pericenter_time, dir / "conservation", "conservation"));
+}
+
+TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
+  // A simulated track 0.8 R outside the analytic one (stage from t = 0 to 2, pericenter at 1.2),
+  // sampled every 0.02 t_grav.
+  Checkpoint c = synthetic_encounter(1);
+  const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
+  const TwoBodyOrbit orbit = perturber_orbit(encounter.perturber_mass, encounter.pericenter, encounter.pericenter_speed);
+  auto simulated = [&](double t) {
+    const Vec3 p = orbit.state_at_time(t - encounter.pericenter_time).position;
+    return Vec3(p + 0.8 * p.normalized());
+  };
+  for (int i = 0; i <= 100; ++i) {
+    TimeseriesSample s;
+    s.time = 0.02 * i;
+    const Vec3 p = simulated(s.time);
+    s.perturber_offset = {p.x(), p.y(), p.z()};
+    c.observables.timeseries.push_back(s);
+  }
+  // Halfway between the samples at t = 0.64 and 0.66, away from the diamonds (every 0.1) and
+  // from the analytic track.
+  const Vec3 between = 0.5 * (simulated(0.64) + simulated(0.66));
+  ASSERT_GT((between - orbit.state_at_time(0.65 - encounter.pericenter_time).position).norm(), 0.7);
+  const fs::path dir = fresh_dir("simulated_orbit");
+  {
+    const auto files = write_orbit_plot(c, encounter, {}, dir / "simulated", "simulated");
+    expect_png_and_svg(files);
+    const PlotAxes axes = orbit_plot_axes(c, encounter, {});
+    EXPECT_LT(Png(files[0]).luminance(axes.page_x(between.x()), axes.page_y(between.y())), 0.5);
+  }
+  // Without perturber offsets (an older kind of sample) the same point is empty paper: only the
+  // analytic track is drawn.
+  for (auto& s : c.observables.timeseries) s.perturber_offset = {};
+  {
+    const auto files = write_orbit_plot(c, encounter, {}, dir / "analytic", "analytic");
+    const PlotAxes axes = orbit_plot_axes(c, encounter, {});
+    EXPECT_GT(Png(files[0]).luminance(axes.page_x(between.x()), axes.page_y(between.y())), 0.9);
+    const Vec3 on_analytic = orbit.state_at_time(0.65 - encounter.pericenter_time).position;
+    EXPECT_LT(Png(files[0]).luminance(axes.page_x(on_analytic.x()), axes.page_y(on_analytic.y())), 0.5);
+  }
+}
+
+TEST(RecordedEncounter, RefusesOtherStagesAndMissingScalars) {
+  Checkpoint c = synthetic_encounter(1);
+  const RecordedEncounter e = recorded_encounter(c, "ENC.h5");
+  EXPECT_EQ(e.name, "T5");
+  EXPECT_EQ(e.perturber_mass, 0.5);
+  EXPECT_EQ(e.pericenter_time, 1.2);
+  c.stage.scalars.erase(encounter_keys::pericenter_time);
+  try {
+    recorded_encounter(c, "ENC.h5");
+    FAIL();
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("pericenter_time"), std::string::npos);
+  }
+  c.stage.stage = "relax";
+  EXPECT_THROW(recorded_encounter(c, "ENC.h5"), InputError);
+}
+
+
+TEST(ConservationDrift, ChangesRelativeToTheFirstSample) {
+  std::vector<TimeseriesSample> samples(3);
+  samples[0].kinetic_energy = 2.0;
+  samples[0].angular_momentum = {0, 0, 4.0};
+  samples[1].kinetic_energy = 2.5;
+  samples[1].momentum = {3e-15, 4e-15, 0};
+  samples[1].angular_momentum = {0, 0, 4.0 + 2e-12};
+  samples[2].kinetic_energy = 1.0;
+  samples[2].angular_momentum = {0, 0, 4.0};
+  const ConservationDrift d = conservation_drift(samples);
+  EXPECT_EQ(d.samples, 3u);
+  EXPECT_DOUBLE_EQ(d.max_momentum_change, 5e-15);
+  EXPECT_NEAR(d.max_angular_momentum_change, 2e-12, 1e-15);  // ulp(4) ~ 9e-16
+  EXPECT_NEAR(d.max_relative_angular_momentum_change, 5e-13, 1e-15 / 4);
+  EXPECT_DOUBLE_EQ(d.final_kinetic_energy_change, -0.5);
+  EXPECT_DOUBLE_EQ(d.max_kinetic_energy_change, 0.5);
+  EXPECT_TRUE(std::isnan(conservation_drift({}).max_momentum_change));
+}

@@ -1,0 +1,400 @@
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "support/bad_checkpoints.hpp"
+#include "stages/build_stage.hpp"
+#include "io/checkpoint_file.hpp"
+#include "model/config.hpp"
+#include "base/errors.hpp"
+#include "io/hdf5_handles.hpp"
+#include "io/state_hash.hpp"
+#include "support/synthetic_checkpoint.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+template <typename T, std::size_t K>
+bool same_bits(const std::array<T, K>& a, const std::array<T, K>& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(a)) == 0;
+}
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_identical(const Checkpoint& a, const Checkpoint& b) {
+  EXPECT_EQ(a.stage.stage, b.stage.stage);
+  EXPECT_EQ(a.stage.complete, b.stage.complete);
+  EXPECT_EQ(a.stage.start_step, b.stage.start_step);
+  EXPECT_EQ(a.stage.end_step, b.stage.end_step);
+  EXPECT_EQ(a.stage.parent_hash, b.stage.parent_hash);
+  EXPECT_EQ(a.stage.labels, b.stage.labels);
+  ASSERT_EQ(a.stage.scalars.size(), b.stage.scalars.size());
+  for (const auto& [name, value] : a.stage.scalars) EXPECT_TRUE(same_bits(value, b.stage.scalars.at(name))) << name;
+  EXPECT_EQ(a.config_toml, b.config_toml);
+
+  EXPECT_TRUE(same_bits(a.body.mass, b.body.mass));
+  EXPECT_EQ(a.body.species, b.body.species);
+  EXPECT_EQ(a.body.springs, b.body.springs);
+  EXPECT_EQ(a.body.spring_kind, b.body.spring_kind);
+  EXPECT_EQ(a.body.hinges, b.body.hinges);
+  EXPECT_EQ(a.body.faces, b.body.faces);
+  EXPECT_TRUE(same_bits(a.body.softening, b.body.softening));
+
+  EXPECT_TRUE(same_bits(a.state.time, b.state.time));
+  EXPECT_EQ(a.state.step, b.state.step);
+  EXPECT_TRUE(same_bits(a.state.dt, b.state.dt));
+  EXPECT_TRUE(same_bits(a.state.position, b.state.position));
+  EXPECT_TRUE(same_bits(a.state.velocity, b.state.velocity));
+  EXPECT_TRUE(same_bits(a.state.springs.rest_length, b.state.springs.rest_length));
+  EXPECT_TRUE(same_bits(a.state.springs.stiffness, b.state.springs.stiffness));
+  EXPECT_TRUE(same_bits(a.state.springs.damping, b.state.springs.damping));
+  EXPECT_EQ(a.state.springs.failed, b.state.springs.failed);
+  EXPECT_TRUE(same_bits(a.state.hinges.rest_angle, b.state.hinges.rest_angle));
+  EXPECT_TRUE(same_bits(a.state.hinges.stiffness, b.state.hinges.stiffness));
+  EXPECT_EQ(a.state.perturber.present, b.state.perturber.present);
+  EXPECT_TRUE(same_bits(a.state.perturber.mass, b.state.perturber.mass));
+  EXPECT_TRUE(same_bits(a.state.perturber.position, b.state.perturber.position));
+  EXPECT_TRUE(same_bits(a.state.perturber.velocity, b.state.perturber.velocity));
+
+  ASSERT_EQ(a.observables.failures.size(), b.observables.failures.size());
+  for (std::size_t i = 0; i < a.observables.failures.size(); ++i) {
+    const auto &x = a.observables.failures[i], &y = b.observables.failures[i];
+    EXPECT_TRUE(same_bits(x.time, y.time) && x.step == y.step && x.spring == y.spring &&
+                same_bits(x.strain, y.strain) && same_bits(x.position, y.position))
+        << "failure row " << i;
+  }
+  ASSERT_EQ(a.observables.timeseries.size(), b.observables.timeseries.size());
+  for (std::size_t i = 0; i < a.observables.timeseries.size(); ++i) {
+    const auto &x = a.observables.timeseries[i], &y = b.observables.timeseries[i];
+    EXPECT_TRUE(same_bits(x.time, y.time) && x.failed == y.failed && same_bits(x.kinetic_energy, y.kinetic_energy) &&
+                same_bits(x.momentum, y.momentum) && same_bits(x.angular_momentum, y.angular_momentum) &&
+                same_bits(x.perturber_offset, y.perturber_offset))
+        << "timeseries row " << i;
+  }
+}
+
+std::string input_error_of(const fs::path& file) {
+  try {
+    read_checkpoint(file);
+  } catch (const InputError& err) {
+    return err.what();
+  }
+  return "(no InputError)";
+}
+
+std::vector<std::string> tmp_files_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.path().filename().string().find(".tmp-") != std::string::npos) names.push_back(entry.path().string());
+  return names;
+}
+
+/// Runs in a death-test child: writes with RLIMIT_FSIZE = `limit` bytes; exit code 3 when the
+/// write failed with InputError, 0 when it succeeded.
+[[noreturn]] void write_with_file_size_limit(const fs::path& file, const Checkpoint& c, rlim_t limit) {
+  std::signal(SIGXFSZ, SIG_IGN);
+  rlimit rl{limit, limit};
+  setrlimit(RLIMIT_FSIZE, &rl);
+  try {
+    write_checkpoint(file, c);
+  } catch (const InputError&) {
+    std::_Exit(3);
+  }
+  std::_Exit(0);
+}
+
+}  // namespace
+
+TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
+  const ScratchFolder scratch("roundtrip");
+  const fs::path& dir = scratch.path;
+  const Checkpoint original = synthetic_checkpoint();
+  write_checkpoint(dir / "c.h5", original);
+  const Checkpoint back = read_checkpoint(dir / "c.h5");
+  expect_identical(original, back);
+  EXPECT_EQ(state_hash(back.state), state_hash(original.state));
+  EXPECT_TRUE(is_valid_checkpoint(dir / "c.h5"));
+  EXPECT_TRUE(tmp_files_in(dir).empty());
+}
+
+TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
+  const ScratchFolder scratch("roundtrip_empty");
+  const fs::path& dir = scratch.path;
+  Checkpoint original = synthetic_checkpoint();
+  original.stage.stage = "build";
+  original.stage.complete = true;
+  original.stage.scalars.clear();
+  original.stage.labels.clear();
+  original.stage.parent_hash.clear();
+  original.state.perturber = Perturber{};
+  original.observables = Observables{};
+  original.body.faces.clear();
+  original.config_toml.clear();
+  write_checkpoint(dir / "c.h5", original);
+  const Checkpoint back = read_checkpoint(dir / "c.h5");
+  expect_identical(original, back);
+  EXPECT_FALSE(back.state.perturber.present);
+  h5::File f = h5::open_file_readonly(dir / "c.h5");
+  EXPECT_FALSE(h5::exists(f.get(), "/checkpoint/perturber"));
+  EXPECT_EQ(h5::read_dataset<double>(f.get(), "/observables/failures/position").dims,
+            (std::vector<hsize_t>{0, 3}));
+}
+
+TEST(Checkpoint, EqualCheckpointsGiveIdenticalBytes) {
+  const ScratchFolder scratch("identical");
+  const fs::path& dir = scratch.path;
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  const std::string a = read_bytes(dir / "a.h5");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(a, read_bytes(dir / "b.h5"));
+  // Reading back and writing again reproduces the same bytes too.
+  write_checkpoint(dir / "c.h5", read_checkpoint(dir / "a.h5"));
+  EXPECT_EQ(a, read_bytes(dir / "c.h5"));
+  // A different state gives a different file.
+  Checkpoint d = c;
+  d.state.position[4] = std::nextafter(d.state.position[4], 1.0);
+  write_checkpoint(dir / "d.h5", d);
+  EXPECT_NE(a, read_bytes(dir / "d.h5"));
+}
+
+TEST(Checkpoint, ManyScalarsAndLabelsUseDenseAttributeStorageReproducibly) {
+  // More than 8 attributes on one group switch HDF5 to dense (heap + B-tree) storage.
+  const ScratchFolder scratch("dense");
+  const fs::path& dir = scratch.path;
+  Checkpoint c = synthetic_checkpoint();
+  for (int i = 0; i < 30; ++i) {
+    c.stage.scalars[fmt::format("phase_{:02}", i)] = 0.1 * i;
+    c.stage.labels[fmt::format("label_{:02}", i)] = std::string(static_cast<std::size_t>(i), 'x');
+  }
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  expect_identical(c, read_checkpoint(dir / "a.h5"));
+}
+
+TEST(Checkpoint, ObjectsCarryNoTimestamps) {
+  const ScratchFolder scratch("timestamps");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "c.h5", synthetic_checkpoint());
+  h5::File f = h5::open_file_readonly(dir / "c.h5");
+  struct Visit {
+    int objects = 0;
+    std::vector<std::string> timed;
+  } visit;
+  auto op = [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
+    auto* v = static_cast<Visit*>(data);
+    ++v->objects;
+    if (info->atime || info->mtime || info->ctime || info->btime) v->timed.push_back(name);
+    return 0;
+  };
+  ASSERT_GE(H5Ovisit(f.get(), H5_INDEX_NAME, H5_ITER_INC, op, &visit), 0);
+  EXPECT_GT(visit.objects, 40);
+  EXPECT_TRUE(visit.timed.empty()) << visit.timed.front();
+}
+
+TEST(Checkpoint, FileFollowsTheH5mdLayout) {
+  const ScratchFolder scratch("layout");
+  const fs::path& dir = scratch.path;
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(dir / "c.h5", c);
+  h5::File f = h5::open_file_readonly(dir / "c.h5");
+  const hid_t root = f.get();
+  {
+    h5::Group g = h5::open_group(root, "/h5md");
+    EXPECT_EQ(h5::read_attribute_array<std::int32_t>(g.get(), "version"), (std::vector<std::int32_t>{1, 1}));
+    h5::Group creator = h5::open_group(root, "/h5md/creator");
+    EXPECT_EQ(h5::read_string_attribute(creator.get(), "name"), "tidalcrust");
+    EXPECT_TRUE(h5::exists(root, "/h5md/author"));
+  }
+  {
+    h5::Group box = h5::open_group(root, "/particles/body/box");
+    EXPECT_EQ(h5::read_attribute<std::int32_t>(box.get(), "dimension"), 3);
+    EXPECT_EQ(h5::read_string_array_attribute(box.get(), "boundary"),
+              (std::vector<std::string>{"none", "none", "none"}));
+  }
+  EXPECT_EQ(h5::read_dataset<double>(root, "/particles/body/position/value").dims, (std::vector<hsize_t>{1, 5, 3}));
+  EXPECT_EQ(h5::read_dataset<double>(root, "/particles/body/velocity/time").values, std::vector<double>{2.25});
+  EXPECT_EQ(h5::read_dataset<std::int64_t>(root, "/particles/body/velocity/step").values,
+            std::vector<std::int64_t>{1125});
+  EXPECT_EQ(h5::read_dataset<std::int32_t>(root, "/connectivity/hinges").dims, (std::vector<hsize_t>{3, 4}));
+  {
+    h5::Group g = h5::open_group(root, "/checkpoint");
+    EXPECT_EQ(h5::read_string_attribute(g.get(), "state_hash"), state_hash(c.state));
+    EXPECT_EQ(h5::read_string_attribute(g.get(), "stage"), "encounter");
+    EXPECT_EQ(h5::read_attribute<std::int64_t>(g.get(), "format_version"), checkpoint_format_version);
+    h5::Group scalars = h5::open_group(root, "/checkpoint/scalars");
+    EXPECT_EQ(h5::attribute_names(scalars.get()),
+              (std::vector<std::string>{"fail_phase", "perturber_min_distance", "perturber_speed_at_min"}));
+  }
+  EXPECT_EQ(h5::read_string_dataset(root, "/parameters/config"), c.config_toml);
+  {
+    h5::Group p = h5::open_group(root, "/parameters/provenance");
+    for (const char* key : {"version", "git_commit", "compiler", "build_flags"})
+      EXPECT_FALSE(h5::read_string_attribute(p.get(), key).empty()) << key;
+  }
+  for (const char* d : {"/observables/timeseries/momentum", "/observables/timeseries/angular_momentum",
+                        "/observables/timeseries/perturber_offset"})
+    EXPECT_EQ(h5::read_dataset<double>(root, d).dims, (std::vector<hsize_t>{2, 3})) << d;
+  // Stored as little-endian IEEE float64 whatever the reader.
+  h5::Dataset set(H5Dopen2(root, "/checkpoint/springs/rest_length", H5P_DEFAULT));
+  h5::Type type(H5Dget_type(set.get()));
+  EXPECT_GT(H5Tequal(type.get(), H5T_IEEE_F64LE), 0);
+}
+
+TEST(Checkpoint, XdmfSidecarReferencesExistingDatasets) {
+  const ScratchFolder scratch("xdmf");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "body.h5", synthetic_checkpoint());
+  ASSERT_TRUE(fs::exists(dir / "body.xdmf"));
+  const std::string xml = read_bytes(dir / "body.xdmf");
+  for (const char* expected : {"<Xdmf Version=\"3.0\">", "TopologyType=\"Polyvertex\" NumberOfElements=\"5\"",
+                               "TopologyType=\"Polyline\" NumberOfElements=\"10\" NodesPerElement=\"2\"",
+                               "TopologyType=\"Triangle\" NumberOfElements=\"4\"", "Name=\"failed\"",
+                               "Name=\"kind\"", "Name=\"species\"", "</Xdmf>"})
+    EXPECT_NE(xml.find(expected), std::string::npos) << expected;
+  // Every heavy-data reference is relative ("body.h5:/...") and names a dataset of the file.
+  h5::File f = h5::open_file_readonly(dir / "body.h5");
+  std::regex reference(R"(>([^<>:]+):(/[^<]+)</DataItem>)");
+  int references = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), reference); it != std::sregex_iterator(); ++it) {
+    ++references;
+    EXPECT_EQ((*it)[1].str(), "body.h5");
+    EXPECT_TRUE(h5::exists(f.get(), (*it)[2].str())) << (*it)[2].str();
+  }
+  EXPECT_GE(references, 11);
+  // Equal checkpoints give equal sidecars too.
+  write_checkpoint(dir / "again.h5", synthetic_checkpoint());
+  std::string again = read_bytes(dir / "again.xdmf");
+  EXPECT_EQ(std::regex_replace(again, std::regex("again\\.h5"), "body.h5"), xml);
+}
+
+TEST(Checkpoint, BadFilesAreRejectedWithMessagesNamingFileAndDataset) {
+  const ScratchFolder scratch("bad");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
+  const auto bad = make_bad_checkpoints(dir / "valid.h5", dir);
+  EXPECT_EQ(bad.size(), 11u);
+  for (const auto& b : bad) {
+    const std::string message = input_error_of(b.file);
+    EXPECT_NE(message.find(b.file.string() + ": "), std::string::npos) << b.what << ": " << message;
+    EXPECT_NE(message.find(b.expected_message), std::string::npos) << b.what << ": " << message;
+    EXPECT_FALSE(is_valid_checkpoint(b.file)) << b.what;
+  }
+  EXPECT_TRUE(is_valid_checkpoint(dir / "valid.h5"));
+}
+
+TEST(Checkpoint, HashMismatchMessageGivesBothHashes) {
+  const ScratchFolder scratch("hash");
+  const fs::path& dir = scratch.path;
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(dir / "valid.h5", c);
+  Checkpoint changed = c;
+  changed.state.position[4] = std::nextafter(changed.state.position[4], 2.0);
+  // Replace the positions in a copy without touching the stored hash.
+  auto file = edited_copy(dir / "valid.h5", dir, "tampered.h5", [&](hid_t f) {
+    H5Ldelete(f, "/particles/body/position/value", H5P_DEFAULT);
+    h5::write_dataset(f, "/particles/body/position/value", changed.state.position, {1, 5, 3});
+  });
+  EXPECT_EQ(input_error_of(file), file.string() + ": state_hash mismatch: stored " + state_hash(c.state) +
+                                      ", computed " + state_hash(changed.state) + " (file modified or corrupt)");
+}
+
+TEST(Checkpoint, ReplacingAValidFileGoesThroughRenameNeverInPlace) {
+  const ScratchFolder scratch("replace");
+  const fs::path& dir = scratch.path;
+  const Checkpoint first = synthetic_checkpoint();
+  write_checkpoint(dir / "c.h5", first);
+  const std::string first_bytes = read_bytes(dir / "c.h5");
+  // A second name for the old inode: an in-place rewrite would change what it shows.
+  fs::create_hard_link(dir / "c.h5", dir / "old_inode.h5");
+  Checkpoint second = first;
+  second.state.step += 1;
+  second.state.time += second.state.dt;
+  write_checkpoint(dir / "c.h5", second);
+  EXPECT_EQ(read_bytes(dir / "old_inode.h5"), first_bytes);
+  EXPECT_EQ(read_checkpoint(dir / "c.h5").state.step, second.state.step);
+  EXPECT_TRUE(tmp_files_in(dir).empty());
+}
+
+TEST(Checkpoint, FailedWriteIntoMissingFolderLeavesNothing) {
+  const ScratchFolder scratch("missing_folder");
+  const fs::path& dir = scratch.path;
+  const fs::path target = dir / "no" / "such" / "folder" / "c.h5";
+  try {
+    write_checkpoint(target, synthetic_checkpoint());
+    ADD_FAILURE() << "write into a missing folder succeeded";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find(target.string()), std::string::npos) << err.what();
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Checkpoint, FailedWriteLeavesExistingFileUntouched) {
+  const ScratchFolder scratch("failed_write");
+  const fs::path& dir = scratch.path;
+  const Checkpoint first = synthetic_checkpoint();
+  write_checkpoint(dir / "c.h5", first);
+  const std::string before = read_bytes(dir / "c.h5");
+  const std::string sidecar_before = read_bytes(dir / "c.xdmf");
+  Checkpoint second = first;
+  second.state.step += 1;
+  // The write runs in a child process whose file-size limit is far below a checkpoint's size:
+  // every write(2) past it fails with EFBIG, as on a full disk.
+  EXPECT_EXIT(write_with_file_size_limit(dir / "c.h5", second, 4096), ::testing::ExitedWithCode(3), "");
+  EXPECT_EQ(read_bytes(dir / "c.h5"), before);
+  EXPECT_EQ(read_bytes(dir / "c.xdmf"), sidecar_before);
+  EXPECT_TRUE(tmp_files_in(dir).empty()) << tmp_files_in(dir).front();
+  EXPECT_TRUE(is_valid_checkpoint(dir / "c.h5"));
+  // Without write permission on the folder (not testable as root, who may write anyway).
+  if (geteuid() != 0) {
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    EXPECT_THROW(write_checkpoint(dir / "c.h5", second), InputError);
+    fs::permissions(dir, fs::perms::owner_all);
+    EXPECT_EQ(read_bytes(dir / "c.h5"), before);
+    EXPECT_TRUE(tmp_files_in(dir).empty());
+  }
+}
+
+TEST(Checkpoint, InconsistentCheckpointIsNotWritten) {
+  const ScratchFolder scratch("inconsistent");
+  const fs::path& dir = scratch.path;
+  Checkpoint c = synthetic_checkpoint();
+  c.state.springs.failed.pop_back();
+  EXPECT_THROW(write_checkpoint(dir / "c.h5", c), std::logic_error);
+  c = synthetic_checkpoint();
+  c.body.faces[1][2] = 5;
+  EXPECT_THROW(write_checkpoint(dir / "c.h5", c), std::logic_error);
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+TEST(Checkpoint, BuiltQuickBodyRoundTripsAndWritesReproducibly) {
+  const ScratchFolder scratch("built_body");
+  const fs::path& dir = scratch.path;
+  const Config config = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml");
+  Checkpoint c = build_stage(config);
+  c.config_toml = to_toml(config);
+  write_checkpoint(dir / "a.h5", c);
+  write_checkpoint(dir / "b.h5", c);
+  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  const Checkpoint back = read_checkpoint(dir / "a.h5");
+  expect_identical(c, back);
+  EXPECT_EQ(back.body.particle_count(), 1042u);
+  EXPECT_EQ(parse_config(back.config_toml, "stored").interior.radius, config.interior.radius);
+}

@@ -1,0 +1,99 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "model/config.hpp"
+#include "base/errors.hpp"
+
+using namespace tidalcrust;
+
+namespace {
+std::string workflow(const char* name) {
+  return std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/" + name;
+}
+std::string message_of(const std::string& text) {
+  try {
+    parse_config(text, "bad.toml");
+  } catch (const InputError& err) {
+    return err.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(Config, ShippedWorkflowsParse) {
+  auto t = load_config(workflow("paper-T.toml"));
+  EXPECT_EQ(t.workflow.name, "paper-T");
+  EXPECT_EQ(t.shell.level, 4);
+  EXPECT_DOUBLE_EQ(t.interior.min_separation, 0.10);
+  EXPECT_DOUBLE_EQ(t.interior.spring_distance, 0.23);
+  ASSERT_EQ(t.encounters.size(), 4u);
+  EXPECT_EQ(t.find_encounter("T1").failure_strain.value(), 0.002);
+  auto n = load_config(workflow("paper-N.toml"));
+  EXPECT_FALSE(n.shell.enabled);
+  auto q = load_config(workflow("quick.toml"));
+  EXPECT_LE(q.shell.level, 3);
+}
+
+TEST(Config, ResolvedTextRoundTrips) {
+  auto config = load_config(workflow("paper-T.toml"));
+  std::string text = to_toml(config);
+  Config again = parse_config(text, "resolved");
+  EXPECT_EQ(to_toml(again), text);
+  EXPECT_NE(text.find("dt = 0.002"), std::string::npos);
+  EXPECT_NE(text.find("failure_strain = 0.002"), std::string::npos);
+}
+
+TEST(Config, UnknownKeyNamesKeyAndFile) {
+  auto msg = message_of("[interior]\ncuont = 3\n");
+  EXPECT_NE(msg.find("bad.toml"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("interior.cuont"), std::string::npos) << msg;
+  EXPECT_NE(message_of("[nope]\nx = 1\n").find("unknown section 'nope'"), std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname='a'\nmass=1\n").find("unknown key 'mass'"), std::string::npos);
+}
+
+TEST(Config, MalformedTomlGivesLine) {
+  auto msg = message_of("[interior]\ncount = = 3\n");
+  EXPECT_NE(msg.find("bad.toml:2"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("malformed"), std::string::npos) << msg;
+}
+
+TEST(Config, OutOfRangeAndWrongType) {
+  EXPECT_NE(message_of("[integrator]\ndt = -1.0\n").find("integrator.dt"), std::string::npos);
+  EXPECT_NE(message_of("[shell]\nlevel = 2.5\n").find("'level' must be an integer"), std::string::npos);
+  EXPECT_NE(message_of("[interior]\nmin_separation = 0.5\nspring_distance = 0.3\n").find("min_separation"),
+            std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 0.5\n").find("outside the body"),
+            std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\nperturber_mass = nan\n").find("perturber_mass"),
+            std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname='a'\n[[encounters]]\nname='a'\n").find("twice"),
+            std::string::npos);
+}
+
+TEST(Config, OverridesApplyAndValidate) {
+  auto config = load_config(workflow("paper-T.toml"));
+  apply_override(config, "shell.failure_strain=0.002");
+  EXPECT_DOUBLE_EQ(config.shell.failure_strain, 0.002);
+  apply_override(config, "encounters.T5.pericenter=2.0");
+  EXPECT_DOUBLE_EQ(config.find_encounter("T5").pericenter, 2.0);
+  EXPECT_THROW(apply_override(config, "shell.nope=1"), InputError);
+  apply_override(config, "integrator.dt=0");
+  EXPECT_THROW(validate(config, "--set"), InputError);
+  apply_override(config, "integrator.dt=0.002");
+  apply_override(config, "encounters.T5.pericenter=0.9");
+  EXPECT_THROW(validate(config, "--set"), InputError);
+  EXPECT_THROW(config.find_encounter("T7"), InputError);
+}
+
+TEST(Config, ScalingTheTimeStepKeepsSchedulesInTime) {
+  auto config = load_config(workflow("paper-T.toml"));
+  scale_time_step(config, 0.5);
+  EXPECT_DOUBLE_EQ(config.integrator.dt, 0.001);
+  EXPECT_EQ(config.encounter.fail_interval, 6);  // t_fail stays 3 x 0.002 = 0.006 t_grav
+  EXPECT_EQ(config.encounter.sample_interval, 20);
+  scale_time_step(config, 4.0);  // dt 0.004: 1.5 steps rounds to 2, never below 1
+  EXPECT_EQ(config.encounter.fail_interval, 2);
+  scale_time_step(config, 10.0);
+  EXPECT_EQ(config.encounter.fail_interval, 1);
+}

@@ -1,0 +1,434 @@
+// The encounter stage on the quick body (workflows/quick.toml): set-up on the two-body orbit,
+// closest approach, crust failures, resume and thread independence (bitwise), conservation,
+// snapshots, second passes and bad input.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "stages/build_stage.hpp"
+#include "io/checkpoint_file.hpp"
+#include "model/config.hpp"
+#include "physics/conservation.hpp"
+#include "model/encounter_snapshot_steps.hpp"
+#include "io/snapshot_files.hpp"
+#include "stages/encounter_stage.hpp"
+#include "base/errors.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "physics/orbital_frame.hpp"
+#include "model/recorded_encounter.hpp"
+#include "stages/relax_stage.hpp"
+#include "io/state_hash.hpp"
+#include "stages/stretch_stage.hpp"
+#include "support/synthetic_checkpoint.hpp"
+#include "physics/two_body_orbit.hpp"
+
+namespace tidalcrust {
+namespace {
+
+namespace fs = std::filesystem;
+
+Config quick_config() { return load_config(fs::path(TIDALCRUST_SOURCE_DIR) / "workflows" / "quick.toml"); }
+
+StepLoopOptions quiet() {
+  StepLoopOptions options;
+  options.quiet = true;
+  return options;
+}
+
+/// The quick body built, stretched and relaxed (without the stability probe), once.
+const Checkpoint& quick_parent() {
+  static const Checkpoint parent = [] {
+    Config config = quick_config();
+    config.relax.stability_probe = false;
+    Checkpoint c = begin_relax(stretch_stage(build_stage(config), config), config);
+    EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
+    return c;
+  }();
+  return parent;
+}
+
+/// One scratch folder per test binary process, removed at exit.
+fs::path scratch(const std::string& name) {
+  static const test_support::ScratchFolder root("encounter");
+  const fs::path dir = root.path / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// The quick "strong" encounter (the T5 orbit: M2 = 0.5, q = 1.84, V_q = 1.6) run straight through on 2 threads,
+/// with its snapshot files, once per test binary.
+struct StrongRun {
+  Config config;
+  EncounterSpec spec;
+  Checkpoint begun;
+  Checkpoint done;
+  fs::path output;
+};
+
+const StrongRun& strong_run() {
+  static const StrongRun run = [] {
+    StrongRun r;
+    r.config = quick_config();
+    r.spec = r.config.find_encounter("strong");
+    r.begun = begin_encounter(quick_parent(), r.config, r.spec);
+    r.done = r.begun;
+    r.output = scratch("straight") / "strong.h5";
+    omp_set_num_threads(2);
+    EXPECT_EQ(run_encounter(r.done, r.config, quiet(), r.output), LoopOutcome::finished);
+    return r;
+  }();
+  return run;
+}
+
+std::size_t count_failed(const State& state) {
+  return static_cast<std::size_t>(std::count(state.springs.failed.begin(), state.springs.failed.end(), 1));
+}
+
+void expect_same_failures(const std::vector<FailureEvent>& a, const std::vector<FailureEvent>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].step, b[i].step) << "event " << i;
+    EXPECT_EQ(a[i].spring, b[i].spring) << "event " << i;
+    EXPECT_EQ(a[i].time, b[i].time) << "event " << i;
+    EXPECT_EQ(a[i].strain, b[i].strain) << "event " << i;
+    EXPECT_EQ(a[i].position, b[i].position) << "event " << i;
+  }
+}
+
+void expect_same_timeseries(const std::vector<TimeseriesSample>& a, const std::vector<TimeseriesSample>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].time, b[i].time) << "sample " << i;
+    EXPECT_EQ(a[i].failed, b[i].failed) << "sample " << i;
+    EXPECT_EQ(a[i].kinetic_energy, b[i].kinetic_energy) << "sample " << i;
+    EXPECT_EQ(a[i].momentum, b[i].momentum) << "sample " << i;
+    EXPECT_EQ(a[i].angular_momentum, b[i].angular_momentum) << "sample " << i;
+    EXPECT_EQ(a[i].perturber_offset, b[i].perturber_offset) << "sample " << i;
+  }
+}
+
+Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
+  const StrongRun& r = strong_run();
+  const Checkpoint& parent = quick_parent();
+  const Checkpoint& c = r.begun;
+
+  EXPECT_EQ(c.stage.stage, "encounter");
+  EXPECT_FALSE(c.stage.complete);
+  EXPECT_EQ(c.stage.parent_hash, state_hash(parent.state));
+  EXPECT_EQ(c.stage.labels.at("encounter"), "strong");
+  EXPECT_EQ(c.config_toml, to_toml(r.config));
+  EXPECT_EQ(c.state.position, parent.state.position);
+  EXPECT_EQ(c.state.velocity, parent.state.velocity);
+  EXPECT_EQ(c.state.springs.rest_length, parent.state.springs.rest_length);
+  EXPECT_EQ(c.state.springs.stiffness, parent.state.springs.stiffness);
+  EXPECT_EQ(c.state.step, parent.state.step);
+  EXPECT_EQ(c.state.time, parent.state.time);
+  EXPECT_EQ(c.state.dt, r.config.integrator.dt);
+  for (double gamma : c.state.springs.damping) ASSERT_EQ(gamma, r.config.encounter.damping);
+
+  // Perturber on the incoming branch at start_distance from the body's centre of mass, with
+  // the two-body relative velocity; the orbit's pericenter lies along +y.
+  const TwoBodyOrbit orbit = perturber_orbit(r.spec.perturber_mass, r.spec.pericenter, r.spec.pericenter_speed);
+  const EncounterStart start = encounter_start(orbit, r.config.encounter.start_distance);
+  const Vec3 rel = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  const Vec3 vrel = vec(c.state.perturber.velocity) - body_center_of_mass_velocity(c.body, c.state);
+  ASSERT_TRUE(c.state.perturber.present);
+  EXPECT_EQ(c.state.perturber.mass, r.spec.perturber_mass);
+  EXPECT_NEAR(rel.norm(), r.config.encounter.start_distance, 1e-12);
+  EXPECT_LT((rel - start.relative.position).norm(), 1e-12);
+  EXPECT_LT((vrel - start.relative.velocity).norm(), 1e-12);
+  EXPECT_GT(rel.x(), 0);  // comes in from +x
+  EXPECT_NEAR(rel.z(), 0, 1e-12);
+
+  // Schedule in steps.
+  const double t_peri = start.time_to_pericenter;
+  const double t_after = orbit.time_to_pericenter(r.config.encounter.end_distance);
+  EXPECT_EQ(c.stage.start_step, parent.state.step);
+  EXPECT_EQ(c.stage.end_step, c.stage.start_step + steps_for_duration(t_peri + t_after, c.state.dt));
+  EXPECT_EQ(c.stage.scalars.at("pericenter_step"),
+            static_cast<double>(c.stage.start_step + steps_for_duration(t_peri, c.state.dt)));
+  const RecordedEncounter recorded = recorded_encounter(c, "begun");
+  EXPECT_EQ(recorded.name, "strong");
+  EXPECT_EQ(recorded.perturber_mass, r.spec.perturber_mass);
+  EXPECT_EQ(recorded.pericenter, r.spec.pericenter);
+  EXPECT_EQ(recorded.pericenter_speed, r.spec.pericenter_speed);
+  EXPECT_EQ(recorded.pericenter_time, parent.state.time + t_peri);
+  EXPECT_NEAR(recorded.min_distance, r.config.encounter.start_distance, 1e-12);
+  EXPECT_EQ(c.stage.scalars.at("failure_strain"), r.config.shell.failure_strain);
+  EXPECT_EQ(c.stage.scalars.at("failed_stiffness_factor"), r.config.shell.failed_stiffness_factor);
+  EXPECT_EQ(c.stage.scalars.at("fail_interval"), static_cast<double>(r.config.encounter.fail_interval));
+
+  // Snapshots: ascending, inside (start, end], at pericenter and at the end.
+  const auto snaps = snapshot_steps(c.stage);
+  ASSERT_GE(snaps.size(), 2u);
+  EXPECT_TRUE(std::is_sorted(snaps.begin(), snaps.end()));
+  EXPECT_GT(snaps.front(), c.stage.start_step);
+  EXPECT_EQ(snaps.back(), c.stage.end_step);
+  EXPECT_TRUE(std::binary_search(snaps.begin(), snaps.end(),
+                                 static_cast<std::int64_t>(c.stage.scalars.at("pericenter_step"))));
+
+  // Fresh observables: no failures yet, one sample of the starting state.
+  EXPECT_TRUE(c.observables.failures.empty());
+  ASSERT_EQ(c.observables.timeseries.size(), 1u);
+  const Conservation totals = measure_conservation(c.body, c.state);
+  EXPECT_EQ(c.observables.timeseries[0].time, c.state.time);
+  EXPECT_EQ(c.observables.timeseries[0].momentum, totals.momentum);
+  EXPECT_EQ(c.observables.timeseries[0].angular_momentum, totals.angular_momentum);
+  const Vec3 offset = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  EXPECT_EQ(c.observables.timeseries[0].perturber_offset, (std::array<double, 3>{offset.x(), offset.y(), offset.z()}));
+}
+
+TEST(EncounterStage, PerturberReachesPericenterAtQWithSpeedVq) {
+  const StrongRun& r = strong_run();
+  const auto& s = r.done.stage.scalars;
+  const double q = r.spec.pericenter, vq = r.spec.pericenter_speed;
+  EXPECT_NEAR(s.at("perturber_min_distance"), q, 0.01 * q);
+  EXPECT_NEAR(s.at("perturber_speed_at_min"), vq, 0.01 * vq);
+  // ... at the time of the analytic pericenter (within 0.02 t_grav: 5 steps at dt = 0.004).
+  EXPECT_NEAR(s.at("time_of_min"), s.at("pericenter_time"), 0.02);
+  EXPECT_TRUE(r.done.stage.complete);
+  EXPECT_EQ(r.done.state.step, r.done.stage.end_step);
+  // It ends back at end_distance (same orbit, within the same 1%).
+  const double end = (vec(r.done.state.perturber.position) - body_center_of_mass(r.done.body, r.done.state)).norm();
+  EXPECT_NEAR(end, r.config.encounter.end_distance, 0.01 * r.config.encounter.end_distance);
+}
+
+TEST(EncounterStage, SampledPerturberOffsetsTraceTheOrbitAroundTheCentreOfMass) {
+  const StrongRun& r = strong_run();
+  const Checkpoint& c = r.done;
+  const auto& series = c.observables.timeseries;
+  ASSERT_GT(series.size(), 10u);
+  const Vec3 last = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  EXPECT_EQ(series.back().perturber_offset, (std::array<double, 3>{last.x(), last.y(), last.z()}));
+  // The closest sampled offset is no closer than the closest approach measured every step, and
+  // misses it by at most the chord sag over half a sample interval, (V_q h / 2)^2 / (2 q).
+  std::size_t nearest = 0;
+  for (std::size_t i = 0; i < series.size(); ++i)
+    if (vec(series[i].perturber_offset).norm() < vec(series[nearest].perturber_offset).norm()) nearest = i;
+  const double q = r.spec.pericenter, vq = r.spec.pericenter_speed;
+  const double h = static_cast<double>(r.config.encounter.sample_interval) * c.state.dt;
+  const double closest_sampled = vec(series[nearest].perturber_offset).norm();
+  const double min_distance = c.stage.scalars.at("perturber_min_distance");
+  EXPECT_GE(closest_sampled, min_distance);
+  EXPECT_LE(closest_sampled - min_distance, 1.01 * (vq * h / 2) * (vq * h / 2) / (2 * q) + 1e-12);
+  // Pericenter on +y, moving along -x, in the xy plane.
+  ASSERT_GT(nearest, 0u);
+  ASSERT_LT(nearest + 1, series.size());
+  const Vec3 at = vec(series[nearest].perturber_offset);
+  EXPECT_NEAR(at.x(), 0, vq * h);
+  EXPECT_NEAR(at.y(), q, 0.01 * q);
+  const Vec3 along = vec(series[nearest + 1].perturber_offset) - vec(series[nearest - 1].perturber_offset);
+  EXPECT_LT(along.x(), 0);
+  EXPECT_LT(std::abs(along.y()), 0.1 * std::abs(along.x()));
+  // Out of the plane only by what the lumpy body's pull adds (about 0.002 R here).
+  for (const auto& sample : series) EXPECT_LT(std::abs(sample.perturber_offset[2]), 0.01 * q);
+}
+
+TEST(EncounterStage, StrongEncounterCracksTheCrustFacingThePerturber) {
+  const StrongRun& r = strong_run();
+  const Checkpoint& c = r.done;
+  const auto& failures = c.observables.failures;
+  const std::size_t shell_springs = c.body.count_springs(SpringKind::shell);
+  std::printf("[ info ] quick strong: %zu failures (%.1f%% of %zu shell springs)\n", failures.size(),
+              100.0 * static_cast<double>(failures.size()) / static_cast<double>(shell_springs), shell_springs);
+  EXPECT_GE(failures.size(), 30u);
+  EXPECT_LT(failures.size(), shell_springs / 2);
+  // Mostly on the hemisphere facing pericenter (+y from the centre of mass; about 0.9 here).
+  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  EXPECT_EQ(fractures.count(), failures.size());
+  EXPECT_GT(fractures.hemisphere_fraction, 0.75);
+  EXPECT_EQ(count_failed(c.state), failures.size() + count_failed(quick_parent().state));
+
+  const double eps = c.stage.scalars.at("failure_strain");
+  const double factor = c.stage.scalars.at("failed_stiffness_factor");
+  const std::int64_t interval = r.config.encounter.fail_interval;
+  std::set<std::int32_t> springs;
+  for (std::size_t i = 0; i < failures.size(); ++i) {
+    const FailureEvent& e = failures[i];
+    const auto n = static_cast<std::size_t>(e.spring);
+    EXPECT_EQ(c.body.spring_kind[n], static_cast<std::uint8_t>(SpringKind::shell));
+    EXPECT_EQ((e.step - c.stage.start_step) % interval, 0) << "failure " << i << " off the t_fail schedule";
+    if (i > 0) {
+      EXPECT_GT(e.step, failures[i - 1].step) << "at most one failure per check";
+    }
+    EXPECT_GT(e.strain, eps);
+    EXPECT_TRUE(springs.insert(e.spring).second) << "spring " << e.spring << " failed twice";
+    EXPECT_EQ(c.state.springs.failed[n], 1);
+    EXPECT_EQ(c.state.springs.stiffness[n], quick_parent().state.springs.stiffness[n] * factor);
+  }
+}
+
+TEST(EncounterStage, MomentumAndAngularMomentumAreConserved) {
+  const StrongRun& r = strong_run();
+  const auto& series = r.done.observables.timeseries;
+  const double m2 = r.spec.perturber_mass;
+  const double momentum_scale = m2 * r.spec.pericenter_speed;
+  const double angular_scale = m2 * r.spec.pericenter * r.spec.pericenter_speed;
+  ASSERT_GT(series.size(), 10u);
+  double dp = 0, dl = 0;
+  for (const auto& sample : series) {
+    dp = std::max(dp, (vec(sample.momentum) - vec(series.front().momentum)).norm());
+    dl = std::max(dl, (vec(sample.angular_momentum) - vec(series.front().angular_momentum)).norm());
+  }
+  std::printf("[ info ] max |dP|/(M2 V_q) = %.2e, max |dL|/(M2 q V_q) = %.2e\n", dp / momentum_scale,
+              dl / angular_scale);
+  EXPECT_LT(dp / momentum_scale, 1e-12);
+  EXPECT_LT(dl / angular_scale, 1e-12);
+
+  // Sampled every sample_interval steps from the start, and at the end.
+  const double dt = r.done.state.dt;
+  const std::int64_t interval = r.config.encounter.sample_interval;
+  for (std::size_t i = 0; i + 1 < series.size(); ++i)
+    EXPECT_EQ(series[i].time, r.begun.state.time + static_cast<double>(i * interval) * dt);
+  EXPECT_EQ(series.back().time, r.done.state.time);
+  EXPECT_EQ(static_cast<std::size_t>(series.back().failed), count_failed(r.done.state));
+}
+
+TEST(EncounterStage, SnapshotFilesAtTheirSteps) {
+  const StrongRun& r = strong_run();
+  // analyze finds exactly the planned snapshots beside the output.
+  std::vector<std::int64_t> found;
+  for (const SnapshotFile& f : find_snapshots(r.output)) found.push_back(f.step);
+  EXPECT_EQ(found, snapshot_steps(r.done.stage));
+  for (std::int64_t step : snapshot_steps(r.done.stage)) {
+    const fs::path file = snapshot_path(r.output, step);
+    EXPECT_EQ(file.filename().string(), "strong.snap-" + std::to_string(step) + ".h5");
+    ASSERT_TRUE(fs::exists(file)) << file;
+    const Checkpoint snap = read_checkpoint(file);
+    EXPECT_EQ(snap.stage.stage, "encounter");
+    EXPECT_EQ(snap.state.step, step);
+    EXPECT_EQ(snap.stage.labels.at("encounter"), "strong");
+    if (step == r.done.stage.end_step) {
+      EXPECT_EQ(state_hash(snap.state), state_hash(r.done.state));
+    }
+  }
+}
+
+TEST(EncounterStage, ResumedRunIsBitIdentical) {
+  const StrongRun& r = strong_run();
+  const std::int64_t start = r.begun.stage.start_step;
+  const std::int64_t interval = r.config.encounter.fail_interval;
+  // Stops: inside a t_fail interval, right at a failure step, and past pericenter.
+  const auto& failures = r.done.observables.failures;
+  ASSERT_GT(failures.size(), 5u);
+  const std::int64_t inside = start + 10 * interval + 1;
+  const std::int64_t at_failure = failures[failures.size() / 2].step;
+  const std::int64_t late = (at_failure + r.done.stage.end_step) / 2 + 1;
+  ASSERT_NE((inside - start) % interval, 0);
+  ASSERT_LT(inside, at_failure);
+  ASSERT_LT(at_failure, late);
+
+  const fs::path dir = scratch("resume");
+  const fs::path output = dir / "strong.h5";
+  Checkpoint c = begin_encounter(quick_parent(), r.config, r.spec);
+  for (std::int64_t stop : {inside, at_failure, late}) {
+    StepLoopOptions options = quiet();
+    options.stop_after_step = stop;
+    options.mid_checkpoint = dir / "strong.mid.h5";
+    ASSERT_EQ(run_encounter(c, r.config, options, output), LoopOutcome::interrupted);
+    ASSERT_EQ(c.state.step, stop);
+    c = read_checkpoint(options.mid_checkpoint);  // continue only from what the file holds
+    EXPECT_EQ(c.state.step, stop);
+    EXPECT_FALSE(c.stage.complete);
+  }
+  ASSERT_EQ(run_encounter(c, r.config, quiet(), output), LoopOutcome::finished);
+
+  EXPECT_EQ(state_hash(c.state), state_hash(r.done.state));
+  expect_same_failures(c.observables.failures, r.done.observables.failures);
+  expect_same_timeseries(c.observables.timeseries, r.done.observables.timeseries);
+  EXPECT_EQ(c.stage.scalars, r.done.stage.scalars);
+  for (std::int64_t step : snapshot_steps(c.stage))
+    EXPECT_EQ(state_hash(read_checkpoint(snapshot_path(output, step)).state),
+              state_hash(read_checkpoint(snapshot_path(r.output, step)).state))
+        << "snapshot at step " << step;
+}
+
+TEST(EncounterStage, SameBitsOnOneAndTwoThreads) {
+  const StrongRun& r = strong_run();  // 2 threads
+  Checkpoint c = begin_encounter(quick_parent(), r.config, r.spec);
+  omp_set_num_threads(1);
+  const LoopOutcome outcome = run_encounter(c, r.config, quiet());
+  omp_set_num_threads(2);
+  ASSERT_EQ(outcome, LoopOutcome::finished);
+  EXPECT_EQ(state_hash(c.state), state_hash(r.done.state));
+  expect_same_failures(c.observables.failures, r.done.observables.failures);
+}
+
+TEST(EncounterStage, SecondPassReplacesThePerturberAndKeepsTheCracks) {
+  const StrongRun& r = strong_run();
+  EncounterSpec again = r.spec;
+  again.name = "again";
+  again.perturber_mass = 0.25;
+  again.failure_strain = 0.002;
+  const Checkpoint c = begin_encounter(r.done, r.config, again);
+  EXPECT_EQ(c.stage.parent_hash, state_hash(r.done.state));
+  EXPECT_EQ(c.stage.start_step, r.done.stage.end_step);
+  EXPECT_EQ(c.state.springs.failed, r.done.state.springs.failed);
+  EXPECT_EQ(c.state.springs.stiffness, r.done.state.springs.stiffness);
+  EXPECT_EQ(c.state.position, r.done.state.position);
+  EXPECT_EQ(c.state.perturber.mass, 0.25);
+  EXPECT_EQ(c.stage.scalars.at("failure_strain"), 0.002);
+  EXPECT_EQ(c.stage.labels.at("encounter"), "again");
+  const Vec3 rel = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
+  EXPECT_NEAR(rel.norm(), r.config.encounter.start_distance, 1e-12);
+  EXPECT_TRUE(c.observables.failures.empty());
+  ASSERT_EQ(c.observables.timeseries.size(), 1u);
+  EXPECT_EQ(static_cast<std::size_t>(c.observables.timeseries[0].failed), count_failed(r.done.state));
+}
+
+/// The InputError message of begin_encounter, or "" if it did not throw.
+std::string rejection(const Checkpoint& parent, const Config& config, const EncounterSpec& spec) {
+  try {
+    begin_encounter(parent, config, spec);
+  } catch (const InputError& err) {
+    return err.what();
+  }
+  return "";
+}
+
+TEST(EncounterStage, BadParametersAreRejected) {
+  const Config config = quick_config();
+  const EncounterSpec good = config.find_encounter("strong");
+  const Checkpoint& parent = quick_parent();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto with = [&](auto change) {
+    EncounterSpec spec = good;
+    change(spec);
+    return rejection(parent, config, spec);
+  };
+  EXPECT_NE(with([](EncounterSpec& s) { s.perturber_mass = -1; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([&](EncounterSpec& s) { s.perturber_mass = nan; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 0.8; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter = nan; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter_speed = nan; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter_speed = 0; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](EncounterSpec& s) { s.failure_strain = -0.001; }).find("failure_strain"), std::string::npos);
+  // Pericenter beyond the start distance: the orbit cannot start there.
+  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 3.5; }), "");
+  EXPECT_EQ(with([](EncounterSpec&) {}), "");
+
+  // Wrong parent: not relax/encounter, or unfinished.
+  Checkpoint stretched = parent;
+  stretched.stage.stage = "stretch";
+  EXPECT_NE(rejection(stretched, config, good).find("'stretch'"), std::string::npos);
+  Checkpoint unfinished = parent;
+  unfinished.stage.complete = false;
+  EXPECT_NE(rejection(unfinished, config, good).find("unfinished"), std::string::npos);
+
+  // run_encounter refuses anything but an encounter checkpoint.
+  Checkpoint relaxed = parent;
+  EXPECT_THROW(run_encounter(relaxed, config, quiet()), InputError);
+}
+
+}  // namespace
+}  // namespace tidalcrust

@@ -1,0 +1,271 @@
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "stages/build_stage.hpp"
+#include "physics/crust_relaxation.hpp"
+#include "base/errors.hpp"
+#include "forces/hinge_geometry.hpp"
+#include "stages/relax_stage.hpp"
+#include "physics/shell_failure.hpp"
+#include "stages/stability_probe.hpp"
+#include "io/state_hash.hpp"
+#include "io/stop_signal.hpp"
+#include "stages/stretch_stage.hpp"
+#include "support/synthetic_checkpoint.hpp"
+#include "io/checkpoint_file.hpp"
+
+using namespace tidalcrust;
+
+namespace {
+
+Config quick_config() { return load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml"); }
+
+/// quick.toml with a short relaxation: 60 steps (creep phase 40, settle 20), rest lengths
+/// every 10 steps, hinges every 25, probe 20 steps.
+Config short_config() {
+  Config c = quick_config();
+  c.relax.duration = 60 * c.integrator.dt;
+  c.relax.settle_duration = 20 * c.integrator.dt;
+  c.relax.hinge_reset_interval = 25;
+  c.relax.probe_duration = 20 * c.integrator.dt;
+  return c;
+}
+
+const Checkpoint& quick_built() {
+  static const Checkpoint built = build_stage(quick_config());
+  return built;
+}
+
+const Checkpoint& quick_stretched() {
+  static const Checkpoint stretched = stretch_stage(quick_built(), quick_config());
+  return stretched;
+}
+
+StepLoopOptions quiet() {
+  StepLoopOptions o;
+  o.quiet = true;
+  return o;
+}
+
+/// The quick body relaxed for the full T = 3 with the stability probe: computed once.
+const Checkpoint& quick_relaxed() {
+  static const Checkpoint relaxed = [] {
+    const Config config = quick_config();
+    Checkpoint c = begin_relax(quick_stretched(), config);
+    EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
+    return c;
+  }();
+  return relaxed;
+}
+
+Checkpoint run_straight(const Config& config) {
+  Checkpoint c = begin_relax(quick_stretched(), config);
+  EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
+  return c;
+}
+
+std::string relax_error(const Checkpoint& c, const Config& config) {
+  try {
+    Checkpoint copy = c;
+    if (c.stage.stage == "relax")
+      run_relax(copy, config, quiet());
+    else
+      begin_relax(c, config);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(RelaxStage, BeginSetsDampingStepsAndBookkeeping) {
+  const Config config = quick_config();
+  const Checkpoint& s = quick_stretched();
+  const Checkpoint c = begin_relax(s, config);
+  EXPECT_EQ(c.stage.stage, "relax");
+  EXPECT_FALSE(c.stage.complete);
+  EXPECT_EQ(c.stage.start_step, s.state.step);
+  EXPECT_EQ(c.stage.end_step, s.state.step + 750);  // T = 3 at dt = 0.004
+  EXPECT_EQ(c.stage.parent_hash, state_hash(s.state));
+  EXPECT_EQ(c.config_toml, to_toml(config));
+  EXPECT_EQ(c.state.time, s.state.time);
+  EXPECT_EQ(c.state.dt, config.integrator.dt);
+  for (double g : c.state.springs.damping) ASSERT_EQ(g, config.relax.damping);
+  EXPECT_EQ(c.state.springs.rest_length, s.state.springs.rest_length);
+  ASSERT_EQ(c.observables.timeseries.size(), 1u);
+}
+
+TEST(RelaxStage, RelaxedQuickBodyIsAtRestWithAnUnstressedCrust) {
+  const Config config = quick_config();
+  const Checkpoint& r = quick_relaxed();
+  const auto& sc = r.stage.scalars;
+  EXPECT_TRUE(r.stage.complete);
+  EXPECT_EQ(r.state.step, r.stage.end_step);
+  EXPECT_LT(sc.at("internal_kinetic_energy"), 1e-6);
+  EXPECT_LT(std::abs(sc.at("mean_shell_radius") - 1.0), 0.01);
+  EXPECT_DOUBLE_EQ(sc.at("max_shell_strain"), max_abs_shell_strain(r.body, r.state));
+  // What is left in the crust is the load it must carry at rest (the oblique cross springs'
+  // pull): below the weakest crust of the workflows (T1: eps_S = 0.002).
+  EXPECT_LT(sc.at("max_shell_tension"), 0.002);
+  EXPECT_LT(sc.at("max_shell_strain"), config.shell.failure_strain);
+  // Interior and cross springs keep their stretched rest lengths; nothing failed.
+  const Checkpoint& s = quick_stretched();
+  for (std::size_t n = 0; n < r.body.spring_count(); ++n) {
+    if (r.body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::shell)) {
+      ASSERT_EQ(r.state.springs.rest_length[n], s.state.springs.rest_length[n]) << n;
+    }
+    ASSERT_EQ(r.state.springs.stiffness[n], s.state.springs.stiffness[n]) << n;
+    ASSERT_EQ(r.state.springs.failed[n], 0) << n;
+  }
+}
+
+TEST(RelaxStage, StabilityProbeFindsNoFailuresAtEitherCrustStrength) {
+  const Config config = quick_config();
+  const auto& sc = quick_relaxed().stage.scalars;
+  EXPECT_EQ(sc.at("stability_failure_strain"), config.shell.failure_strain);
+  EXPECT_EQ(sc.at("stability_failures"), 0);
+  EXPECT_EQ(sc.at("stability_failures_at_0.002"), 0);
+  EXPECT_LT(sc.at("stability_max_shell_strain"), 0.002);
+  EXPECT_GE(sc.at("stability_max_shell_strain"), sc.at("max_shell_tension"));
+}
+
+TEST(RelaxStage, ConservesMomentumAndAngularMomentum) {
+  const Config config = quick_config();
+  const Checkpoint& r = quick_relaxed();
+  const auto& ts = r.observables.timeseries;
+  // One sample at the start, then every sample_interval steps.
+  ASSERT_EQ(ts.size(), static_cast<std::size_t>(750 / config.encounter.sample_interval + 1));
+  EXPECT_EQ(ts.back().time, r.state.time);
+  for (const auto& sample : ts)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(sample.momentum[k], ts.front().momentum[k], 1e-12);
+      EXPECT_NEAR(sample.angular_momentum[k], ts.front().angular_momentum[k], 1e-12);
+    }
+  double peak = 0;
+  for (const auto& sample : ts) peak = std::max(peak, sample.kinetic_energy);
+  EXPECT_GT(peak, 1e-7);  // the body did move, and settled
+  EXPECT_LT(ts.back().kinetic_energy, 1e-6);
+}
+
+TEST(RelaxStage, CrustIsExactlyStressFreeWhenTheCreepPhaseEnds) {
+  const Config config = short_config();
+  Checkpoint c = begin_relax(quick_stretched(), config);
+  const auto creep_end = static_cast<std::int64_t>(c.stage.scalars.at("creep_end_step"));
+  EXPECT_EQ(creep_end, c.stage.start_step + 40);
+  StepLoopOptions o = quiet();
+  o.stop_after_step = creep_end;
+  ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted);
+  EXPECT_EQ(max_abs_shell_strain(c.body, c.state), 0.0);
+  for (std::size_t h = 0; h < c.body.hinge_count(); ++h) {
+    const auto& v = c.body.hinges[h];
+    auto at = [&](int k) { return vec3_at(c.state.position, static_cast<std::size_t>(v[k])); };
+    ASSERT_EQ(c.state.hinges.rest_angle[h], hinge_angle(at(0), at(1), at(2), at(3)));
+  }
+}
+
+TEST(RelaxStage, ShellRestLengthsCreepOnTheirStepSchedule) {
+  const Config config = short_config();
+  Checkpoint c = begin_relax(quick_stretched(), config);
+  StepLoopOptions o = quiet();
+  o.stop_after_step = c.stage.start_step + 19;  // just before the second update
+  run_relax(c, config, o);
+  const std::vector<double> before = c.state.springs.rest_length;
+  Checkpoint next = c;
+  o.stop_after_step = c.stage.start_step + 20;
+  run_relax(next, config, o);
+  // Step 20: shell rest lengths moved by rest_length_rate of the difference, others kept.
+  State expected = next.state;
+  expected.springs.rest_length = before;
+  creep_shell_rest_lengths(next.body, expected, config.relax.rest_length_rate);
+  EXPECT_EQ(next.state.springs.rest_length, expected.springs.rest_length);
+  std::size_t moved = 0;
+  for (std::size_t n = 0; n < c.body.spring_count(); ++n) moved += before[n] != next.state.springs.rest_length[n];
+  EXPECT_EQ(moved, c.body.count_springs(SpringKind::shell));
+}
+
+TEST(RelaxStage, SameBitsWithOneAndTwoThreads) {
+  const Config config = short_config();
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const Checkpoint one = run_straight(config);
+  omp_set_num_threads(2);
+  const Checkpoint two = run_straight(config);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(state_hash(one.state), state_hash(two.state));
+  EXPECT_EQ(one.stage.scalars, two.stage.scalars);
+}
+
+TEST(RelaxStage, ResumedRunEqualsStraightRunBitForBit) {
+  const Config config = short_config();
+  const Checkpoint straight = run_straight(config);
+  const test_support::ScratchFolder scratch("relax_resume");
+  const auto& dir = scratch.path;
+  // k = 25: inside a rest-length interval (updates at 20 and 30) and a hinge interval.
+  for (std::int64_t k : {25, 45, 65}) {  // creep phase, settle phase, stability probe
+    Checkpoint c = begin_relax(quick_stretched(), config);
+    StepLoopOptions o = quiet();
+    o.mid_checkpoint = dir / "mid.h5";
+    o.stop_after_step = c.stage.start_step + k;
+    ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted) << k;
+    Checkpoint resumed = read_checkpoint(o.mid_checkpoint);
+    EXPECT_FALSE(resumed.stage.complete);
+    o.stop_after_step = -1;
+    ASSERT_EQ(run_relax(resumed, config, o), LoopOutcome::finished) << k;
+    EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state)) << k;
+    EXPECT_EQ(resumed.stage.scalars, straight.stage.scalars) << k;
+    EXPECT_EQ(resumed.observables.timeseries.size(), straight.observables.timeseries.size()) << k;
+    EXPECT_TRUE(resumed.stage.complete);
+  }
+}
+
+TEST(RelaxStage, ProbeCountsFailuresOfAPrestressedCrustWithoutChangingTheBody) {
+  const Config config = short_config();
+  Checkpoint c = quick_relaxed();
+  // Shorten every fourth shell spring's rest length by 1 %: a crust in tension.
+  for (std::size_t n = 0; n < c.body.spring_count(); n += 4)
+    if (c.body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell)) c.state.springs.rest_length[n] *= 0.99;
+  const std::string hash = state_hash(c.state);
+  const ProbeResult p = run_stability_probe(c, config, 0.003, quiet());
+  EXPECT_FALSE(p.interrupted);
+  EXPECT_EQ(p.failures, 20 / config.encounter.fail_interval);  // one per check: every check fails one
+  EXPECT_GT(p.max_shell_tension, 0.009);
+  EXPECT_EQ(state_hash(c.state), hash);
+}
+
+TEST(RelaxStage, RefusesWrongStagesAndChangedConfiguration) {
+  const Config config = quick_config();
+  std::string msg = relax_error(quick_built(), config);
+  EXPECT_NE(msg.find("'stretch'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'build'"), std::string::npos) << msg;
+  Checkpoint incomplete = quick_stretched();
+  incomplete.stage.complete = false;
+  msg = relax_error(incomplete, config);
+  EXPECT_NE(msg.find("incomplete"), std::string::npos) << msg;
+  // run_relax on anything but a relax checkpoint.
+  Checkpoint stretched = quick_stretched();
+  msg = "";
+  try {
+    run_relax(stretched, config, quiet());
+  } catch (const InputError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("'relax'"), std::string::npos) << msg;
+  // Resuming with another configuration.
+  Checkpoint c = begin_relax(quick_stretched(), config);
+  Config other = config;
+  other.relax.damping = 10;
+  msg = relax_error(c, other);
+  EXPECT_NE(msg.find("configuration differs"), std::string::npos) << msg;
+  // The stretch stage refuses a relaxed body.
+  msg = "";
+  try {
+    stretch_stage(quick_relaxed(), config);
+  } catch (const InputError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("'build'"), std::string::npos) << msg;
+}

@@ -1,0 +1,114 @@
+#pragma once
+// Damaged copies of a valid checkpoint, one per failure mode that read_checkpoint must reject,
+// each with the text its error message must contain (besides the file name).
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_handles.hpp"
+#include "io/checkpoint_file.hpp"
+
+namespace tidalcrust::test_support {
+
+struct BadCheckpoint {
+  std::string what;              ///< the kind of damage
+  std::filesystem::path file;
+  std::string expected_message;  ///< substring of the InputError message (dataset or cause)
+};
+
+inline std::string read_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+inline void write_bytes(const std::filesystem::path& file, const std::string& bytes) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+/// Opens a copy of `valid` named `name` in `folder` read-write and lets `edit` change it.
+template <typename Edit>
+std::filesystem::path edited_copy(const std::filesystem::path& valid, const std::filesystem::path& folder,
+                                  const std::string& name, Edit edit) {
+  auto file = folder / name;
+  std::filesystem::copy_file(valid, file, std::filesystem::copy_options::overwrite_existing);
+  h5::silence_errors();
+  h5::File f(h5::check(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open for editing"));
+  edit(f.get());
+  f.close("close after editing");
+  return file;
+}
+
+/// Makes every damaged variant of the valid checkpoint `valid` inside `folder`.
+inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::path& valid,
+                                                       const std::filesystem::path& folder) {
+  std::vector<BadCheckpoint> bad;
+  const std::string bytes = read_bytes(valid);
+
+  bad.push_back({"missing file", folder / "missing.h5", "no such checkpoint file"});
+
+  write_bytes(folder / "empty.h5", "");
+  bad.push_back({"empty file", folder / "empty.h5", "not an HDF5 file or truncated"});
+
+  write_bytes(folder / "truncated.h5", bytes.substr(0, bytes.size() / 2));
+  bad.push_back({"truncated file", folder / "truncated.h5", "not an HDF5 file or truncated"});
+
+  write_bytes(folder / "text.h5", "this is not HDF5\n");
+  bad.push_back({"text file", folder / "text.h5", "not an HDF5 file or truncated"});
+
+  haddr_t position_offset;
+  {
+    h5::File f = h5::open_file_readonly(valid);
+    position_offset = h5::dataset_offset(f.get(), "/particles/body/position/value");
+  }
+  std::string flipped = bytes;
+  flipped.at(position_offset + 8 * 4 + 3) ^= 0x10;  // inside position value 4 (particle 1, y)
+  write_bytes(folder / "flipped.h5", flipped);
+  bad.push_back({"flipped byte in positions", folder / "flipped.h5", "state_hash mismatch"});
+
+  bad.push_back({"missing dataset",
+                 edited_copy(valid, folder, "missing_dataset.h5",
+                             [](hid_t f) { H5Ldelete(f, "/checkpoint/springs/failed", H5P_DEFAULT); }),
+                 "/checkpoint/springs/failed"});
+
+  bad.push_back({"wrong format_version", edited_copy(valid, folder, "version.h5", [](hid_t f) {
+                   h5::Group g = h5::open_group(f, "/checkpoint");
+                   H5Adelete(g.get(), "format_version");
+                   h5::write_attribute<std::int64_t>(g.get(), "format_version", 99);
+                 }),
+                 "/checkpoint@format_version is 99"});
+
+  bad.push_back({"wrong stage", edited_copy(valid, folder, "stage.h5", [](hid_t f) {
+                   h5::Group g = h5::open_group(f, "/checkpoint");
+                   H5Adelete(g.get(), "stage");
+                   h5::write_string_attribute(g.get(), "stage", "analyse");
+                 }),
+                 "/checkpoint@stage is 'analyse'"});
+
+  bad.push_back({"wrong shape", edited_copy(valid, folder, "shape.h5", [](hid_t f) {
+                   H5Ldelete(f, "/particles/body/mass", H5P_DEFAULT);
+                   std::vector<double> mass = {0.5, 0.5};
+                   h5::write_dataset(f, "/particles/body/mass", mass, {2});
+                 }),
+                 "/particles/body/mass has shape [2]"});
+
+  bad.push_back({"wrong type", edited_copy(valid, folder, "type.h5", [](hid_t f) {
+                   H5Ldelete(f, "/checkpoint/hinges/rest_angle", H5P_DEFAULT);
+                   std::vector<std::int32_t> angles = {0, 0, 0};
+                   h5::write_dataset(f, "/checkpoint/hinges/rest_angle", angles, {3});
+                 }),
+                 "/checkpoint/hinges/rest_angle"});
+
+  bad.push_back({"index out of range", edited_copy(valid, folder, "index.h5", [](hid_t f) {
+                   auto springs = h5::read_dataset<std::int32_t>(f, "/connectivity/springs");
+                   springs.values[5] = 99;
+                   H5Ldelete(f, "/connectivity/springs", H5P_DEFAULT);
+                   h5::write_dataset(f, "/connectivity/springs", springs.values, springs.dims);
+                 }),
+                 "/connectivity/springs row 2: particle index 99"});
+  return bad;
+}
+
+}  // namespace tidalcrust::test_support

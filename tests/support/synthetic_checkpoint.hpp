@@ -1,0 +1,79 @@
+#pragma once
+// A small hand-made checkpoint that exercises every field of the file layout: a tetrahedron of
+// shell nodes around one interior node, springs of all three kinds (one failed), hinges, faces,
+// a perturber, failure events, timeseries rows, scalars and labels.
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "model/checkpoint.hpp"
+
+namespace tidalcrust::test_support {
+
+inline Checkpoint synthetic_checkpoint() {
+  Checkpoint c;
+  c.stage.stage = "encounter";
+  c.stage.complete = false;
+  c.stage.start_step = 1000;
+  c.stage.end_step = 2500;
+  c.stage.parent_hash = "0123456789abcdef0123456789abcdef";
+  c.stage.scalars = {{"perturber_min_distance", 1.84}, {"perturber_speed_at_min", 1.6}, {"fail_phase", 2.0}};
+  c.stage.labels = {{"encounter", "T5"}, {"note", "synthetic \"test\" & <body>"}};
+  c.config_toml = "[workflow]\nname = \"synthetic\"\nseed = 7\n\n[interior]\nradius = 0.5\n"
+                  "min_separation = 0.1\nspring_distance = 0.3\n";
+
+  Body& b = c.body;
+  // Node 0: interior at the centre; nodes 1-4: shell tetrahedron.
+  b.mass = {0.5, 0.125, 0.125, 0.125, 0.125};
+  b.species = {0, 1, 1, 1, 1};
+  b.springs = {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {2, 3}, {3, 1}, {1, 4}, {2, 4}, {3, 4}};
+  b.spring_kind = {2, 2, 2, 2, 1, 1, 1, 1, 1, 1};
+  b.hinges = {{3, 4, 1, 2}, {1, 4, 2, 3}, {2, 4, 3, 1}};
+  b.faces = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
+  b.softening = 1e-3;
+
+  State& s = c.state;
+  s.time = 2.25;
+  s.step = 1125;
+  s.dt = 0.002;
+  const double r = 1.0 / std::sqrt(3.0);
+  s.position = {0.0, 0.0, 0.0, r, r, r, r, -r, -r, -r, r, -r, -r, -r, r};
+  for (std::size_t i = 0; i < s.position.size(); ++i) s.velocity.push_back(0.01 * std::sin(1.0 + i));
+  for (std::size_t k = 0; k < b.springs.size(); ++k) {
+    s.springs.rest_length.push_back(0.9 + 0.01 * k);
+    s.springs.stiffness.push_back(k < 4 ? 0.005 : 0.06);
+    s.springs.damping.push_back(0.01);
+    s.springs.failed.push_back(k == 5 ? 1 : 0);
+  }
+  s.hinges.rest_angle = {0.1, -0.2, 0.3};
+  s.hinges.stiffness = {0.0075, 0.0075, 0.0075};
+  s.perturber = {true, 0.5, {3.0, -1.0, 0.0}, {-1.2, 0.4, 0.0}};
+
+  c.observables.failures = {{2.1, 1050, 5, 0.0031, {0.0, 0.1, -0.9}}};
+  c.observables.timeseries = {{2.0, 0, 0.01, {1e-17, 0, 0}, {0, 0, 0.2}, {3.25, -1.5, 1e-16}},
+                              {2.2, 1, 0.011, {0, -1e-17, 0}, {0, 1e-9, 0.2}, {2.9, -0.7, -3e-17}}};
+  return c;
+}
+
+/// A fresh empty folder for one test's files, unique per process (test binaries of several
+/// worktrees may run at once), removed when the test ends.
+struct ScratchFolder {
+  std::filesystem::path path;
+  explicit ScratchFolder(const std::string& name)
+      : path(std::filesystem::temp_directory_path() /
+             ("tidalcrust_test_" + name + "_" + std::to_string(::getpid()))) {
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
+}  // namespace tidalcrust::test_support
