@@ -29,12 +29,6 @@ static_assert(sizeof(std::array<std::int32_t, 4>) == 4 * sizeof(std::int32_t));
 static_assert(sizeof(std::array<std::int32_t, 3>) == 3 * sizeof(std::int32_t));
 static_assert(sizeof(std::array<double, 3>) == 3 * sizeof(double));
 
-constexpr const char* stage_names[] = {"build", "stretch", "relax", "encounter"};
-
-bool is_stage_name(const std::string& stage) {
-  return std::any_of(std::begin(stage_names), std::end(stage_names), [&](const char* s) { return stage == s; });
-}
-
 /// Paths shared by writer, reader and the XDMF sidecar.
 namespace path {
 constexpr const char* position = "/particles/body/position/value";
@@ -48,12 +42,12 @@ constexpr const char* hinges = "/connectivity/hinges";
 constexpr const char* faces = "/connectivity/faces";
 constexpr const char* rest_length = "/checkpoint/springs/rest_length";
 constexpr const char* spring_stiffness = "/checkpoint/springs/stiffness";
-constexpr const char* spring_damping = "/checkpoint/springs/damping";
 constexpr const char* spring_kind = "/checkpoint/springs/kind";
 constexpr const char* spring_failed = "/checkpoint/springs/failed";
 constexpr const char* rest_angle = "/checkpoint/hinges/rest_angle";
 constexpr const char* hinge_stiffness = "/checkpoint/hinges/stiffness";
 constexpr const char* perturber = "/checkpoint/perturber";
+constexpr const char* record = "/checkpoint/record";
 constexpr const char* config = "/parameters/config";
 }  // namespace path
 
@@ -78,12 +72,10 @@ std::string consistency_problem(const Checkpoint& c) {
                        size_problem(path::spring_kind, c.body.spring_kind.size(), ns),
                        size_problem(path::rest_length, c.state.springs.rest_length.size(), ns),
                        size_problem(path::spring_stiffness, c.state.springs.stiffness.size(), ns),
-                       size_problem(path::spring_damping, c.state.springs.damping.size(), ns),
                        size_problem(path::spring_failed, c.state.springs.failed.size(), ns),
                        size_problem(path::rest_angle, c.state.hinges.rest_angle.size(), nh),
-                       size_problem(path::hinge_stiffness, c.state.hinges.stiffness.size(), nh)})
+                       size_problem(path::hinge_stiffness, c.body.hinge_stiffness.size(), nh)})
     if (!problem.empty()) return problem;
-  if (!is_stage_name(c.stage.stage)) return fmt::format("/checkpoint@stage '{}' is not a stage name", c.stage.stage);
   auto index_problem = [n](const char* dataset, std::size_t row, std::int32_t index) {
     return (index < 0 || static_cast<std::size_t>(index) >= n)
                ? fmt::format("{} row {}: particle index {} out of range [0, {})", dataset, row, index, n)
@@ -164,19 +156,70 @@ void write_connectivity(hid_t root, const Body& b) {
   h5::write_dataset(group.get(), "faces", flat(b.faces), {b.faces.size(), 3});
 }
 
+/// Writes one stage-record field under /checkpoint/record: numbers and flags as attributes,
+/// lists as 1-D datasets (visit_fields in model/stage_records.hpp lists the fields).
+struct RecordWriter {
+  hid_t group;
+  void operator()(const char* name, double v, const char*, const char*) const {
+    h5::write_attribute<double>(group, name, v);
+  }
+  void operator()(const char* name, std::int64_t v, const char*, const char*) const {
+    h5::write_attribute<std::int64_t>(group, name, v);
+  }
+  void operator()(const char* name, bool v, const char*, const char*) const {
+    h5::write_attribute<std::uint8_t>(group, name, v ? 1 : 0);
+  }
+  void operator()(const char* name, const std::string& v, const char*, const char*) const {
+    h5::write_string_attribute(group, name, v);
+  }
+  template <typename T>
+  void operator()(const char* name, const std::vector<T>& v, const char*, const char*) const {
+    h5::write_dataset(group, name, v, {v.size()});
+  }
+};
+
+/// Reads one stage-record field back; a missing or mistyped field is an h5::Error naming it.
+struct RecordReader {
+  hid_t group;
+  void operator()(const char* name, double& v, const char*, const char*) const {
+    v = h5::read_attribute<double>(group, name);
+  }
+  void operator()(const char* name, std::int64_t& v, const char*, const char*) const {
+    v = h5::read_attribute<std::int64_t>(group, name);
+  }
+  void operator()(const char* name, bool& v, const char*, const char*) const {
+    const auto flag = h5::read_attribute<std::uint8_t>(group, name);
+    if (flag > 1) throw h5::Error(fmt::format("attribute {}@{} is {}, expected 0 or 1", path::record, name, +flag));
+    v = flag == 1;
+  }
+  void operator()(const char* name, std::string& v, const char*, const char*) const {
+    v = h5::read_string_attribute(group, name);
+  }
+  template <typename T>
+  void operator()(const char* name, std::vector<T>& v, const char*, const char*) const {
+    auto array = h5::read_dataset<T>(group, name);
+    if (array.dims.size() != 1)
+      throw h5::Error(fmt::format("dataset {}/{} has shape {}, expected [k]", path::record, name, shape_text(array.dims)));
+    v = std::move(array.values);
+  }
+};
+
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
   h5::Group group = h5::create_group(root, "checkpoint");
   hid_t g = group.get();
   h5::write_attribute<std::int64_t>(g, "format_version", checkpoint_format_version);
-  h5::write_string_attribute(g, "stage", c.stage.stage);
+  h5::write_string_attribute(g, "stage", c.stage.name());
   h5::write_attribute<std::uint8_t>(g, "complete", c.stage.complete ? 1 : 0);
   h5::write_attribute<double>(g, "time", c.state.time);
   h5::write_attribute<std::int64_t>(g, "step", c.state.step);
-  h5::write_attribute<double>(g, "dt", c.state.dt);
+  h5::write_attribute<double>(g, "dt", c.stage.clock.dt);
+  h5::write_attribute<double>(g, "start_time", c.stage.clock.start_time);
+  h5::write_attribute<std::int64_t>(g, "start_step", c.stage.clock.start_step);
+  h5::write_attribute<std::int64_t>(g, "end_step", c.stage.end_step);
   h5::write_string_attribute(g, "state_hash", hash);
   h5::write_string_attribute(g, "parent_hash", c.stage.parent_hash);
-  h5::write_attribute<std::int64_t>(g, "start_step", c.stage.start_step);
-  h5::write_attribute<std::int64_t>(g, "end_step", c.stage.end_step);
+  h5::write_string_attribute(g, "fingerprint", c.stage.fingerprint);
+  h5::write_string_attribute(g, "diagnostic", c.stage.diagnostic);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
   const hsize_t ns = c.body.springs.size(), nh = c.body.hinges.size();
@@ -184,14 +227,13 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
     h5::Group springs = h5::create_group(g, "springs");
     h5::write_dataset(springs.get(), "rest_length", c.state.springs.rest_length, {ns});
     h5::write_dataset(springs.get(), "stiffness", c.state.springs.stiffness, {ns});
-    h5::write_dataset(springs.get(), "damping", c.state.springs.damping, {ns});
     h5::write_dataset(springs.get(), "kind", c.body.spring_kind, {ns});
     h5::write_dataset(springs.get(), "failed", c.state.springs.failed, {ns});
   }
   {
     h5::Group hinges = h5::create_group(g, "hinges");
     h5::write_dataset(hinges.get(), "rest_angle", c.state.hinges.rest_angle, {nh});
-    h5::write_dataset(hinges.get(), "stiffness", c.state.hinges.stiffness, {nh});
+    h5::write_dataset(hinges.get(), "stiffness", c.body.hinge_stiffness, {nh});
   }
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
@@ -199,14 +241,8 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
     h5::write_dataset(perturber.get(), "position", c.state.perturber.position.data(), {3});
     h5::write_dataset(perturber.get(), "velocity", c.state.perturber.velocity.data(), {3});
   }
-  {
-    h5::Group scalars = h5::create_group(g, "scalars");
-    for (const auto& [name, value] : c.stage.scalars) h5::write_attribute<double>(scalars.get(), name, value);
-  }
-  {
-    h5::Group labels = h5::create_group(g, "labels");
-    for (const auto& [name, value] : c.stage.labels) h5::write_string_attribute(labels.get(), name, value);
-  }
+  h5::Group record = h5::create_group(g, "record");
+  std::visit([&](const auto& r) { visit_fields(r, RecordWriter{record.get()}); }, c.stage.record);
 }
 
 void write_parameters(hid_t root, const Checkpoint& c) {
@@ -328,7 +364,7 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
 
   std::string x = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
   x += fmt::format("    <Grid Name=\"{}\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
-                   xml_escape(c.stage.stage));
+                   xml_escape(c.stage.name()));
   x += fmt::format("      <Time Value=\"{}\"/>\n", c.state.time);
   if (n > 0) {
     x += "      <Grid Name=\"particles\" GridType=\"Uniform\">\n";
@@ -445,30 +481,25 @@ void read_stage_info(hid_t root, Checkpoint& c) {
   if (version != checkpoint_format_version)
     throw h5::Error(fmt::format("attribute /checkpoint@format_version is {}, this tidalcrust reads version {}",
                                 version, checkpoint_format_version));
-  c.stage.stage = h5::read_string_attribute(g.get(), "stage");
-  if (!is_stage_name(c.stage.stage))
-    throw h5::Error(fmt::format("attribute /checkpoint@stage is '{}', expected one of build, stretch, relax, encounter",
-                                c.stage.stage));
+  const std::string stage = h5::read_string_attribute(g.get(), "stage");
+  if (!make_stage_record(stage, c.stage.record))
+    throw h5::Error(
+        fmt::format("attribute /checkpoint@stage is '{}', expected one of build, stretch, relax, encounter", stage));
   const auto complete = h5::read_attribute<std::uint8_t>(g.get(), "complete");
   if (complete > 1) throw h5::Error(fmt::format("attribute /checkpoint@complete is {}, expected 0 or 1", +complete));
   c.stage.complete = complete == 1;
   c.state.time = h5::read_attribute<double>(g.get(), "time");
   c.state.step = h5::read_attribute<std::int64_t>(g.get(), "step");
-  c.state.dt = h5::read_attribute<double>(g.get(), "dt");
-  c.stage.parent_hash = h5::read_string_attribute(g.get(), "parent_hash");
-  c.stage.start_step = h5::read_attribute<std::int64_t>(g.get(), "start_step");
+  c.stage.clock.dt = h5::read_attribute<double>(g.get(), "dt");
+  c.stage.clock.start_time = h5::read_attribute<double>(g.get(), "start_time");
+  c.stage.clock.start_step = h5::read_attribute<std::int64_t>(g.get(), "start_step");
   c.stage.end_step = h5::read_attribute<std::int64_t>(g.get(), "end_step");
+  c.stage.parent_hash = h5::read_string_attribute(g.get(), "parent_hash");
+  c.stage.fingerprint = h5::read_string_attribute(g.get(), "fingerprint");
+  c.stage.diagnostic = h5::read_string_attribute(g.get(), "diagnostic");
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
-  {
-    h5::Group scalars = h5::open_group(g.get(), "scalars");
-    for (const auto& name : h5::attribute_names(scalars.get()))
-      c.stage.scalars[name] = h5::read_attribute<double>(scalars.get(), name);
-  }
-  {
-    h5::Group labels = h5::open_group(g.get(), "labels");
-    for (const auto& name : h5::attribute_names(labels.get()))
-      c.stage.labels[name] = h5::read_string_attribute(labels.get(), name);
-  }
+  h5::Group record = h5::open_group(g.get(), "record");
+  std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);
 }
 
 void read_body_and_state(hid_t root, Checkpoint& c) {
@@ -501,11 +532,10 @@ void read_body_and_state(hid_t root, Checkpoint& c) {
   const char* nh_from = "Nh from /connectivity/hinges";
   c.state.springs.rest_length = read_shaped<double>(root, path::rest_length, {ns}, ns_from);
   c.state.springs.stiffness = read_shaped<double>(root, path::spring_stiffness, {ns}, ns_from);
-  c.state.springs.damping = read_shaped<double>(root, path::spring_damping, {ns}, ns_from);
   c.body.spring_kind = read_shaped<std::uint8_t>(root, path::spring_kind, {ns}, ns_from);
   c.state.springs.failed = read_shaped<std::uint8_t>(root, path::spring_failed, {ns}, ns_from);
   c.state.hinges.rest_angle = read_shaped<double>(root, path::rest_angle, {nh}, nh_from);
-  c.state.hinges.stiffness = read_shaped<double>(root, path::hinge_stiffness, {nh}, nh_from);
+  c.body.hinge_stiffness = read_shaped<double>(root, path::hinge_stiffness, {nh}, nh_from);
 
   c.state.perturber = Perturber{};
   if (h5::exists(root, path::perturber)) {

@@ -11,7 +11,7 @@
 
 #include "io/checkpoint_file.hpp"
 #include "io/json_writer.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "support/synthetic_encounter.hpp"
 
 using namespace std::string_literals;

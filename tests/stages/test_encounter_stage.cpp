@@ -17,7 +17,7 @@
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
 #include "model/encounter_snapshot_steps.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "stages/encounter_stage.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_analysis.hpp"
@@ -67,7 +67,7 @@ fs::path scratch(const std::string& name) {
 /// with its snapshot files, once per test binary.
 struct StrongRun {
   Config config;
-  EncounterSpec spec;
+  Encounter spec;
   Checkpoint begun;
   Checkpoint done;
   fs::path output;
@@ -366,7 +366,7 @@ TEST(EncounterStage, SameBitsOnOneAndTwoThreads) {
 
 TEST(EncounterStage, SecondPassReplacesThePerturberAndKeepsTheCracks) {
   const StrongRun& r = strong_run();
-  EncounterSpec again = r.spec;
+  Encounter again = r.spec;
   again.name = "again";
   again.perturber_mass = 0.25;
   again.failure_strain = 0.002;
@@ -387,7 +387,7 @@ TEST(EncounterStage, SecondPassReplacesThePerturberAndKeepsTheCracks) {
 }
 
 /// The InputError message of begin_encounter, or "" if it did not throw.
-std::string rejection(const Checkpoint& parent, const Config& config, const EncounterSpec& spec) {
+std::string rejection(const Checkpoint& parent, const Config& config, const Encounter& spec) {
   try {
     begin_encounter(parent, config, spec);
   } catch (const InputError& err) {
@@ -398,24 +398,24 @@ std::string rejection(const Checkpoint& parent, const Config& config, const Enco
 
 TEST(EncounterStage, BadParametersAreRejected) {
   const Config config = quick_config();
-  const EncounterSpec good = config.find_encounter("strong");
+  const Encounter good = config.find_encounter("strong");
   const Checkpoint& parent = quick_parent();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto with = [&](auto change) {
-    EncounterSpec spec = good;
+    Encounter spec = good;
     change(spec);
     return rejection(parent, config, spec);
   };
-  EXPECT_NE(with([](EncounterSpec& s) { s.perturber_mass = -1; }).find("perturber_mass"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.perturber_mass = nan; }).find("perturber_mass"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 0.8; }).find("pericenter"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter = nan; }).find("pericenter"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter_speed = nan; }).find("pericenter_speed"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter_speed = 0; }).find("pericenter_speed"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.failure_strain = -0.001; }).find("failure_strain"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.perturber_mass = -1; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.perturber_mass = nan; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.pericenter = 0.8; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.pericenter = nan; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.pericenter_speed = nan; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.pericenter_speed = 0; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.failure_strain = -0.001; }).find("failure_strain"), std::string::npos);
   // Pericenter beyond the start distance: the orbit cannot start there.
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 3.5; }), "");
-  EXPECT_EQ(with([](EncounterSpec&) {}), "");
+  EXPECT_NE(with([](Encounter& s) { s.pericenter = 3.5; }), "");
+  EXPECT_EQ(with([](Encounter&) {}), "");
 
   // Wrong parent: not relax/encounter, or unfinished.
   Checkpoint stretched = parent;
