@@ -86,8 +86,9 @@ const char* stage_name_of() {
 template <typename R>
 const R& stage_record(const Checkpoint& checkpoint, std::string_view file) {
   if (const auto* r = std::get_if<R>(&checkpoint.stage.record)) return *r;
-  throw InputError(std::string(file) + ": stage is '" + checkpoint.stage.name() + "', expected a '" +
-                   stage_name_of<R>() + "' checkpoint");
+  const std::string wanted = stage_name_of<R>();
+  throw InputError(std::string(file) + ": stage is '" + checkpoint.stage.name() + "', expected " +
+                   (wanted == "encounter" ? "an '" : "a '") + wanted + "' checkpoint");
 }
 
 }  // namespace tidalcrust

@@ -13,6 +13,7 @@ struct Encounter {
   double pericenter = 1.84;              ///< q, R (distance of closest approach on the two-body orbit)
   double pericenter_speed = 1.60;        ///< V_q, sqrt(GM/R) (relative speed at pericenter)
   std::optional<double> failure_strain;  ///< eps_S for this encounter (T1 uses 0.002); none: shell.failure_strain
+  bool operator==(const Encounter&) const = default;
 };
 
 }  // namespace tidalcrust

@@ -25,6 +25,7 @@ struct StepClock {
   std::int64_t start_step = 0;   ///< global step at which the stage started
   double dt = 0;                 ///< time step, t_grav
   double time_at(std::int64_t step) const { return start_time + static_cast<double>(step - start_step) * dt; }
+  bool operator==(const StepClock&) const = default;
 };
 
 /// Stage 1 (build): how the random interior came out.
@@ -32,6 +33,7 @@ struct BuildRecord {
   std::int64_t interior_nodes = 0;   ///< nodes placed (the target is interior.count)
   std::int64_t interior_trials = 0;  ///< trial points of the random sequential addition
   double min_spacing = 0;            ///< smallest distance between two particles, R
+  bool operator==(const BuildRecord&) const = default;
 };
 
 /// Stage 2 (stretch and strengthen, paper section 2.3).
@@ -45,6 +47,7 @@ struct StretchRecord {
   double uniform_pressure = 0;              ///< P of the even compression the multipliers are scaled to, e_g
   double strengthening_radius = 0;          ///< radius inside which springs are strengthened, R
   double dt_max = 0;                        ///< stability bound of eq. 13 on the stretched body, t_grav
+  bool operator==(const StretchRecord&) const = default;
 };
 
 /// Stage 3 (damped relaxation, paper section 2.8) and its stability probe.
@@ -62,6 +65,7 @@ struct RelaxRecord {
   double probe_max_shell_strain = 0; ///< largest tensile shell strain during the main probe
   std::vector<double> probe_other_strains;          ///< [k] further eps_S checked (T1's, overrides)
   std::vector<std::int64_t> probe_other_failures;   ///< [k] failures at each of them
+  bool operator==(const RelaxRecord&) const = default;
 };
 
 /// Stage 4 (encounter, paper sections 2.6, 2.9): the perturber, the failure rule and schedules
@@ -82,6 +86,7 @@ struct EncounterRecord {
   double speed_at_min = 0;            ///< relative speed there, sqrt(GM/R)
   double time_of_min = 0;             ///< t_grav
   std::int64_t step_of_min = 0;
+  bool operator==(const EncounterRecord&) const = default;
 };
 
 /// Lists every field of a record (const or not) as visit(name, value, unit, meaning). Names are

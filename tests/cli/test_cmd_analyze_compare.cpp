@@ -73,7 +73,7 @@ class AnalyzeCompareCli : public ::testing::Test {
     write_checkpoint(dir / "other.h5", other);
 
     Checkpoint relaxed = c;
-    relaxed.stage.stage = "relax";
+    relaxed.stage.record = RelaxRecord{};
     write_checkpoint(dir / "relaxed.h5", relaxed);
     write_checkpoint(dir / "coarse.h5", tidalcrust::testing::synthetic_encounter(1));
   }
