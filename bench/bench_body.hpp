@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "stages/build_stage.hpp"
+#include "forces/force_field.hpp"
 #include "model/config.hpp"
 #include "base/random.hpp"
 
@@ -19,11 +20,17 @@ inline const Checkpoint& paper_t_body() {
     Random random(42);
     for (double& x : c.state.position) x += random.uniform(-1e-3, 1e-3);
     for (double& v : c.state.velocity) v += random.uniform(-1e-2, 1e-2);
-    for (double& g : c.state.springs.damping) g = config.encounter.damping;
     c.state.perturber = {true, 0.5, {config.encounter.start_distance, 0.0, 0.0}, {0.0, 1.0, 0.0}};
     return c;
   }();
   return body;
+}
+
+/// Every force path switched on: the T-series encounter damping (1/t_grav).
+inline ForceOptions damped() {
+  ForceOptions options;
+  options.damping = 0.01;
+  return options;
 }
 
 }  // namespace tidalcrust::bench

@@ -20,7 +20,7 @@ void set_counters(benchmark::State& run, std::size_t items) {
 
 static void BM_Springs(benchmark::State& run) {
   const Checkpoint& c = paper_t_body();
-  ForceField forces(c.body);
+  ForceField forces(c.body, bench::damped());
   for (auto _ : run) {
     forces.compute_spring_forces(c.state.position.data(), c.state.velocity.data(), c.state.springs);
     benchmark::DoNotOptimize(forces.spring_forces().data());
@@ -31,7 +31,7 @@ BENCHMARK(BM_Springs)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 static void BM_Hinges(benchmark::State& run) {
   const Checkpoint& c = paper_t_body();
-  ForceField forces(c.body);
+  ForceField forces(c.body, bench::damped());
   for (auto _ : run) {
     benchmark::DoNotOptimize(forces.compute_hinge_forces(c.state.position.data(), c.state.hinges));
   }
@@ -54,9 +54,9 @@ BENCHMARK(BM_Gravity)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 static void BM_FullStep(benchmark::State& run) {
   const Checkpoint& c = paper_t_body();
-  ForceField forces(c.body);
+  ForceField forces(c.body, bench::damped());
   State state = c.state;
-  Leapfrog leapfrog(forces, StepClock::starting_at(state));
+  Leapfrog leapfrog(forces, c.stage.clock);
   for (auto _ : run) leapfrog.step(state);
   set_counters(run, c.body.particle_count());
 }
@@ -64,8 +64,8 @@ BENCHMARK(BM_FullStep)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 static void BM_TextbookStep(benchmark::State& run) {
   const Checkpoint& c = paper_t_body();
-  TextbookStep textbook(c.body, c.state);
-  for (auto _ : run) textbook.step(c.state.springs, c.state.hinges, c.state.dt);
+  TextbookStep textbook(c.body, c.state, bench::damped());
+  for (auto _ : run) textbook.step(c.state.springs, c.state.hinges, c.stage.clock.dt);
   set_counters(run, c.body.particle_count());
 }
 BENCHMARK(BM_TextbookStep)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -17,8 +17,7 @@
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "io/json_writer.hpp"
-#include "model/recorded_encounter.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "io/state_hash.hpp"
 #include "io/checkpoint_file.hpp"
 
@@ -44,8 +43,8 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
     if (found.step >= final_checkpoint.state.step) continue;
     try {
       auto c = std::make_unique<Checkpoint>(read_checkpoint(found.file));
-      if (c->stage.stage != "encounter")
-        throw InputError(fmt::format("{}: stage '{}' is not an encounter", found.file.string(), c->stage.stage));
+      if (!std::holds_alternative<EncounterRecord>(c->stage.record))
+        throw InputError(fmt::format("{}: stage '{}' is not an encounter", found.file.string(), c->stage.name()));
       require_same_body(final_checkpoint.body, c->body, from.string(), found.file.string());
       snapshots.push_back({std::move(c), found.file});
     } catch (const InputError& err) {
@@ -74,7 +73,7 @@ void write_text_file(const fs::path& file, const std::string& text) {
 }  // namespace
 
 std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& checkpoint, const fs::path& out) {
-  const RecordedEncounter encounter = recorded_encounter(checkpoint, from.string());
+  const EncounterRecord& record = stage_record<EncounterRecord>(checkpoint, from.string());
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out)) throw InputError(fmt::format("{}: cannot create output folder: {}", out.string(), ec.message()));
@@ -93,43 +92,43 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   for (const auto* c : candidates) candidate_times.push_back(c->state.time);
   std::vector<const Checkpoint*> panels;
   std::vector<std::size_t> panel_indices =
-      choose_snapshot_panels(candidate_times, encounter.pericenter_time, max_snapshot_panels);
+      choose_snapshot_panels(candidate_times, record.pericenter_time, max_snapshot_panels);
   std::vector<double> panel_times;
   for (const std::size_t i : panel_indices) panels.push_back(candidates[i]), panel_times.push_back(candidate_times[i]);
 
-  const std::string name = encounter.name.empty() ? from.stem().string() : encounter.name;
-  const std::string parameters = fmt::format("M\u2082 = {:g}, q = {:g} R, V_q = {:g}", encounter.perturber_mass,
-                                             encounter.pericenter, encounter.pericenter_speed);
-  const double t_after = checkpoint.state.time - encounter.pericenter_time;
+  const std::string name = record.encounter.name.empty() ? from.stem().string() : record.encounter.name;
+  const std::string parameters = fmt::format("M\u2082 = {:g}, q = {:g} R, V_q = {:g}", record.encounter.perturber_mass,
+                                             record.encounter.pericenter, record.encounter.pericenter_speed);
+  const double t_after = checkpoint.state.time - record.pericenter_time;
   std::vector<fs::path> figures;
   auto add = [&](const FigureFiles& files) { figures.insert(figures.end(), files.begin(), files.end()); };
   add(write_fracture_map(fractures, out / "fracture_map",
                          fmt::format("{}: {} failed shell springs ({}), t \u2212 t_peri = {:+.2f}", name, fractures.count(),
                                      percent(fractures.fraction_shell), t_after)));
-  add(write_hemisphere_views(panels, encounter.pericenter_time, out / "hemisphere",
+  add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
                              fmt::format("{} ({}): hemisphere facing pericenter", name, parameters)));
-  add(write_orbit_plot(checkpoint, encounter, panel_times, out / "orbit", fmt::format("{}: perturber orbit ({})", name, parameters)));
-  add(write_failure_history(checkpoint, encounter.pericenter_time, out / "failures",
+  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", fmt::format("{}: perturber orbit ({})", name, parameters)));
+  add(write_failure_history(checkpoint, record.pericenter_time, out / "failures",
                             fmt::format("{}: shell spring failures", name)));
-  add(write_conservation_plot(checkpoint, encounter.pericenter_time, out / "conservation",
+  add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
                               fmt::format("{}: conservation diagnostics", name)));
 
   JsonWriter json;
   json.begin_object()
       .value("source", from.string())
-      .value("stage", checkpoint.stage.stage)
+      .value("stage", checkpoint.stage.name())
       .value("complete", checkpoint.stage.complete)
       .value("time", checkpoint.state.time)
       .value("step", checkpoint.state.step)
       .value("state_hash", state_hash(checkpoint.state));
   json.begin_object("encounter")
-      .value("name", encounter.name)
-      .value("perturber_mass", encounter.perturber_mass)
-      .value("pericenter", encounter.pericenter)
-      .value("pericenter_speed", encounter.pericenter_speed)
-      .value("pericenter_time", encounter.pericenter_time)
-      .value("min_distance", encounter.min_distance)
-      .value("speed_at_min", encounter.speed_at_min)
+      .value("name", record.encounter.name)
+      .value("perturber_mass", record.encounter.perturber_mass)
+      .value("pericenter", record.encounter.pericenter)
+      .value("pericenter_speed", record.encounter.pericenter_speed)
+      .value("pericenter_time", record.pericenter_time)
+      .value("min_distance", record.min_distance)
+      .value("speed_at_min", record.speed_at_min)
       .end_object();
   add_failure_summary(json, fractures);
   json.value("shell_springs", fractures.shell_springs);

@@ -71,7 +71,6 @@ Checkpoint build_stage(const Config& config) {
 
   state.time = 0;
   state.step = 0;
-  state.dt = config.integrator.dt;
   state.position.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i) set_vec3(state.position, i, positions[i]);
   state.velocity.assign(3 * n, 0.0);
@@ -93,7 +92,6 @@ Checkpoint build_stage(const Config& config) {
           config.cross.distance));
   }
   const std::size_t n_springs = body.spring_count();
-  state.springs.damping.assign(n_springs, 0.0);
   state.springs.failed.assign(n_springs, 0);
 
   for (const auto& f : shell.faces) body.faces.push_back({shell_offset + f[0], shell_offset + f[1], shell_offset + f[2]});
@@ -105,20 +103,17 @@ Checkpoint build_stage(const Config& config) {
                                                   positions[static_cast<std::size_t>(hinge[1])],
                                                   positions[static_cast<std::size_t>(hinge[2])],
                                                   positions[static_cast<std::size_t>(hinge[3])]));
-    state.hinges.stiffness.push_back(config.shell.bending_constant);
+    body.hinge_stiffness.push_back(config.shell.bending_constant);
   }
 
   const double min_spacing = min_pair_distance(positions);
   body.softening = config.integrator.softening_fraction * min_spacing;
 
-  out.stage.stage = "build";
+  out.stage.record = BuildRecord{static_cast<std::int64_t>(n_interior), interior.trials, min_spacing};
   out.stage.complete = true;
-  out.stage.start_step = 0;
+  // The body is built for this time step; instant stages keep it, stepping stages set their own.
+  out.stage.clock = StepClock{0.0, 0, config.integrator.dt};
   out.stage.end_step = 0;
-  out.stage.parent_hash = "";
-  out.stage.scalars["interior_nodes_reached"] = static_cast<double>(n_interior);
-  out.stage.scalars["interior_trials"] = static_cast<double>(interior.trials);
-  out.stage.scalars["min_spacing"] = min_spacing;
   out.config_toml = to_toml(config);
   return out;
 }

@@ -4,13 +4,13 @@
 
 namespace tidalcrust {
 
-Checkpoint child_checkpoint(const Checkpoint& parent, const std::string& stage, const Config& config) {
+Checkpoint child_checkpoint(const Checkpoint& parent, StageRecord record, const Config& config) {
   Checkpoint child;
   child.body = parent.body;
   child.state = parent.state;
-  child.stage.stage = stage;
+  child.stage.record = std::move(record);
   child.stage.complete = false;
-  child.stage.start_step = parent.state.step;
+  child.stage.clock = StepClock{parent.state.time, parent.state.step, config.integrator.dt};
   child.stage.end_step = parent.state.step;
   child.stage.parent_hash = state_hash(parent.state);
   child.config_toml = to_toml(config);

@@ -1,15 +1,29 @@
 #pragma once
 // How every stage after build starts: from its parent checkpoint, with fresh bookkeeping.
-#include <string>
+#include <fmt/format.h>
 
+#include <initializer_list>
+
+#include "base/errors.hpp"
 #include "model/checkpoint.hpp"
 #include "model/config.hpp"
 
 namespace tidalcrust {
 
-/// The parent's body and state with a fresh StageInfo (stage name, parent_hash =
-/// state_hash(parent.state), start_step = end_step = the parent's step, not complete), the
-/// stage's resolved configuration and empty observables (they belong to the new stage).
-Checkpoint child_checkpoint(const Checkpoint& parent, const std::string& stage, const Config& config);
+/// The parent's body and state with a fresh StageInfo: the given (empty) record, which names the
+/// stage; parent_hash = state_hash(parent.state); the clock starting at the parent's step and time
+/// with the configured time step (integrator.dt); end_step = the parent's step; not complete. The
+/// stage's resolved configuration, and empty observables (they belong to the new stage).
+Checkpoint child_checkpoint(const Checkpoint& parent, StageRecord record, const Config& config);
+
+/// InputError unless `parent` is a complete checkpoint of stage Parent, for the named stage.
+template <typename Parent>
+void require_complete(const Checkpoint& parent, const char* stage) {
+  if (!std::holds_alternative<Parent>(parent.stage.record) || !parent.stage.complete)
+    throw InputError(fmt::format("{} needs a complete '{}' checkpoint, got {} '{}' checkpoint", stage,
+                                 stage_name_of<Parent>(),
+                                 parent.stage.complete ? "a complete" : "an incomplete (mid-stage)",
+                                 parent.stage.name()));
+}
 
 }  // namespace tidalcrust

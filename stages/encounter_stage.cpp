@@ -10,13 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "model/encounter_snapshot_steps.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
 #include "integrate/leapfrog.hpp"
 #include "physics/orbital_frame.hpp"
-#include "model/recorded_encounter.hpp"
 #include "physics/shell_failure.hpp"
 #include "io/state_hash.hpp"
 #include "physics/timeseries_sample.hpp"
@@ -26,38 +24,8 @@
 namespace tidalcrust {
 namespace {
 
-// StageInfo scalars of an encounter beyond the shared encounter_keys (recorded_encounter.hpp)
-// and the snapshot steps (snapshot_files.hpp). The run reads its schedule from here, not
-// from the configuration, so a resumed run follows exactly the schedule it began with.
-namespace key {
-constexpr const char* failure_strain = "failure_strain";                    ///< eps_S used
-constexpr const char* failed_stiffness_factor = "failed_stiffness_factor";  ///< F_Sk used
-constexpr const char* fail_interval = "fail_interval";                      ///< t_fail, steps
-constexpr const char* sample_interval = "sample_interval";                  ///< steps
-constexpr const char* start_time = "start_time";                            ///< t_grav at start_step
-constexpr const char* start_distance = "start_distance";                    ///< R
-constexpr const char* end_distance = "end_distance";                        ///< R
-constexpr const char* pericenter_step = "pericenter_step";                  ///< step nearest the analytic pericenter
-constexpr const char* time_of_min = "time_of_min";                          ///< t_grav of the closest approach
-constexpr const char* step_of_min = "step_of_min";
-}  // namespace key
-
 /// Hemisphere-view snapshots one t_grav before and after pericenter (paper Figure 6).
 constexpr double snapshot_offset = 1.0;  // t_grav
-
-double required_scalar(const Checkpoint& checkpoint, const char* name) {
-  const auto it = checkpoint.stage.scalars.find(name);
-  if (it == checkpoint.stage.scalars.end())
-    throw InputError(fmt::format("encounter checkpoint: scalar '{}' (/checkpoint/scalars) is missing", name));
-  return it->second;
-}
-
-std::int64_t required_step_count(const Checkpoint& checkpoint, const char* name) {
-  const double value = required_scalar(checkpoint, name);
-  if (!(value >= 1) || value != std::floor(value))
-    throw InputError(fmt::format("encounter checkpoint: scalar '{}' = {} must be a whole number >= 1", name, value));
-  return static_cast<std::int64_t>(value);
-}
 
 /// Perturber relative to the body's centre of mass: distance (R) and speed (sqrt(GM/R)).
 struct Separation {
@@ -89,12 +57,13 @@ std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t p
 
 }  // namespace
 
-Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const EncounterSpec& spec) {
-  const bool usable_stage = parent.stage.stage == "relax" || parent.stage.stage == "encounter";
+Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const Encounter& spec) {
+  const bool usable_stage = std::holds_alternative<RelaxRecord>(parent.stage.record) ||
+                            std::holds_alternative<EncounterRecord>(parent.stage.record);
   if (!usable_stage || !parent.stage.complete)
     throw InputError(fmt::format(
         "an encounter starts from a complete 'relax' or 'encounter' checkpoint, got {} '{}' checkpoint",
-        parent.stage.complete ? "a complete" : "an unfinished (mid-stage)", parent.stage.stage));
+        parent.stage.complete ? "a complete" : "an unfinished (mid-stage)", parent.stage.name()));
   {
     // validate() checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0).
     Config checked = config;
@@ -102,7 +71,6 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
     validate(checked, "encounter parameters");
   }
 
-  const double dt = config.integrator.dt;
   const double start_distance = config.encounter.start_distance;
   const double end_distance = config.encounter.end_distance;
   const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
@@ -111,10 +79,9 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
 
   // Body particles untouched; failed springs of an earlier pass stay failed. Observables belong
   // to this stage: a fresh failure log and timeseries (the parent's stay in the parent's file).
-  Checkpoint c = child_checkpoint(parent, "encounter", config);
+  Checkpoint c = child_checkpoint(parent, EncounterRecord{}, config);
   State& state = c.state;
-  state.dt = dt;
-  std::fill(state.springs.damping.begin(), state.springs.damping.end(), config.encounter.damping);
+  const double dt = c.stage.clock.dt;
 
   // The two-body orbit is relative to the body's centre of mass (a second pass replaces the
   // earlier perturber).
@@ -129,28 +96,23 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
 
   StageInfo& stage = c.stage;
   stage.end_step = state.step + steps_for_duration(start.time_to_pericenter + time_after_pericenter, dt);
-  const std::int64_t pericenter_step = state.step + steps_for_duration(start.time_to_pericenter, dt);
   const Separation initial = separation(c.body, state);
-  stage.scalars = {
-      {encounter_keys::perturber_mass, spec.perturber_mass},
-      {encounter_keys::pericenter, spec.pericenter},
-      {encounter_keys::pericenter_speed, spec.pericenter_speed},
-      {encounter_keys::pericenter_time, state.time + start.time_to_pericenter},
-      {encounter_keys::perturber_min_distance, initial.distance},
-      {encounter_keys::perturber_speed_at_min, initial.speed},
-      {key::failure_strain, spec.failure_strain.value_or(config.shell.failure_strain)},
-      {key::failed_stiffness_factor, config.shell.failed_stiffness_factor},
-      {key::fail_interval, static_cast<double>(config.encounter.fail_interval)},
-      {key::sample_interval, static_cast<double>(config.encounter.sample_interval)},
-      {key::start_time, state.time},
-      {key::start_distance, start_distance},
-      {key::end_distance, end_distance},
-      {key::pericenter_step, static_cast<double>(pericenter_step)},
-      {key::time_of_min, state.time},
-      {key::step_of_min, static_cast<double>(state.step)},
-  };
-  store_snapshot_steps(stage, plan_snapshots(stage.start_step, pericenter_step, stage.end_step, dt));
-  stage.labels = {{encounter_keys::name_label, spec.name}};
+  EncounterRecord& record = stage.as<EncounterRecord>();
+  record.encounter = spec;
+  record.failure_strain = spec.failure_strain.value_or(config.shell.failure_strain);
+  record.failed_stiffness_factor = config.shell.failed_stiffness_factor;
+  record.damping = config.encounter.damping;
+  record.fail_interval = config.encounter.fail_interval;
+  record.sample_interval = config.encounter.sample_interval;
+  record.start_distance = start_distance;
+  record.end_distance = end_distance;
+  record.pericenter_time = state.time + start.time_to_pericenter;
+  record.pericenter_step = state.step + steps_for_duration(start.time_to_pericenter, dt);
+  record.snapshot_steps = plan_snapshots(stage.clock.start_step, record.pericenter_step, stage.end_step, dt);
+  record.min_distance = initial.distance;
+  record.speed_at_min = initial.speed;
+  record.time_of_min = state.time;
+  record.step_of_min = state.step;
 
   c.observables.timeseries.push_back(sample_timeseries(c.body, state));
   return c;
@@ -158,25 +120,25 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
 
 LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options,
                           const std::filesystem::path& output) {
-  if (checkpoint.stage.stage != "encounter")
-    throw InputError(fmt::format("run_encounter needs an 'encounter' checkpoint, got '{}'", checkpoint.stage.stage));
+  if (!std::holds_alternative<EncounterRecord>(checkpoint.stage.record))
+    throw InputError(fmt::format("run_encounter needs an 'encounter' checkpoint, got '{}'", checkpoint.stage.name()));
   if (!checkpoint.state.perturber.present)
     throw InputError("encounter checkpoint: /checkpoint/perturber is missing");
-  const std::int64_t start_step = checkpoint.stage.start_step;
+  // The schedule is the one the encounter began with (its record), not the configuration's.
+  const EncounterRecord& schedule = checkpoint.stage.as<EncounterRecord>();
+  for (auto [name, steps] : {std::pair{"fail_interval", schedule.fail_interval}, {"sample_interval", schedule.sample_interval}})
+    if (steps < 1)
+      throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@{} = {} must be >= 1", name, steps));
+  const std::int64_t start_step = checkpoint.stage.clock.start_step;
   const std::int64_t end_step = checkpoint.stage.end_step;
-  const double failure_strain = required_scalar(checkpoint, key::failure_strain);
-  const double failed_stiffness_factor = required_scalar(checkpoint, key::failed_stiffness_factor);
-  const std::int64_t fail_interval = required_step_count(checkpoint, key::fail_interval);
-  const std::int64_t sample_interval = required_step_count(checkpoint, key::sample_interval);
-  const StepClock clock{required_scalar(checkpoint, key::start_time), start_step, checkpoint.state.dt};
-  const std::vector<std::int64_t> snapshots = snapshot_steps(checkpoint.stage);
-  // Fail the run early rather than at the first lookup inside the loop.
-  for (const char* name : {encounter_keys::perturber_min_distance, encounter_keys::perturber_speed_at_min,
-                           key::time_of_min, key::step_of_min})
-    required_scalar(checkpoint, name);
+  const double failure_strain = schedule.failure_strain;
+  const double failed_stiffness_factor = schedule.failed_stiffness_factor;
+  const std::int64_t fail_interval = schedule.fail_interval;
+  const std::int64_t sample_interval = schedule.sample_interval;
+  const std::vector<std::int64_t> snapshots = schedule.snapshot_steps;
 
-  ForceField forces(checkpoint.body, force_options(config));
-  Leapfrog leapfrog(forces, clock);
+  ForceField forces(checkpoint.body, force_options(config, schedule.damping));
+  Leapfrog leapfrog(forces, checkpoint.stage.clock);
 
   auto advance = [&](State& state) { leapfrog.step(state); };
   auto after_step = [&](Checkpoint& c) {
@@ -190,12 +152,12 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
 
     // Closest approach, sampled every step (the error of a step-sampled minimum is ~(V dt)^2/(8 q)).
     const Separation now = separation(c.body, state);
-    auto& scalars = c.stage.scalars;
-    if (now.distance < scalars[encounter_keys::perturber_min_distance]) {
-      scalars[encounter_keys::perturber_min_distance] = now.distance;
-      scalars[encounter_keys::perturber_speed_at_min] = now.speed;
-      scalars[key::time_of_min] = state.time;
-      scalars[key::step_of_min] = static_cast<double>(state.step);
+    auto& record = c.stage.as<EncounterRecord>();
+    if (now.distance < record.min_distance) {
+      record.min_distance = now.distance;
+      record.speed_at_min = now.speed;
+      record.time_of_min = state.time;
+      record.step_of_min = state.step;
     }
 
     if (!output.empty() && std::binary_search(snapshots.begin(), snapshots.end(), state.step))

@@ -11,13 +11,13 @@
 namespace tidalcrust {
 
 /// A fresh "encounter" checkpoint from a complete "relax" or "encounter" checkpoint: places
-/// the perturber, sets damping, records the spec in scalars/labels and parent_hash.
-Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const EncounterSpec& spec);
+/// the perturber and records the encounter, its failure rule and schedules in an EncounterRecord.
+Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const Encounter& spec);
 
 /// Runs (or resumes) the encounter in place until complete. `checkpoint` is what
 /// begin_encounter returned or a mid-stage "encounter" checkpoint. `output` is the encounter's
 /// final checkpoint file: the snapshot checkpoints are written beside it
-/// (snapshot_files.hpp); empty = no snapshot files.
+/// (io/checkpoint_names.hpp); empty = no snapshot files.
 LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options,
                           const std::filesystem::path& output = {});
 

@@ -24,18 +24,6 @@ namespace {
 /// eps_S of the weaker crust of encounter T1 (Table 4): the probe also checks it.
 constexpr double weak_crust_failure_strain = 0.002;
 
-/// Scalar names of the stage bookkeeping.
-constexpr const char* start_time_key = "start_time";  ///< time at start_step (the step clock)
-constexpr const char* relaxed_key = "relaxed";        ///< 1: relaxation done, probe pending or done
-constexpr const char* creep_end_key = "creep_end_step";  ///< last step of the creep phase
-
-double scalar(const Checkpoint& c, const char* key) {
-  const auto it = c.stage.scalars.find(key);
-  if (it == c.stage.scalars.end())
-    throw InputError(fmt::format("relax checkpoint lacks the stage scalar '{}' (/checkpoint scalars)", key));
-  return it->second;
-}
-
 /// Removes the crust stress exactly: shell rest lengths = current lengths, hinge rest angles =
 /// current angles.
 void zero_crust_stress(const Body& body, State& state) {
@@ -60,12 +48,12 @@ void zero_crust_stress(const Body& body, State& state) {
 /// strain well below eps_S for the paper's T body), so the relaxed state is at rest and stays
 /// at rest.
 LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options) {
-  ForceField forces(checkpoint.body, force_options(config));
-  const StepClock clock{scalar(checkpoint, start_time_key), checkpoint.stage.start_step, checkpoint.state.dt};
-  Leapfrog leapfrog(forces, clock);
+  const RelaxRecord& record = checkpoint.stage.as<RelaxRecord>();
+  ForceField forces(checkpoint.body, force_options(config, record.damping));
+  Leapfrog leapfrog(forces, checkpoint.stage.clock);
   const RelaxConfig& relax = config.relax;
-  const std::int64_t start = checkpoint.stage.start_step;
-  const auto creep_end = static_cast<std::int64_t>(scalar(checkpoint, creep_end_key));
+  const std::int64_t start = checkpoint.stage.clock.start_step;
+  const std::int64_t creep_end = record.creep_end_step;
   auto after_step = [&](Checkpoint& c) {
     const std::int64_t done = c.state.step - start;
     if (c.state.step < creep_end) {
@@ -82,14 +70,14 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
 
 /// Records the relaxed body's state.
 void finish_relaxation(Checkpoint& checkpoint) {
-  auto& scalars = checkpoint.stage.scalars;
+  auto& record = checkpoint.stage.as<RelaxRecord>();
   const Body& body = checkpoint.body;
   const State& state = checkpoint.state;
-  scalars["max_shell_strain"] = max_abs_shell_strain(body, state);
-  scalars["max_shell_tension"] = max_shell_tension(body, state);
-  scalars["internal_kinetic_energy"] = internal_kinetic_energy(body, state);
-  scalars["mean_shell_radius"] = mean_shell_radius(body, state);
-  scalars[relaxed_key] = 1.0;
+  record.max_shell_strain = max_abs_shell_strain(body, state);
+  record.max_shell_tension = max_shell_tension(body, state);
+  record.internal_kinetic_energy = internal_kinetic_energy(body, state);
+  record.mean_shell_radius = mean_shell_radius(body, state);
+  record.relaxed = true;
 }
 
 /// The failure strains to probe besides eps_S: T1's weaker crust and every encounter override.
@@ -103,12 +91,12 @@ std::set<double> extra_failure_strains(const Config& config) {
 
 /// Runs the stability probe(s) and stores their results; false if interrupted.
 bool probe_stability(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options) {
-  auto& scalars = checkpoint.stage.scalars;
   const double eps_s = config.shell.failure_strain;
   const ProbeResult main = run_stability_probe(checkpoint, config, eps_s, options);
   if (main.interrupted) return false;
   std::int64_t runs = 1;
-  std::map<std::string, double> extra;
+  std::vector<double> other_strains;
+  std::vector<std::int64_t> other_failures;
   for (double strain : extra_failure_strains(config)) {
     std::int64_t failures = 0;
     // Without failures the probe's trajectory is the failure-free one; if no shell strain
@@ -121,47 +109,46 @@ bool probe_stability(Checkpoint& checkpoint, const Config& config, const StepLoo
       failures = other.failures;
       ++runs;
     }
-    extra[fmt::format("stability_failures_at_{}", strain)] = static_cast<double>(failures);
+    other_strains.push_back(strain);
+    other_failures.push_back(failures);
   }
-  scalars["stability_failures"] = static_cast<double>(main.failures);
-  scalars["stability_max_shell_strain"] = main.max_shell_tension;
-  scalars["stability_failure_strain"] = eps_s;
-  scalars["stability_probe_runs"] = static_cast<double>(runs);
-  scalars.insert(extra.begin(), extra.end());
+  auto& record = checkpoint.stage.as<RelaxRecord>();
+  record.probe_failures = main.failures;
+  record.probe_max_shell_strain = main.max_shell_tension;
+  record.probe_failure_strain = eps_s;
+  record.probe_runs = runs;
+  record.probe_other_strains = std::move(other_strains);
+  record.probe_other_failures = std::move(other_failures);
   return true;
 }
 
 }  // namespace
 
 Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
-  if (stretched.stage.stage != "stretch" || !stretched.stage.complete)
-    throw InputError(fmt::format("relax needs a complete 'stretch' checkpoint, got {} '{}' checkpoint",
-                                 stretched.stage.complete ? "a complete" : "an incomplete", stretched.stage.stage));
-  Checkpoint c = child_checkpoint(stretched, "relax", config);
-  c.state.dt = config.integrator.dt;
-  c.stage.end_step = c.state.step + steps_for_duration(config.relax.duration, c.state.dt);
-  c.stage.scalars[start_time_key] = c.state.time;
-  const std::int64_t creep_end =
-      std::max(c.stage.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, c.state.dt));
-  c.stage.scalars[creep_end_key] = static_cast<double>(creep_end);
-  if (creep_end == c.stage.start_step) zero_crust_stress(c.body, c.state);  // settle only
-  std::fill(c.state.springs.damping.begin(), c.state.springs.damping.end(), config.relax.damping);
+  require_complete<StretchRecord>(stretched, "relax");
+  Checkpoint c = child_checkpoint(stretched, RelaxRecord{}, config);
+  const StepClock& clock = c.stage.clock;
+  c.stage.end_step = c.state.step + steps_for_duration(config.relax.duration, clock.dt);
+  auto& record = c.stage.as<RelaxRecord>();
+  record.damping = config.relax.damping;
+  record.creep_end_step =
+      std::max(clock.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, clock.dt));
+  if (record.creep_end_step == clock.start_step) zero_crust_stress(c.body, c.state);  // settle only
   c.observables.timeseries.push_back(sample_timeseries(c.body, c.state));
   return c;
 }
 
 LoopOutcome run_relax(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options) {
-  if (checkpoint.stage.stage != "relax")
+  if (!std::holds_alternative<RelaxRecord>(checkpoint.stage.record))
     throw InputError(fmt::format("run_relax needs a 'relax' checkpoint (from begin_relax or a mid-stage relax "
                                  "checkpoint), got '{}'",
-                                 checkpoint.stage.stage));
+                                 checkpoint.stage.name()));
   if (checkpoint.stage.complete) return LoopOutcome::finished;
   if (checkpoint.config_toml != to_toml(config))
     throw InputError("relax: the configuration differs from the one this relax stage started with (stored in "
                      "/parameters/config); resume with the stored configuration or start again from the stretch "
                      "checkpoint");
-  const bool relaxed = checkpoint.stage.scalars.count(relaxed_key) && scalar(checkpoint, relaxed_key) == 1.0;
-  if (!relaxed) {
+  if (!checkpoint.stage.as<RelaxRecord>().relaxed) {
     if (relax_loop(checkpoint, config, options) == LoopOutcome::interrupted) return LoopOutcome::interrupted;
     finish_relaxation(checkpoint);
     // "Relaxed, probe pending": the state is final, so an interrupted probe is simply rerun

@@ -17,11 +17,10 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config);
 /// `checkpoint` is what begin_relax returned or a mid-stage "relax" checkpoint (InputError if
 /// `config` differs from its stored configuration). Creep phase (shell rest-length creep,
 /// hinge resets), exact crust reset at creep_end_step, settle phase (relax.settle_duration).
-/// Scalars: max_shell_strain (|strain|), max_shell_tension, internal_kinetic_energy,
-/// mean_shell_radius; with the probe stability_failures, stability_max_shell_strain,
-/// stability_failure_strain, stability_failures_at_<eps> (0.002 and encounter overrides).
-/// Bookkeeping: start_time, creep_end_step, relaxed (1 once relaxed: a mid-stage checkpoint
-/// with relaxed = 1 resumes with the probe alone).
+/// Fills the RelaxRecord (model/stage_records.hpp): the relaxed body's strains, kinetic energy
+/// and radius, and the stability probe's failures at eps_S and at 0.002 and every encounter
+/// override. `relaxed` is set once the relaxation is done: a mid-stage checkpoint with it set
+/// resumes with the probe alone.
 LoopOutcome run_relax(Checkpoint& checkpoint, const Config& config, const StepLoopOptions& options);
 
 }  // namespace tidalcrust

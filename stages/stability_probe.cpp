@@ -12,14 +12,13 @@ ProbeResult run_stability_probe(const Checkpoint& relaxed, const Config& config,
                                 const StepLoopOptions& options) {
   Checkpoint probe = relaxed;
   probe.state.perturber = Perturber{};
-  std::fill(probe.state.springs.damping.begin(), probe.state.springs.damping.end(), config.relax.probe_damping);
   probe.observables = Observables{};
   const std::int64_t first = probe.state.step;
-  probe.stage.start_step = first;
-  probe.stage.end_step = first + steps_for_duration(config.relax.probe_duration, probe.state.dt);
+  probe.stage.clock = StepClock{probe.state.time, first, relaxed.stage.clock.dt};
+  probe.stage.end_step = first + steps_for_duration(config.relax.probe_duration, probe.stage.clock.dt);
 
-  ForceField forces(probe.body, force_options(config));
-  Leapfrog leapfrog(forces, StepClock::starting_at(probe.state));
+  ForceField forces(probe.body, force_options(config, config.relax.probe_damping));
+  Leapfrog leapfrog(forces, probe.stage.clock);
   ProbeResult result;
   result.max_shell_tension = max_shell_tension(probe.body, probe.state);
   auto after_step = [&](Checkpoint& c) {

@@ -7,12 +7,23 @@
 #include "base/errors.hpp"
 #include "io/progress.hpp"
 #include "io/stop_signal.hpp"
+#include "io/checkpoint_names.hpp"
 #include "io/checkpoint_file.hpp"
 
 namespace tidalcrust {
 
 std::int64_t steps_for_duration(double duration, double dt) {
   return static_cast<std::int64_t>(std::llround(duration / dt));
+}
+
+StepLoopOptions stage_loop_options(const std::filesystem::path& final_file, std::string label,
+                                   std::int64_t checkpoint_interval) {
+  StepLoopOptions loop;
+  loop.label = std::move(label);
+  loop.mid_checkpoint = sibling_checkpoint(final_file, "mid");
+  loop.diagnostic_checkpoint = sibling_checkpoint(final_file, "diagnostic");
+  loop.checkpoint_interval = checkpoint_interval;
+  return loop;
 }
 
 LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State&)>& advance,
@@ -37,7 +48,7 @@ LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State
       std::string where;
       if (!options.diagnostic_checkpoint.empty()) {
         checkpoint.stage.complete = false;
-        checkpoint.stage.labels["diagnostic"] = err.what();
+        checkpoint.stage.diagnostic = err.what();
         write_checkpoint(options.diagnostic_checkpoint, checkpoint);
         where = fmt::format(" (diagnostic checkpoint: {})", options.diagnostic_checkpoint.string());
       }
@@ -51,7 +62,7 @@ LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State
       if (progress) progress->finish(state.step, "interrupted");
       return LoopOutcome::interrupted;
     }
-    const std::int64_t done = state.step - checkpoint.stage.start_step;
+    const std::int64_t done = state.step - checkpoint.stage.clock.start_step;
     if (options.checkpoint_interval > 0 && done % options.checkpoint_interval == 0 && state.step < end) write_mid();
   }
   checkpoint.stage.complete = true;

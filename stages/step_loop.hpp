@@ -35,6 +35,11 @@ enum class LoopOutcome { finished, interrupted };
 LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State&)>& advance,
                           const std::function<void(Checkpoint&)>& after_step, const StepLoopOptions& options);
 
+/// The loop options of a stage whose final checkpoint is `final_file`: its mid-stage and
+/// diagnostic checkpoints beside it (io/checkpoint_names.hpp), progress labelled `label`.
+StepLoopOptions stage_loop_options(const std::filesystem::path& final_file, std::string label,
+                                   std::int64_t checkpoint_interval);
+
 /// Steps of a stage lasting `duration` (t_grav) at time step dt: a count, never a float compare.
 std::int64_t steps_for_duration(double duration, double dt);
 

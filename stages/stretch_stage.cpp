@@ -67,7 +67,7 @@ class StretchTrial {
       : body_(built.body),
         base_(built.state.springs),
         cross_compression_(config.stretch.cross_compression),
-        forces_(built.body, force_options(config)),
+        forces_(built.body, force_options(config, 0.0)),  // the body is at rest: no damping
         state_(built.state),
         centre_(centre_of_mass(built.body, built.state)),
         surface_(surface_nodes(built.body, built.state, centre_, config.interior.spring_distance)) {
@@ -246,16 +246,11 @@ double uniform_network_pressure(double young_modulus, double factor) { return 2 
 }  // namespace
 
 Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
-  if (built.stage.stage != "build" || !built.stage.complete)
-    throw InputError(fmt::format("stretch needs a complete 'build' checkpoint, got {} '{}' checkpoint",
-                                 built.stage.complete ? "a complete" : "an incomplete", built.stage.stage));
-  Checkpoint out = child_checkpoint(built, "stretch", config);
+  require_complete<BuildRecord>(built, "stretch");
+  Checkpoint out = child_checkpoint(built, StretchRecord{}, config);
   out.stage.complete = true;  // stretching takes no time steps
-  auto& scalars = out.stage.scalars;
-  if (!config.stretch.enabled) {
-    scalars["stretch_factor"] = 1.0;
-    return out;
-  }
+  auto& record = out.stage.as<StretchRecord>();
+  if (!config.stretch.enabled) return out;
 
   const Body& body = built.body;
   StretchTrial trial(built, config);
@@ -289,16 +284,16 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   const Balance final_balance = trial.balance(factor.x, strengthening.multiplier);
 
   const double beta = strengthening.inverse_uniform_pressure;
-  scalars["stretch_factor"] = factor.x;
-  scalars["residual_surface_acceleration"] = final_balance.surface;
-  scalars["residual_virial_acceleration"] = final_balance.virial;
-  scalars["iterations"] = static_cast<double>(budget.used());
-  scalars["stretch_factor_unstrengthened"] = unstrengthened.x;
-  scalars["strengthening_max"] = strengthening.largest;
-  scalars["P_uniform"] = beta > 0 ? 1 / beta : 0.0;
+  record.stretch_factor = factor.x;
+  record.residual_surface_acceleration = final_balance.surface;
+  record.residual_virial_acceleration = final_balance.virial;
+  record.iterations = budget.used();
+  record.stretch_factor_unstrengthened = unstrengthened.x;
+  record.strengthening_max = strengthening.largest;
+  record.uniform_pressure = beta > 0 ? 1 / beta : 0.0;
   // P(r) = P_uniform at r^2 = 1 - P_uniform/P(0): springs inside were strengthened.
-  scalars["strengthening_radius"] = beta > 0 ? std::sqrt(std::max(0.0, 1 - 1 / (beta * hydrostatic_pressure(0)))) : 0.0;
-  scalars["dt_max"] = derive_quantities(out.body, out.state, config.interior.radius).dt_max;
+  record.strengthening_radius = beta > 0 ? std::sqrt(std::max(0.0, 1 - 1 / (beta * hydrostatic_pressure(0)))) : 0.0;
+  record.dt_max = derive_quantities(out.body, out.state, config.interior.radius).dt_max;
   return out;
 }
 

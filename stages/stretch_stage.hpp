@@ -10,7 +10,7 @@ namespace tidalcrust {
 
 /// `built` must be a complete "build" checkpoint (InputError otherwise). Returns the
 /// "stretch" checkpoint: same body and positions, new rest lengths and stiffnesses, and
-/// scalars reporting what was found (stretch_factor, residual_surface_acceleration, ...).
+/// a StretchRecord of what was found (stretch factor, residual surface acceleration, ...).
 Checkpoint stretch_stage(const Checkpoint& built, const Config& config);
 
 }  // namespace tidalcrust

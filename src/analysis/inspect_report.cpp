@@ -55,9 +55,18 @@ ReportSection conservation_section(const Checkpoint& c) {
   return s;
 }
 
-/// Adds scalars[name] as `key` when the stage recorded it.
-void add_scalar_if_present(ReportSection& s, const Checkpoint& c, const char* name, const char* key) {
-  if (auto it = c.stage.scalars.find(name); it != c.stage.scalars.end()) s.add(key, it->second);
+/// Every field of the stage's record (model/stage_records.hpp), in stored order.
+ReportSection record_section(const Checkpoint& c) {
+  ReportSection s{"record", {}};
+  auto add = [&s](const char* name, const auto& value, const char*, const char*) {
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<T, std::vector<std::int64_t>>)
+      s.add(name, std::vector<double>(value.begin(), value.end()));
+    else
+      s.add(name, value);
+  };
+  std::visit([&](const auto& record) { visit_fields(record, add); }, c.stage.record);
+  return s;
 }
 
 std::string value_text(const ReportValue& v, bool for_table) {
@@ -98,7 +107,7 @@ ReportSection& InspectReport::section(const std::string& name) {
 }
 
 void add_failures_section(const Checkpoint& c, InspectReport& r) {
-  if (c.stage.stage != "encounter") return;
+  if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
   for (const auto& [key, value] : failure_summary_fields(analyze_fractures(c.body, c.state))) {
     if (key == "count" || key == "clusters") failures.add(key, static_cast<std::int64_t>(value));
@@ -109,33 +118,26 @@ void add_failures_section(const Checkpoint& c, InspectReport& r) {
 InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
   InspectReport r;
   r.top.add("format_version", checkpoint_format_version)
-      .add("stage", c.stage.stage)
+      .add("stage", c.stage.name())
       .add("complete", c.stage.complete)
       .add("time", c.state.time)
       .add("step", c.state.step)
-      .add("dt", c.state.dt)
+      .add("dt", c.stage.clock.dt)
       .add("state_hash", state_hash(c.state))
       .add("parent_hash", c.stage.parent_hash);
+  if (!c.stage.diagnostic.empty()) r.top.add("diagnostic", c.stage.diagnostic);
   r.sections.push_back(counts_section(c));
   r.sections.push_back(derived_section(c, file));
   r.sections.push_back(conservation_section(c));
-  ReportSection& scalars = r.section("scalars");
-  for (const auto& [name, value] : c.stage.scalars) scalars.add(name, value);
-  ReportSection& labels = r.section("labels");
-  for (const auto& [name, value] : c.stage.labels) labels.add(name, value);
+  r.sections.push_back(record_section(c));
 
-  if (c.stage.stage == "encounter" || c.state.perturber.present) {
+  if (const auto* e = std::get_if<EncounterRecord>(&c.stage.record)) {
     ReportSection& p = r.section("perturber");
     if (c.state.perturber.present) p.add("mass", c.state.perturber.mass);
-    add_scalar_if_present(p, c, "perturber_min_distance", "min_distance");
-    add_scalar_if_present(p, c, "perturber_speed_at_min", "speed_at_min");
+    p.add("min_distance", e->min_distance).add("speed_at_min", e->speed_at_min);
   }
-  if (c.stage.stage == "relax") {
-    ReportSection& s = r.section("stability");
-    if (auto it = c.stage.scalars.find("stability_failures"); it != c.stage.scalars.end())
-      s.add("failures", static_cast<std::int64_t>(it->second));
-    add_scalar_if_present(s, c, "stability_max_shell_strain", "max_shell_strain");
-  }
+  if (const auto* relax = std::get_if<RelaxRecord>(&c.stage.record); relax && relax->probe_runs > 0)
+    r.section("stability").add("failures", relax->probe_failures).add("max_shell_strain", relax->probe_max_shell_strain);
   add_failures_section(c, r);
   return r;
 }

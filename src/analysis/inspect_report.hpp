@@ -78,7 +78,7 @@ struct InspectReport {
 };
 
 /// Builds the full report: top-level stage keys, counts, derived (Table 3 quantities with r_I
-/// from the stored configuration), conservation, scalars, labels, and for encounters the
+/// from the stored configuration), conservation, the stage record, and for encounters the
 /// perturber, for relaxed bodies the stability probe, plus add_failures_section.
 /// `file` names the checkpoint in error messages (e.g. an unparsable stored configuration).
 InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::string& file);

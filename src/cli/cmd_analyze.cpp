@@ -12,7 +12,6 @@
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_analysis.hpp"
-#include "model/recorded_encounter.hpp"
 
 namespace tidalcrust {
 
@@ -38,8 +37,8 @@ int command_analyze(int argc, char** argv) {
 
   const Checkpoint checkpoint = read_checkpoint(from);
   const auto figures = analyze_encounter(from, checkpoint, out);
-  const RecordedEncounter encounter = recorded_encounter(checkpoint, from.string());
-  fmt::print("{}\n", fracture_summary_line(encounter.name.empty() ? from.stem().string() : encounter.name,
+  const std::string& name = stage_record<EncounterRecord>(checkpoint, from.string()).encounter.name;
+  fmt::print("{}\n", fracture_summary_line(name.empty() ? from.stem().string() : name,
                                            analyze_fractures(checkpoint.body, checkpoint.state)));
   fmt::print("wrote {} figures and summary.json to {}\n", figures.size(), out.string());
   return exit_ok;

@@ -83,15 +83,14 @@ int command_bench(int argc, char** argv) {
   const double build_ms = milliseconds_since(build_start);
   State& state = body.state;
   // Every force path switched on: encounter damping and a perturber at the start distance.
-  for (double& g : state.springs.damping) g = config.encounter.damping;
   state.perturber.present = true;
   state.perturber.mass = config.encounters.empty() ? 0.5 : config.encounters.front().perturber_mass;
   state.perturber.position = {config.encounter.start_distance, 0.0, 0.0};
   state.perturber.velocity = {0.0, 1.0, 0.0};
 
-  ForceField forces(body.body, force_options(config));
+  ForceField forces(body.body, force_options(config, config.encounter.damping));
   State run = state;
-  Leapfrog leapfrog(forces, StepClock::starting_at(run));
+  Leapfrog leapfrog(forces, body.stage.clock);
   leapfrog.advance(run, 2);  // warm-up: caches, thread pool
   const double ms_per_step = median_ms_per_call(repeats, steps, [&](std::int64_t n) { leapfrog.advance(run, n); });
 
@@ -112,9 +111,9 @@ int command_bench(int argc, char** argv) {
 
   double textbook_ms = 0;
   if (textbook_steps > 0) {
-    TextbookStep textbook(body.body, state, force_options(config));
+    TextbookStep textbook(body.body, state, force_options(config, config.encounter.damping));
     textbook_ms = median_ms_per_call(std::min(repeats, 3), textbook_steps, [&](std::int64_t n) {
-      for (std::int64_t i = 0; i < n; ++i) textbook.step(state.springs, state.hinges, state.dt);
+      for (std::int64_t i = 0; i < n; ++i) textbook.step(state.springs, state.hinges, body.stage.clock.dt);
     });
   }
   const int threads = omp_get_max_threads();

@@ -12,7 +12,6 @@
 #include "base/errors.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "io/json_writer.hpp"
-#include "model/recorded_encounter.hpp"
 #include "io/state_hash.hpp"
 
 namespace tidalcrust {
@@ -20,11 +19,10 @@ namespace {
 
 void write_side(JsonWriter& json, const char* key, const std::string& file, const Checkpoint& c,
                 const FractureSummary& f) {
-  const auto label = c.stage.labels.find(encounter_keys::name_label);
   json.begin_object(key)
       .value("file", file)
-      .value("stage", c.stage.stage)
-      .value("encounter", label == c.stage.labels.end() ? std::string() : label->second)
+      .value("stage", c.stage.name())
+      .value("encounter", c.stage.as<EncounterRecord>().encounter.name)
       .value("time", c.state.time)
       .value("step", c.state.step)
       .value("state_hash", state_hash(c.state));
@@ -60,8 +58,7 @@ int command_compare(int argc, char** argv) {
   const Checkpoint a = read_checkpoint(files[0]);
   const Checkpoint b = read_checkpoint(files[1]);
   for (const auto& [c, file] : {std::pair{&a, &files[0]}, std::pair{&b, &files[1]}})
-    if (c->stage.stage != "encounter")
-      throw InputError(fmt::format("{}: stage is '{}', expected an 'encounter' checkpoint", *file, c->stage.stage));
+    stage_record<EncounterRecord>(*c, *file);
   require_same_body(a.body, b.body, files[0], files[1]);
   const FractureComparison r = compare_fractures(a.body, a.state, b.state);
 

@@ -31,7 +31,7 @@ int command_encounter(int argc, char** argv) {
   check_output_path(out);
   Checkpoint input = read_checkpoint(from);
   require_stage(input, from, {"relax", "encounter"}, "encounter");
-  const bool resuming = input.stage.stage == "encounter" && !input.stage.complete;
+  const bool resuming = std::holds_alternative<EncounterRecord>(input.stage.record) && !input.stage.complete;
   const bool by_name = parsed.count("encounter") > 0;
   const bool by_values = parsed.count("m2") || parsed.count("q") || parsed.count("vq");
   if (resuming) {
@@ -41,7 +41,7 @@ int command_encounter(int argc, char** argv) {
   } else if (by_name == by_values) {
     throw InputError("give either --encounter NAME or all of --m2 M --q Q --vq V");
   }
-  if (input.stage.stage == "relax" && !input.stage.complete)
+  if (std::holds_alternative<RelaxRecord>(input.stage.record) && !input.stage.complete)
     throw InputError(fmt::format("{}: relaxation is not complete; finish it with 'tidalcrust relax'", from.string()));
   Config config = stage_config(input, from, common, resuming);
   apply_thread_count(common.threads);
@@ -49,7 +49,7 @@ int command_encounter(int argc, char** argv) {
   if (resuming) {
     checkpoint = std::move(input);
   } else {
-    EncounterSpec spec;
+    Encounter spec;
     if (by_name) {
       spec = config.find_encounter(parsed["encounter"].as<std::string>());
     } else {
@@ -66,7 +66,7 @@ int command_encounter(int argc, char** argv) {
     validate(checked, "encounter options");  // NaN, negative mass, q inside the body -> exit 2
     checkpoint = begin_encounter(input, config, spec);
   }
-  StepLoopOptions loop = loop_options_for(parsed, out, "encounter " + checkpoint.stage.labels["encounter"],
+  StepLoopOptions loop = loop_options_for(parsed, out, "encounter " + checkpoint.stage.as<EncounterRecord>().encounter.name,
                                           config.encounter.checkpoint_interval);
   return finish_stage(run_encounter(checkpoint, config, loop, out), checkpoint, out, loop);
 }

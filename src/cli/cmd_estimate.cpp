@@ -48,7 +48,7 @@ struct BodyReport {
   EncounterEstimates estimates;
 };
 
-BodyReport report_for(const PhysicalBody& body, const EncounterGeometry& encounter, double youngs_GPa) {
+BodyReport report_for(const PhysicalBody& body, const Encounter& encounter, double youngs_GPa) {
   BodyReport r{body, body_scales(body), 0, {}};
   const double youngs = youngs_in_e_g(youngs_GPa, r.scales);
   r.e_g_over_E = 1.0 / youngs;
@@ -75,7 +75,7 @@ void write_body_json(JsonWriter& json, const BodyReport& r) {
       .value("strain_rate_per_s", e.strain_rate / r.scales.t_grav_s);
 }
 
-void write_inputs_json(JsonWriter& json, const EncounterGeometry& g, double youngs_GPa) {
+void write_inputs_json(JsonWriter& json, const Encounter& g, double youngs_GPa) {
   json.begin_object("encounter")
       .value("m2", g.perturber_mass)
       .value("q", g.pericenter)
@@ -84,12 +84,12 @@ void write_inputs_json(JsonWriter& json, const EncounterGeometry& g, double youn
       .end_object();
 }
 
-std::string inputs_line(const EncounterGeometry& g, double youngs_GPa) {
+std::string inputs_line(const Encounter& g, double youngs_GPa) {
   return fmt::format("encounter M2 = {:g} M, q = {:g} R, V_q = {:.4g} v_c; E = {:g} GPa", g.perturber_mass,
                      g.pericenter, g.pericenter_speed, youngs_GPa);
 }
 
-void print_body(const BodyReport& r, const EncounterGeometry& g, double youngs_GPa) {
+void print_body(const BodyReport& r, const Encounter& g, double youngs_GPa) {
   const auto& s = r.scales;
   const auto& e = r.estimates;
   fmt::print("body {} (mass {:.4g} kg, radius {:g} km)\n", r.body.name, r.body.mass_kg, r.body.radius_km);
@@ -106,7 +106,7 @@ void print_body(const BodyReport& r, const EncounterGeometry& g, double youngs_G
   fmt::print("  strain rate      = {:.3g} /s   (eq. 10)\n", e.strain_rate / s.t_grav_s);
 }
 
-void print_table(const std::vector<BodyReport>& reports, const EncounterGeometry& g, double youngs_GPa) {
+void print_table(const std::vector<BodyReport>& reports, const Encounter& g, double youngs_GPa) {
   fmt::print("Table 1 (Quillen et al. 2016) and section 1.1 estimates; {}\n", inputs_line(g, youngs_GPa));
   fmt::print("{:<8} {:>10} {:>8} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>12} {:>10}\n", "body", "mass_kg",
              "R_km", "e_g_GPa", "t_grav_s", "rho", "v_c", "e_g/E", "strain", "t_enc/t_elas", "rate_1/s");
@@ -141,7 +141,7 @@ int command_estimate(int argc, char** argv) {
     return exit_ok;
   }
 
-  EncounterGeometry geometry;
+  Encounter geometry = grazing_parabolic_encounter();
   geometry.perturber_mass = positive_option(parsed, "m2", geometry.perturber_mass, /*allow_zero=*/true);
   geometry.pericenter = positive_option(parsed, "q", geometry.pericenter);
   geometry.pericenter_speed = positive_option(parsed, "vq", geometry.pericenter_speed);

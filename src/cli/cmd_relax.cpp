@@ -27,7 +27,7 @@ int command_relax(int argc, char** argv) {
   check_output_path(out);
   Checkpoint input = read_checkpoint(from);
   require_stage(input, from, {"stretch", "relax"}, "relax");
-  const bool resuming = input.stage.stage == "relax";
+  const bool resuming = std::holds_alternative<RelaxRecord>(input.stage.record);
   if (resuming && input.stage.complete)
     throw InputError(fmt::format("{}: relaxation is already complete", from.string()));
   Config config = stage_config(input, from, common, resuming);

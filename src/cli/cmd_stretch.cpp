@@ -31,7 +31,8 @@ int command_stretch(int argc, char** argv) {
   Checkpoint stretched = stretch_stage(input, config);
   write_checkpoint(out, stretched);
   fmt::print("{}: stretch written (factor {}, residual surface acceleration {:.3g})\n", out.string(),
-             stretched.stage.scalars["stretch_factor"], stretched.stage.scalars["residual_surface_acceleration"]);
+             stretched.stage.as<StretchRecord>().stretch_factor,
+             stretched.stage.as<StretchRecord>().residual_surface_acceleration);
   return exit_ok;
 }
 

@@ -1,5 +1,7 @@
 #include "cli/stage_command.hpp"
 
+#include "io/checkpoint_names.hpp"
+
 #include <fmt/format.h>
 
 #include "base/errors.hpp"
@@ -12,20 +14,6 @@ namespace fs = std::filesystem;
 std::string required_option(const cxxopts::ParseResult& parsed, const char* name) {
   if (!parsed.count(name)) throw InputError(fmt::format("missing required option --{}", name));
   return parsed[name].as<std::string>();
-}
-
-fs::path sibling_checkpoint(const fs::path& out, const std::string& suffix) {
-  fs::path p = out;
-  p.replace_extension();
-  p += "." + suffix + ".h5";
-  return p;
-}
-
-void remove_checkpoint_files(const fs::path& file) {
-  std::error_code ignored;
-  fs::remove(file, ignored);
-  fs::path xdmf = file;
-  fs::remove(xdmf.replace_extension(".xdmf"), ignored);
 }
 
 void check_output_path(const fs::path& out) {
@@ -46,15 +34,12 @@ void add_loop_options(cxxopts::Options& options) {
 
 StepLoopOptions loop_options_for(const cxxopts::ParseResult& parsed, const fs::path& out, std::string label,
                                  std::int64_t default_interval) {
-  StepLoopOptions loop;
-  loop.label = std::move(label);
-  loop.mid_checkpoint = sibling_checkpoint(out, "mid");
-  loop.diagnostic_checkpoint = sibling_checkpoint(out, "diagnostic");
+  const std::int64_t interval =
+      parsed.count("checkpoint-every") ? parsed["checkpoint-every"].as<std::int64_t>() : default_interval;
+  if (interval < 0) throw InputError("--checkpoint-every must be >= 0");
+  StepLoopOptions loop = stage_loop_options(out, std::move(label), interval);
   loop.stop_after_step = parsed["stop-after-step"].as<std::int64_t>();
   loop.quiet = parsed.count("quiet") > 0;
-  loop.checkpoint_interval =
-      parsed.count("checkpoint-every") ? parsed["checkpoint-every"].as<std::int64_t>() : default_interval;
-  if (loop.checkpoint_interval < 0) throw InputError("--checkpoint-every must be >= 0");
   return loop;
 }
 
@@ -66,7 +51,7 @@ int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const fs::pa
   }
   write_checkpoint(out, checkpoint);
   remove_checkpoint_files(loop.mid_checkpoint);
-  fmt::print("{}: {} written (step {}, time {})\n", out.string(), checkpoint.stage.stage, checkpoint.state.step,
+  fmt::print("{}: {} written (step {}, time {})\n", out.string(), checkpoint.stage.name(), checkpoint.state.step,
              checkpoint.state.time);
   return exit_ok;
 }
@@ -84,11 +69,11 @@ Config stage_config(const Checkpoint& input, const fs::path& from, const CommonO
 void require_stage(const Checkpoint& input, const fs::path& from, std::initializer_list<const char*> allowed,
                    const char* command) {
   for (const char* stage : allowed)
-    if (input.stage.stage == stage) return;
+    if (std::string_view(input.stage.name()) == stage) return;
   std::string names;
   for (const char* stage : allowed) names += (names.empty() ? "" : " or ") + std::string(stage);
   throw InputError(fmt::format("{}: is a '{}' checkpoint; {} needs a {} checkpoint", from.string(),
-                               input.stage.stage, command, names));
+                               input.stage.name(), command, names));
 }
 
 }  // namespace tidalcrust

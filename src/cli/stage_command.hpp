@@ -13,10 +13,6 @@ namespace tidalcrust {
 
 /// The value of a required option; InputError naming it when missing.
 std::string required_option(const cxxopts::ParseResult& parsed, const char* name);
-/// A file beside `out`: out.h5 -> out.<suffix>.h5
-std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix);
-/// Removes a checkpoint and its .xdmf sidecar if they exist (a finished stage's mid file).
-void remove_checkpoint_files(const std::filesystem::path& file);
 /// The output folder must exist and the name end in .h5 (checked before any work).
 void check_output_path(const std::filesystem::path& out);
 /// --checkpoint-every, --stop-after-step, --quiet.

@@ -39,12 +39,12 @@ struct OrbitPlotContent {
   double snapshot_radius = 0;                   ///< M2^(1/3) R
 };
 
-OrbitPlotContent orbit_plot_content(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+OrbitPlotContent orbit_plot_content(const Checkpoint& checkpoint, const EncounterRecord& record,
                                     const std::vector<double>& snapshot_times) {
-  double t_start = stage_start_time(checkpoint), t_end = checkpoint.state.time;
-  if (!(t_end > t_start)) t_start = encounter.pericenter_time - 1.5, t_end = encounter.pericenter_time + 1.5;
-  const double m2 = encounter.perturber_mass, tq = encounter.pericenter_time;
-  const TwoBodyOrbit orbit = perturber_orbit(m2, encounter.pericenter, encounter.pericenter_speed);
+  double t_start = checkpoint.stage.clock.start_time, t_end = checkpoint.state.time;
+  if (!(t_end > t_start)) t_start = record.pericenter_time - 1.5, t_end = record.pericenter_time + 1.5;
+  const double m2 = record.encounter.perturber_mass, tq = record.pericenter_time;
+  const TwoBodyOrbit orbit = perturber_orbit(m2, record.encounter.pericenter, record.encounter.pericenter_speed);
   auto analytic = [&](double t) { return orbit.state_at_time(t - tq).position; };
   const RecordedTrack recorded(checkpoint.observables.timeseries);
 
@@ -145,23 +145,18 @@ void arrow(cairo_t* cr, double x0, double y0, double x1, double y1) {
 }
 }  // namespace
 
-double stage_start_time(const Checkpoint& checkpoint) {
-  const State& s = checkpoint.state;
-  return s.time - static_cast<double>(s.step - checkpoint.stage.start_step) * s.dt;
-}
-
-PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const EncounterRecord& record,
                          const std::vector<double>& snapshot_times) {
-  return orbit_axes(orbit_plot_content(checkpoint, encounter, snapshot_times));
+  return orbit_axes(orbit_plot_content(checkpoint, record, snapshot_times));
 }
 
-FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord& record,
                              const std::vector<double>& snapshot_times, const std::filesystem::path& stem,
                              const std::string& title) {
-  const OrbitPlotContent content = orbit_plot_content(checkpoint, encounter, snapshot_times);
+  const OrbitPlotContent content = orbit_plot_content(checkpoint, record, snapshot_times);
   const PlotAxes axes = orbit_axes(content);
   const double scale = plot_area.height / (axes.y_max() - axes.y_min());  // points per R
-  const double tq = encounter.pericenter_time;
+  const double tq = record.pericenter_time;
 
   auto analytic_line_style = [](cairo_t* cr) {
     set_color(cr, analytic_track_color);

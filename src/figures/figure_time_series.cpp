@@ -39,7 +39,7 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
                                   const std::filesystem::path& stem, const std::string& title) {
   // Cumulative count as a step function of the failure events; the sampled counts otherwise.
   std::vector<double> t, n;
-  const double t_start = stage_start_time(checkpoint) - pericenter_time;
+  const double t_start = checkpoint.stage.clock.start_time - pericenter_time;
   const double t_end = checkpoint.state.time - pericenter_time;
   const auto& events = checkpoint.observables.failures;
   const auto& samples = checkpoint.observables.timeseries;

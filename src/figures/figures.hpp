@@ -9,7 +9,6 @@
 #include "model/checkpoint.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "figures/plot_axes.hpp"
-#include "model/recorded_encounter.hpp"
 
 namespace tidalcrust {
 
@@ -43,12 +42,12 @@ PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count);
 /// simulated one (recorded_track.hpp: the timeseries samples' perturber_offset, with the body's
 /// recoil and tidal effects), with the analytic two-body orbit (two_body_orbit.hpp) as a thin grey
 /// dashed reference; a checkpoint without such samples gets the analytic track alone.
-FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord& record,
                              const std::vector<double>& snapshot_times, const std::filesystem::path& stem,
                              const std::string& title);
 /// Where write_orbit_plot with the same arguments puts x, y (R relative to the centre of mass),
 /// in points.
-PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const RecordedEncounter& encounter,
+PlotAxes orbit_plot_axes(const Checkpoint& checkpoint, const EncounterRecord& record,
                          const std::vector<double>& snapshot_times);
 
 /// Failed shell springs against t - t_peri (failure events; timeseries counts if there are none).
@@ -59,8 +58,5 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
 /// energy, |P - P0| and |L - L0| (body + perturber, about the origin).
 FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericenter_time,
                                     const std::filesystem::path& stem, const std::string& title);
-
-/// Time at which the stage started: state time minus the steps taken since StageInfo::start_step.
-double stage_start_time(const Checkpoint& checkpoint);
 
 }  // namespace tidalcrust

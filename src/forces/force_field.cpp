@@ -39,8 +39,9 @@ void check_index(std::int32_t index, std::size_t particles, const char* what, st
 
 }  // namespace
 
-ForceOptions force_options(const Config& config) {
+ForceOptions force_options(const Config& config, double damping) {
   ForceOptions options;
+  options.damping = damping;
   options.cross_nonlinear = config.cross.nonlinear;
   options.cross_strain_scale = config.cross.strain_scale;
   options.cross_min_force_factor = config.cross.min_force_factor;
@@ -82,7 +83,7 @@ void ForceField::spring_range(std::size_t begin, std::size_t end, const double* 
   const auto* ends = body_.springs.data();
   const double* rest = springs.rest_length.data();
   const double* stiffness = springs.stiffness.data();
-  const double* damping = springs.damping.data();
+  const double damping = options_.damping;
   const double* mu = reduced_mass_.data();
   const std::uint8_t* nonlinear = nonlinear_.data();
   const double strain_scale = options_.cross_strain_scale, min_factor = options_.cross_min_force_factor;
@@ -97,17 +98,16 @@ void ForceField::spring_range(std::size_t begin, std::size_t end, const double* 
     const double factor =
         nonlinear[s] ? cross_spring_factor((length - rest[s]) / rest[s], strain_scale, min_factor) : 1.0;
     const double c = spring_force_coefficient(length, dx * dvx + dy * dvy + dz * dvz, rest[s], stiffness[s],
-                                              damping[s] * mu[s], factor);
+                                              damping * mu[s], factor);
     force[3 * s] = -c * dx;
     force[3 * s + 1] = -c * dy;
     force[3 * s + 2] = -c * dz;
   }
 }
 
-std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position,
-                                     const HingeState& hinges) {
+std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position) {
   const auto* corners = body_.hinges.data();
-  const double* stiffness = hinges.stiffness.data();
+  const double* stiffness = body_.hinge_stiffness.data();
   const HalfRestAngle* rest = half_rest_.data();
   double* force = hinge_force_.data();
   std::int64_t collapsed = -1;
@@ -171,7 +171,7 @@ std::int64_t ForceField::compute_hinge_forces(const double* position, const Hing
   std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel for schedule(static) reduction(min : collapsed) if (4 * nh >= options_.min_parallel_items)
   for (std::size_t c = 0; c < chunks; ++c) {
-    const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+    const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position);
     if (h >= 0) collapsed = std::min(collapsed, h);
   }
   return collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
@@ -180,13 +180,13 @@ std::int64_t ForceField::compute_hinge_forces(const double* position, const Hing
 ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
                                 const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
   const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
-  if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || springs.damping.size() != ns ||
-      hinges.rest_angle.size() != nh || hinges.stiffness.size() != nh)
+  if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || hinges.rest_angle.size() != nh ||
+      body_.hinge_stiffness.size() != nh)
     throw InputError(fmt::format("state does not match the body: {} springs and {} hinges in the body, "
-                                 "{} rest lengths, {} stiffnesses, {} damping rates, {} rest angles, "
-                                 "{} hinge stiffnesses in the state",
+                                 "{} rest lengths, {} stiffnesses, {} rest angles in the state, "
+                                 "{} hinge stiffnesses in the body",
                                  ns, nh, springs.rest_length.size(), springs.stiffness.size(),
-                                 springs.damping.size(), hinges.rest_angle.size(), hinges.stiffness.size()));
+                                 hinges.rest_angle.size(), body_.hinge_stiffness.size()));
   out.body.resize(3 * n);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
@@ -212,7 +212,7 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
         spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
       } else {
         const std::size_t c = item - gravity_items - spring_items;
-        const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position, hinges);
+        const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position);
         if (h >= 0) collapsed = std::min(collapsed, h);
       }
     }
@@ -237,7 +237,8 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   return alarms;
 }
 
-std::string ForceField::describe(const ForceAlarms& alarms, const double* position, const State& state) const {
+std::string ForceField::describe(const ForceAlarms& alarms, const double* position, const State& state,
+                                 double dt) const {
   std::string what;
   if (alarms.collapsed_hinge >= 0) {
     const auto h = static_cast<std::size_t>(alarms.collapsed_hinge);
@@ -264,19 +265,19 @@ std::string ForceField::describe(const ForceAlarms& alarms, const double* positi
   } else {
     what = "no force alarm";
   }
-  return what + "; " + likely_blow_up_cause(body_, state);
+  return what + "; " + likely_blow_up_cause(body_, state, dt);
 }
 
-std::string likely_blow_up_cause(const Body& body, const State& state) {
+std::string likely_blow_up_cause(const Body& body, const State& state, double dt) {
   const double bound = derive_quantities(body, state, 1.0).dt_max;
-  if (bound > 0 && state.dt > bound)
+  if (bound > 0 && dt > bound)
     return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
                        "(eq. 13: dt_max = {:.4g})",
-                       state.dt, bound);
+                       dt, bound);
   return fmt::format("dt = {:.4g} is within the spring stability bound (eq. 13: dt_max = {:.4g}); likely cause: "
                      "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
                      "or dt too close to the bound",
-                     state.dt, bound);
+                     dt, bound);
 }
 
 }  // namespace tidalcrust

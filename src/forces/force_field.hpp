@@ -23,6 +23,7 @@ namespace tidalcrust {
 
 /// Switches of the force model that come from the configuration rather than the State.
 struct ForceOptions {
+  double damping = 0.0;               ///< gamma of every spring, 1/t_grav (eq. 14, with the reduced mass)
   bool cross_nonlinear = false;       ///< apply f(eps) of eq. 26 to cross springs
   double cross_strain_scale = 0.03;   ///< eps_C
   double cross_min_force_factor = 0.1;///< F_Ck
@@ -33,8 +34,9 @@ struct ForceOptions {
   std::size_t min_parallel_items = 16384;
 };
 
-/// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor).
-ForceOptions force_options(const Config& config);
+/// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor) for a
+/// stage that damps its springs at rate `damping` (1/t_grav).
+ForceOptions force_options(const Config& config, double damping);
 
 /// Accelerations of the body particles and of the perturber.
 struct Accelerations {
@@ -80,7 +82,8 @@ class ForceField {
   const std::vector<double>& hinge_forces() const { return hinge_force_; }    ///< [Nh*4*3] G M^2/R^2
 
   /// A sentence naming the element that went wrong and a likely cause, for SimulationError.
-  std::string describe(const ForceAlarms& alarms, const double* position, const State& state) const;
+  /// `dt` is the time step of the run (t_grav).
+  std::string describe(const ForceAlarms& alarms, const double* position, const State& state, double dt) const;
 
   const Body& body() const { return body_; }
   const ForceOptions& options() const { return options_; }
@@ -89,8 +92,8 @@ class ForceField {
   void refresh_half_rest_angles(const HingeState& hinges);
   void spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
                     const SpringState& springs);
-  /// Returns the lowest collapsed hinge in [begin, end), or -1.
-  std::int64_t hinge_range(std::size_t begin, std::size_t end, const double* position, const HingeState& hinges);
+  /// Returns the lowest collapsed hinge in [begin, end), or -1 (rest angles: half_rest_).
+  std::int64_t hinge_range(std::size_t begin, std::size_t end, const double* position);
   /// Acceleration of particle p into acceleration[3p..3p+2]: spring forces, then hinge forces
   /// (each in index order), divided by the mass, plus self-gravity when `with_gravity`.
   void gather(std::size_t p, bool with_gravity, double* acceleration) const;
@@ -111,8 +114,8 @@ class ForceField {
   std::vector<HalfRestAngle> half_rest_;
 };
 
-/// The likely cause of a blow-up, for error messages: compares state.dt with the stability
-/// bound of the stiffest spring (eq. 13, derive_quantities().dt_max).
-std::string likely_blow_up_cause(const Body& body, const State& state);
+/// The likely cause of a blow-up, for error messages: compares the time step dt (t_grav) with
+/// the stability bound of the stiffest spring (eq. 13, derive_quantities().dt_max).
+std::string likely_blow_up_cause(const Body& body, const State& state, double dt);
 
 }  // namespace tidalcrust

@@ -16,8 +16,6 @@ Leapfrog::Leapfrog(ForceField& forces, StepClock clock) : forces_(forces), clock
 }
 
 void Leapfrog::step(State& state) {
-  if (state.dt != clock_.dt)
-    throw std::logic_error(fmt::format("Leapfrog: state.dt = {} differs from the clock's dt = {}", state.dt, clock_.dt));
   const std::size_t n3 = state.position.size();
   if (state.velocity.size() != n3 || n3 != 3 * forces_.body().particle_count())
     throw InputError(fmt::format("state has {} position and {} velocity values for a body of {} particles",
@@ -41,7 +39,7 @@ void Leapfrog::step(State& state) {
   const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, acc_);
   if (alarms.any())
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}", state.step + 1,
-                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw, state)));
+                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw, state, clock_.dt)));
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {
     vw[k] = v[k] + dt * a[k];
@@ -100,7 +98,7 @@ void Leapfrog::check_positions(const double* x, const Perturber& perturber, cons
     return;
   }
   throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
-                                    clock_.time_at(state.step + 1), what, likely_blow_up_cause(body, state)));
+                                    clock_.time_at(state.step + 1), what, likely_blow_up_cause(body, state, clock_.dt)));
 }
 
 }  // namespace tidalcrust

@@ -5,31 +5,22 @@
 #include <vector>
 
 #include "forces/force_field.hpp"
+#include "model/stage_records.hpp"  // StepClock
 #include "model/state.hpp"
 
 namespace tidalcrust {
-
-/// Time as a function of the step count, never accumulated by t += dt, so a resumed run and
-/// a straight run agree bit for bit: time(step) = start_time + (step - start_step) * dt.
-/// A stage makes one clock when it starts (StepClock::starting_at(state)) and must rebuild the
-/// same clock (same start_time, start_step, dt) when it resumes from a mid-stage checkpoint.
-struct StepClock {
-  double start_time = 0;         ///< t_grav at start_step
-  std::int64_t start_step = 0;
-  double dt = 0;                 ///< t_grav
-  double time_at(std::int64_t step) const { return start_time + static_cast<double>(step - start_step) * dt; }
-  static StepClock starting_at(const State& state) { return {state.time, state.step, state.dt}; }
-};
 
 /// A particle farther than this from the body's centre of mass means the run has blown up (R).
 inline constexpr double blow_up_distance = 100.0;
 
 class Leapfrog {
  public:
-  /// Keeps a reference to `forces` (and through it to the Body).
+  /// Keeps a reference to `forces` (and through it to the Body). A stage makes its clock once, when
+  /// it begins, stores it in its checkpoint, and hands the same clock back when it resumes.
+  /// InputError unless clock.dt is finite and > 0.
   Leapfrog(ForceField& forces, StepClock clock);
 
-  /// One step of clock.dt (state.dt must equal it):
+  /// One step of clock.dt (the stage's time step; model/stage_records.hpp):
   ///   x_half = x + v dt/2;  a = forces(x_half, v);  v += a dt;  x = x_half + v dt/2,
   /// the perturber moved the same way with the acceleration the body exerts on it. Damping uses
   /// the start-of-step velocities v. Then step += 1 and time = clock.time_at(step).

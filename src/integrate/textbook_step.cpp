@@ -49,7 +49,7 @@ void TextbookStep::compute_accelerations(const SpringState& springs, const Hinge
     if (options_.cross_nonlinear && body_.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::cross))
       factor = cross_spring_factor((d.norm() - springs.rest_length[s]) / springs.rest_length[s],
                                    options_.cross_strain_scale, options_.cross_min_force_factor);
-    const Vec3 f = spring_force(d, dv, springs.rest_length[s], springs.stiffness[s], springs.damping[s],
+    const Vec3 f = spring_force(d, dv, springs.rest_length[s], springs.stiffness[s], options_.damping,
                                 reduced_mass(a.m, b.m), factor);
     for (int k = 0; k < 3; ++k) {
       a.a[k] += f[k] / a.m;
@@ -64,7 +64,7 @@ void TextbookStep::compute_accelerations(const SpringState& springs, const Hinge
       q[v] = &p[static_cast<std::size_t>(body_.hinges[h][v])];
       x[v] = Vec3(q[v]->x[0], q[v]->x[1], q[v]->x[2]);
     }
-    const HingeForces f = hinge_forces(x[0], x[1], x[2], x[3], hinges.rest_angle[h], hinges.stiffness[h]);
+    const HingeForces f = hinge_forces(x[0], x[1], x[2], x[3], hinges.rest_angle[h], body_.hinge_stiffness[h]);
     for (std::size_t v = 0; v < 4; ++v)
       for (int k = 0; k < 3; ++k) q[v]->a[k] += f.on[v][k] / q[v]->m;
   }

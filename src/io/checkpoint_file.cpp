@@ -29,12 +29,6 @@ static_assert(sizeof(std::array<std::int32_t, 4>) == 4 * sizeof(std::int32_t));
 static_assert(sizeof(std::array<std::int32_t, 3>) == 3 * sizeof(std::int32_t));
 static_assert(sizeof(std::array<double, 3>) == 3 * sizeof(double));
 
-constexpr const char* stage_names[] = {"build", "stretch", "relax", "encounter"};
-
-bool is_stage_name(const std::string& stage) {
-  return std::any_of(std::begin(stage_names), std::end(stage_names), [&](const char* s) { return stage == s; });
-}
-
 /// Paths shared by writer, reader and the XDMF sidecar.
 namespace path {
 constexpr const char* position = "/particles/body/position/value";
@@ -48,12 +42,12 @@ constexpr const char* hinges = "/connectivity/hinges";
 constexpr const char* faces = "/connectivity/faces";
 constexpr const char* rest_length = "/checkpoint/springs/rest_length";
 constexpr const char* spring_stiffness = "/checkpoint/springs/stiffness";
-constexpr const char* spring_damping = "/checkpoint/springs/damping";
 constexpr const char* spring_kind = "/checkpoint/springs/kind";
 constexpr const char* spring_failed = "/checkpoint/springs/failed";
 constexpr const char* rest_angle = "/checkpoint/hinges/rest_angle";
 constexpr const char* hinge_stiffness = "/checkpoint/hinges/stiffness";
 constexpr const char* perturber = "/checkpoint/perturber";
+constexpr const char* record = "/checkpoint/record";
 constexpr const char* config = "/parameters/config";
 }  // namespace path
 
@@ -63,27 +57,123 @@ std::string shape_text(const std::vector<hsize_t>& dims) {
   return s + "]";
 }
 
+// ---- the layout of the per-element arrays and of the observables, listed once -------------------
+
+/// What the first dimension of a per-element array counts.
+enum class Rows { particles, springs, hinges, faces };
+constexpr const char* rows_symbol[] = {"N", "Ns", "Nh", "Nf"};
+
+/// [rows] (columns 0), [rows][K], or one H5MD time slice [1][rows][K].
+struct Shape {
+  Rows rows;
+  std::size_t columns = 0;
+  bool time_slice = false;
+};
+
+/// Every per-element array of a checkpoint, in stored order, as visit(path, array, shape). The
+/// first array of each kind of rows defines its count (when reading: N from the positions, Ns
+/// from the springs, Nh from the hinges, Nf from the faces). The writer, the reader and the
+/// consistency check all walk this list. C is Checkpoint or const Checkpoint.
+template <typename C, typename Visit>
+void visit_element_arrays(C& c, Visit&& visit) {
+  visit(path::position, c.state.position, Shape{Rows::particles, 3, true});
+  visit(path::velocity, c.state.velocity, Shape{Rows::particles, 3, true});
+  visit(path::mass, c.body.mass, Shape{Rows::particles});
+  visit(path::species, c.body.species, Shape{Rows::particles});
+  visit(path::springs, c.body.springs, Shape{Rows::springs, 2});
+  visit(path::rest_length, c.state.springs.rest_length, Shape{Rows::springs});
+  visit(path::spring_stiffness, c.state.springs.stiffness, Shape{Rows::springs});
+  visit(path::spring_kind, c.body.spring_kind, Shape{Rows::springs});
+  visit(path::spring_failed, c.state.springs.failed, Shape{Rows::springs});
+  visit(path::hinges, c.body.hinges, Shape{Rows::hinges, 4});
+  visit(path::rest_angle, c.state.hinges.rest_angle, Shape{Rows::hinges});
+  visit(path::hinge_stiffness, c.body.hinge_stiffness, Shape{Rows::hinges});
+  visit(path::faces, c.body.faces, Shape{Rows::faces, 3});
+}
+
+/// The columns of the failure log and of the timeseries: visit(name, member pointer). A 3-vector
+/// member is an [n][3] dataset, any other an [n] one; the first column defines n.
+template <typename Visit>
+void visit_columns(std::type_identity<FailureEvent>, Visit&& visit) {
+  visit("time", &FailureEvent::time);
+  visit("step", &FailureEvent::step);
+  visit("spring", &FailureEvent::spring);
+  visit("strain", &FailureEvent::strain);
+  visit("position", &FailureEvent::position);
+}
+template <typename Visit>
+void visit_columns(std::type_identity<TimeseriesSample>, Visit&& visit) {
+  visit("time", &TimeseriesSample::time);
+  visit("failed", &TimeseriesSample::failed);
+  visit("kinetic_energy", &TimeseriesSample::kinetic_energy);
+  visit("momentum", &TimeseriesSample::momentum);
+  visit("angular_momentum", &TimeseriesSample::angular_momentum);
+  visit("perturber_offset", &TimeseriesSample::perturber_offset);
+}
+
+/// The observables groups and the rows each holds.
+template <typename O, typename Visit>
+void visit_observables(O& o, Visit&& visit) {
+  visit("/observables/failures", o.failures);
+  visit("/observables/timeseries", o.timeseries);
+}
+
+/// Element type, value count and first value of an array stored flat (rows of std::array are
+/// stored as [rows][K]; the static_asserts above guarantee they have no padding).
+template <typename T>
+struct Flat {
+  using value_type = T;
+  static constexpr std::size_t width = 1;
+};
+template <typename T, std::size_t K>
+struct Flat<std::array<T, K>> {
+  using value_type = T;
+  static constexpr std::size_t width = K;
+};
+template <typename E>
+std::size_t value_count(const std::vector<E>& v) { return v.size() * Flat<E>::width; }
+template <typename E>
+const auto* flat_data(const std::vector<E>& v) {
+  return reinterpret_cast<const typename Flat<E>::value_type*>(v.data());
+}
+
+std::vector<hsize_t> dims_of(const Shape& shape, hsize_t rows) {
+  if (shape.time_slice) return {1, rows, shape.columns};
+  if (shape.columns > 0) return {rows, shape.columns};
+  return {rows};
+}
+
+/// [n] for a column of numbers, [n][3] for a column of 3-vectors.
+template <typename Value>
+std::vector<hsize_t> column_dims(hsize_t n) {
+  if constexpr (Flat<Value>::width > 1) return {n, Flat<Value>::width};
+  else return {n};
+}
+
+/// The number of rows a per-element array holds in memory.
+template <typename E>
+std::size_t rows_of(const std::vector<E>& v, const Shape& shape) {
+  return value_count(v) / std::max<std::size_t>(shape.columns, 1);
+}
+
 // ---- consistency of an in-memory checkpoint (checked before writing) ------------------------
 
 /// Empty if every array has the size the body implies and every index is in range; otherwise
 /// a message naming the dataset that would be wrong.
 std::string consistency_problem(const Checkpoint& c) {
+  // Sizes: the first array of each kind of rows sets the count the others must have.
+  std::array<std::optional<std::size_t>, 4> count;
+  std::string problem;
+  visit_element_arrays(c, [&](const char* dataset, const auto& values, const Shape& shape) {
+    auto& rows = count[static_cast<std::size_t>(shape.rows)];
+    const std::size_t width = std::max<std::size_t>(shape.columns, 1);
+    if (!rows) rows = rows_of(values, shape);
+    if (problem.empty() && value_count(values) != *rows * width)
+      problem = fmt::format("{} has {} values, expected {} ({} = {})", dataset, value_count(values), *rows * width,
+                            rows_symbol[static_cast<std::size_t>(shape.rows)], *rows);
+  });
+  if (!problem.empty()) return problem;
   const std::size_t n = c.body.mass.size(), ns = c.body.springs.size(), nh = c.body.hinges.size();
-  auto size_problem = [](const char* dataset, std::size_t have, std::size_t want) {
-    return have == want ? std::string() : fmt::format("{} has {} values, expected {}", dataset, have, want);
-  };
-  for (auto problem : {size_problem(path::species, c.body.species.size(), n),
-                       size_problem(path::position, c.state.position.size(), 3 * n),
-                       size_problem(path::velocity, c.state.velocity.size(), 3 * n),
-                       size_problem(path::spring_kind, c.body.spring_kind.size(), ns),
-                       size_problem(path::rest_length, c.state.springs.rest_length.size(), ns),
-                       size_problem(path::spring_stiffness, c.state.springs.stiffness.size(), ns),
-                       size_problem(path::spring_damping, c.state.springs.damping.size(), ns),
-                       size_problem(path::spring_failed, c.state.springs.failed.size(), ns),
-                       size_problem(path::rest_angle, c.state.hinges.rest_angle.size(), nh),
-                       size_problem(path::hinge_stiffness, c.state.hinges.stiffness.size(), nh)})
-    if (!problem.empty()) return problem;
-  if (!is_stage_name(c.stage.stage)) return fmt::format("/checkpoint@stage '{}' is not a stage name", c.stage.stage);
   auto index_problem = [n](const char* dataset, std::size_t row, std::int32_t index) {
     return (index < 0 || static_cast<std::size_t>(index) >= n)
                ? fmt::format("{} row {}: particle index {} out of range [0, {})", dataset, row, index, n)
@@ -116,11 +206,6 @@ std::string consistency_problem(const Checkpoint& c) {
 
 // ---- writing --------------------------------------------------------------------------------
 
-template <typename T, std::size_t K>
-const T* flat(const std::vector<std::array<T, K>>& rows) {
-  return rows.empty() ? nullptr : rows.front().data();
-}
-
 void write_h5md_header(hid_t root) {
   h5::Group h5md = h5::create_group(root, "h5md");
   h5::write_attribute_array<std::int32_t>(h5md.get(), "version", {1, 1});
@@ -132,81 +217,105 @@ void write_h5md_header(hid_t root) {
   h5::write_string_attribute(creator.get(), "version", build_info::version);
 }
 
-void write_particles(hid_t root, const Checkpoint& c) {
-  const hsize_t n = c.body.mass.size();
-  h5::Group particles = h5::create_group(root, "particles");
-  h5::Group body = h5::create_group(particles.get(), "body");
+/// The groups of /particles and /connectivity with their H5MD metadata, and every per-element
+/// array (visit_element_arrays) in them and in /checkpoint/{springs,hinges}.
+void write_body_and_state(hid_t root, const Checkpoint& c) {
   {
+    h5::Group particles = h5::create_group(root, "particles");
+    h5::Group body = h5::create_group(particles.get(), "body");
     h5::Group box = h5::create_group(body.get(), "box");
     h5::write_attribute<std::int32_t>(box.get(), "dimension", 3);
     h5::write_string_array_attribute(box.get(), "boundary", {"none", "none", "none"});
-  }
-  {
     h5::Group position = h5::create_group(body.get(), "position");
-    h5::write_dataset(position.get(), "value", c.state.position, {1, n, 3});
     h5::write_dataset<std::int64_t>(position.get(), "step", &c.state.step, {1});
     h5::write_dataset<double>(position.get(), "time", &c.state.time, {1});
-  }
-  {
-    h5::Group velocity = h5::create_group(body.get(), "velocity");
-    h5::write_dataset(velocity.get(), "value", c.state.velocity, {1, n, 3});
+    h5::create_group(body.get(), "velocity");
     h5::hard_link(root, path::position_step, "/particles/body/velocity/step");
     h5::hard_link(root, path::position_time, "/particles/body/velocity/time");
+    h5::create_group(root, "connectivity");
+    h5::Group checkpoint = h5::create_group(root, "checkpoint");
+    h5::create_group(checkpoint.get(), "springs");
+    h5::create_group(checkpoint.get(), "hinges");
   }
-  h5::write_dataset(body.get(), "mass", c.body.mass, {n});
-  h5::write_dataset(body.get(), "species", c.body.species, {n});
+  visit_element_arrays(c, [&](const char* dataset, const auto& values, const Shape& shape) {
+    h5::write_dataset(root, dataset, flat_data(values), dims_of(shape, rows_of(values, shape)));
+  });
 }
 
-void write_connectivity(hid_t root, const Body& b) {
-  h5::Group group = h5::create_group(root, "connectivity");
-  h5::write_dataset(group.get(), "springs", flat(b.springs), {b.springs.size(), 2});
-  h5::write_dataset(group.get(), "hinges", flat(b.hinges), {b.hinges.size(), 4});
-  h5::write_dataset(group.get(), "faces", flat(b.faces), {b.faces.size(), 3});
-}
+/// Writes one stage-record field under /checkpoint/record: numbers and flags as attributes,
+/// lists as 1-D datasets (visit_fields in model/stage_records.hpp lists the fields).
+struct RecordWriter {
+  hid_t group;
+  void operator()(const char* name, double v, const char*, const char*) const {
+    h5::write_attribute<double>(group, name, v);
+  }
+  void operator()(const char* name, std::int64_t v, const char*, const char*) const {
+    h5::write_attribute<std::int64_t>(group, name, v);
+  }
+  void operator()(const char* name, bool v, const char*, const char*) const {
+    h5::write_attribute<std::uint8_t>(group, name, v ? 1 : 0);
+  }
+  void operator()(const char* name, const std::string& v, const char*, const char*) const {
+    h5::write_string_attribute(group, name, v);
+  }
+  template <typename T>
+  void operator()(const char* name, const std::vector<T>& v, const char*, const char*) const {
+    h5::write_dataset(group, name, v, {v.size()});
+  }
+};
+
+/// Reads one stage-record field back; a missing or mistyped field is an h5::Error naming it.
+struct RecordReader {
+  hid_t group;
+  void operator()(const char* name, double& v, const char*, const char*) const {
+    v = h5::read_attribute<double>(group, name);
+  }
+  void operator()(const char* name, std::int64_t& v, const char*, const char*) const {
+    v = h5::read_attribute<std::int64_t>(group, name);
+  }
+  void operator()(const char* name, bool& v, const char*, const char*) const {
+    const auto flag = h5::read_attribute<std::uint8_t>(group, name);
+    if (flag > 1) throw h5::Error(fmt::format("attribute {}@{} is {}, expected 0 or 1", path::record, name, +flag));
+    v = flag == 1;
+  }
+  void operator()(const char* name, std::string& v, const char*, const char*) const {
+    v = h5::read_string_attribute(group, name);
+  }
+  template <typename T>
+  void operator()(const char* name, std::vector<T>& v, const char*, const char*) const {
+    auto array = h5::read_dataset<T>(group, name);
+    if (array.dims.size() != 1)
+      throw h5::Error(fmt::format("dataset {}/{} has shape {}, expected [k]", path::record, name, shape_text(array.dims)));
+    v = std::move(array.values);
+  }
+};
 
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
-  h5::Group group = h5::create_group(root, "checkpoint");
+  h5::Group group = h5::open_group(root, "/checkpoint");
   hid_t g = group.get();
   h5::write_attribute<std::int64_t>(g, "format_version", checkpoint_format_version);
-  h5::write_string_attribute(g, "stage", c.stage.stage);
+  h5::write_string_attribute(g, "stage", c.stage.name());
   h5::write_attribute<std::uint8_t>(g, "complete", c.stage.complete ? 1 : 0);
   h5::write_attribute<double>(g, "time", c.state.time);
   h5::write_attribute<std::int64_t>(g, "step", c.state.step);
-  h5::write_attribute<double>(g, "dt", c.state.dt);
+  h5::write_attribute<double>(g, "dt", c.stage.clock.dt);
+  h5::write_attribute<double>(g, "start_time", c.stage.clock.start_time);
+  h5::write_attribute<std::int64_t>(g, "start_step", c.stage.clock.start_step);
+  h5::write_attribute<std::int64_t>(g, "end_step", c.stage.end_step);
   h5::write_string_attribute(g, "state_hash", hash);
   h5::write_string_attribute(g, "parent_hash", c.stage.parent_hash);
-  h5::write_attribute<std::int64_t>(g, "start_step", c.stage.start_step);
-  h5::write_attribute<std::int64_t>(g, "end_step", c.stage.end_step);
+  h5::write_string_attribute(g, "fingerprint", c.stage.fingerprint);
+  h5::write_string_attribute(g, "diagnostic", c.stage.diagnostic);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
-  const hsize_t ns = c.body.springs.size(), nh = c.body.hinges.size();
-  {
-    h5::Group springs = h5::create_group(g, "springs");
-    h5::write_dataset(springs.get(), "rest_length", c.state.springs.rest_length, {ns});
-    h5::write_dataset(springs.get(), "stiffness", c.state.springs.stiffness, {ns});
-    h5::write_dataset(springs.get(), "damping", c.state.springs.damping, {ns});
-    h5::write_dataset(springs.get(), "kind", c.body.spring_kind, {ns});
-    h5::write_dataset(springs.get(), "failed", c.state.springs.failed, {ns});
-  }
-  {
-    h5::Group hinges = h5::create_group(g, "hinges");
-    h5::write_dataset(hinges.get(), "rest_angle", c.state.hinges.rest_angle, {nh});
-    h5::write_dataset(hinges.get(), "stiffness", c.state.hinges.stiffness, {nh});
-  }
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
     h5::write_dataset<double>(perturber.get(), "mass", &c.state.perturber.mass, {});
     h5::write_dataset(perturber.get(), "position", c.state.perturber.position.data(), {3});
     h5::write_dataset(perturber.get(), "velocity", c.state.perturber.velocity.data(), {3});
   }
-  {
-    h5::Group scalars = h5::create_group(g, "scalars");
-    for (const auto& [name, value] : c.stage.scalars) h5::write_attribute<double>(scalars.get(), name, value);
-  }
-  {
-    h5::Group labels = h5::create_group(g, "labels");
-    for (const auto& [name, value] : c.stage.labels) h5::write_string_attribute(labels.get(), name, value);
-  }
+  h5::Group record = h5::create_group(g, "record");
+  std::visit([&](const auto& r) { visit_fields(r, RecordWriter{record.get()}); }, c.stage.record);
 }
 
 void write_parameters(hid_t root, const Checkpoint& c) {
@@ -219,62 +328,27 @@ void write_parameters(hid_t root, const Checkpoint& c) {
   h5::write_string_attribute(provenance.get(), "build_flags", build_info::build_flags);
 }
 
-/// Gathers one member of each row into a column (rows of structs -> dataset columns).
-template <typename Row, typename Get>
-auto column(const std::vector<Row>& rows, Get get) {
-  std::vector<std::decay_t<decltype(get(rows.front()))>> out;
-  out.reserve(rows.size());
-  for (const auto& r : rows) out.push_back(get(r));
-  return out;
-}
-
-template <typename Row, typename Get>
-std::vector<double> vector_column(const std::vector<Row>& rows, Get get) {
-  std::vector<double> out;
-  out.reserve(3 * rows.size());
-  for (const auto& r : rows) {
-    const std::array<double, 3>& v = get(r);
-    out.insert(out.end(), v.begin(), v.end());
-  }
-  return out;
-}
-
+/// The failure log and the timeseries, one dataset per column (visit_columns).
 void write_observables(hid_t root, const Observables& o) {
-  h5::Group group = h5::create_group(root, "observables");
-  {
-    const auto& rows = o.failures;
-    const hsize_t n = rows.size();
-    h5::Group failures = h5::create_group(group.get(), "failures");
-    h5::write_dataset(failures.get(), "time", column(rows, [](const FailureEvent& e) { return e.time; }), {n});
-    h5::write_dataset(failures.get(), "step", column(rows, [](const FailureEvent& e) { return e.step; }), {n});
-    h5::write_dataset(failures.get(), "spring", column(rows, [](const FailureEvent& e) { return e.spring; }), {n});
-    h5::write_dataset(failures.get(), "strain", column(rows, [](const FailureEvent& e) { return e.strain; }), {n});
-    h5::write_dataset(failures.get(), "position",
-                      vector_column(rows, [](const FailureEvent& e) -> const auto& { return e.position; }), {n, 3});
-  }
-  {
-    const auto& rows = o.timeseries;
-    const hsize_t n = rows.size();
-    h5::Group series = h5::create_group(group.get(), "timeseries");
-    using S = TimeseriesSample;
-    h5::write_dataset(series.get(), "time", column(rows, [](const S& s) { return s.time; }), {n});
-    h5::write_dataset(series.get(), "failed", column(rows, [](const S& s) { return s.failed; }), {n});
-    h5::write_dataset(series.get(), "kinetic_energy", column(rows, [](const S& s) { return s.kinetic_energy; }), {n});
-    h5::write_dataset(series.get(), "momentum",
-                      vector_column(rows, [](const S& s) -> const auto& { return s.momentum; }), {n, 3});
-    h5::write_dataset(series.get(), "angular_momentum",
-                      vector_column(rows, [](const S& s) -> const auto& { return s.angular_momentum; }), {n, 3});
-    h5::write_dataset(series.get(), "perturber_offset",
-                      vector_column(rows, [](const S& s) -> const auto& { return s.perturber_offset; }), {n, 3});
-  }
+  h5::create_group(root, "observables");
+  visit_observables(o, [&](const char* group_path, const auto& rows) {
+    using Row = typename std::decay_t<decltype(rows)>::value_type;
+    h5::Group group = h5::create_group(root, group_path);
+    visit_columns(std::type_identity<Row>{}, [&](const char* name, auto member) {
+      using Value = std::decay_t<decltype(std::declval<Row>().*member)>;
+      std::vector<Value> column;
+      column.reserve(rows.size());
+      for (const Row& row : rows) column.push_back(row.*member);
+      h5::write_dataset(group.get(), name, flat_data(column), column_dims<Value>(rows.size()));
+    });
+  });
 }
 
 void write_hdf5(const fs::path& file, const Checkpoint& c) {
   h5::File f = h5::create_file(file);
   const hid_t root = f.get();
   write_h5md_header(root);
-  write_particles(root, c);
-  write_connectivity(root, c.body);
+  write_body_and_state(root, c);
   write_checkpoint_group(root, c, state_hash(c.state));
   write_parameters(root, c);
   write_observables(root, c.observables);
@@ -328,7 +402,7 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
 
   std::string x = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
   x += fmt::format("    <Grid Name=\"{}\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
-                   xml_escape(c.stage.stage));
+                   xml_escape(c.stage.name()));
   x += fmt::format("      <Time Value=\"{}\"/>\n", c.state.time);
   if (n > 0) {
     x += "      <Grid Name=\"particles\" GridType=\"Uniform\">\n";
@@ -417,26 +491,48 @@ std::vector<T> read_shaped(hid_t root, const char* dataset, const std::vector<hs
   return std::move(array.values);
 }
 
-/// Reads a [rows][K] dataset whose row count defines a size (springs, hinges, faces, ...).
-template <typename T>
-h5::Array<T> read_rows(hid_t root, const char* dataset, hsize_t columns) {
-  auto array = h5::read_dataset<T>(root, dataset);
-  const bool ok = columns == 0 ? array.dims.size() == 1 : (array.dims.size() == 2 && array.dims[1] == columns);
-  if (!ok)
-    throw h5::Error(fmt::format("dataset {} has shape {}, expected {}", dataset, shape_text(array.dims),
-                                columns == 0 ? std::string("[n]") : fmt::format("[n, {}]", columns)));
-  return array;
+/// Reads an array stored flat into `out` (rows of std::array from [rows][K]).
+template <typename E>
+void unflatten(std::vector<typename Flat<E>::value_type>&& values, std::vector<E>& out) {
+  if constexpr (Flat<E>::width == 1) {
+    out = std::move(values);
+  } else {
+    out.resize(values.size() / Flat<E>::width);
+    if (!out.empty()) std::memcpy(out.data(), values.data(), values.size() * sizeof(values[0]));
+  }
 }
 
-template <std::size_t K>
-std::vector<std::array<std::int32_t, K>> to_rows(const std::vector<std::int32_t>& values) {
-  std::vector<std::array<std::int32_t, K>> rows(values.size() / K);
-  if (!rows.empty()) std::memcpy(rows.data(), values.data(), values.size() * sizeof(std::int32_t));
-  return rows;
+/// The shape an array must have; `defined` is the row count set by an earlier array, or none
+/// when this array defines it (then any row count is accepted).
+std::string shape_pattern(const Shape& shape, std::optional<hsize_t> defined) {
+  const std::string rows = defined ? std::to_string(*defined) : rows_symbol[static_cast<std::size_t>(shape.rows)];
+  if (shape.time_slice) return fmt::format("[1, {}, {}]", rows, shape.columns);
+  if (shape.columns > 0) return fmt::format("[{}, {}]", rows, shape.columns);
+  return fmt::format("[{}]", rows);
 }
 
-std::array<double, 3> row3(const std::vector<double>& values, std::size_t i) {
-  return {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+/// Every per-element array (visit_element_arrays), each shape checked against the row counts.
+void read_element_arrays(hid_t root, Checkpoint& c) {
+  std::array<std::optional<hsize_t>, 4> count;
+  std::array<const char*, 4> defined_by{};
+  visit_element_arrays(c, [&](const char* dataset, auto& values, const Shape& shape) {
+    using E = typename std::decay_t<decltype(values)>::value_type;
+    auto array = h5::read_dataset<typename Flat<E>::value_type>(root, dataset);
+    const std::size_t kind = static_cast<std::size_t>(shape.rows);
+    const std::size_t rank = shape.time_slice ? 3 : shape.columns > 0 ? 2 : 1;
+    const std::size_t row_axis = shape.time_slice ? 1 : 0;
+    const bool rank_ok = array.dims.size() == rank && (!shape.time_slice || array.dims[0] == 1) &&
+                         (shape.columns == 0 || array.dims.back() == shape.columns);
+    if (rank_ok && !count[kind]) {
+      count[kind] = array.dims[row_axis];
+      defined_by[kind] = dataset;
+    }
+    if (!rank_ok || array.dims[row_axis] != *count[kind])
+      throw h5::Error(fmt::format("dataset {} has shape {}, expected {}{}", dataset, shape_text(array.dims),
+                                  shape_pattern(shape, rank_ok ? count[kind] : std::nullopt),
+                                  rank_ok ? fmt::format(" ({} from {})", rows_symbol[kind], defined_by[kind]) : ""));
+    unflatten(std::move(array.values), values);
+  });
 }
 
 void read_stage_info(hid_t root, Checkpoint& c) {
@@ -445,67 +541,35 @@ void read_stage_info(hid_t root, Checkpoint& c) {
   if (version != checkpoint_format_version)
     throw h5::Error(fmt::format("attribute /checkpoint@format_version is {}, this tidalcrust reads version {}",
                                 version, checkpoint_format_version));
-  c.stage.stage = h5::read_string_attribute(g.get(), "stage");
-  if (!is_stage_name(c.stage.stage))
-    throw h5::Error(fmt::format("attribute /checkpoint@stage is '{}', expected one of build, stretch, relax, encounter",
-                                c.stage.stage));
+  const std::string stage = h5::read_string_attribute(g.get(), "stage");
+  if (!make_stage_record(stage, c.stage.record))
+    throw h5::Error(
+        fmt::format("attribute /checkpoint@stage is '{}', expected one of build, stretch, relax, encounter", stage));
   const auto complete = h5::read_attribute<std::uint8_t>(g.get(), "complete");
   if (complete > 1) throw h5::Error(fmt::format("attribute /checkpoint@complete is {}, expected 0 or 1", +complete));
   c.stage.complete = complete == 1;
   c.state.time = h5::read_attribute<double>(g.get(), "time");
   c.state.step = h5::read_attribute<std::int64_t>(g.get(), "step");
-  c.state.dt = h5::read_attribute<double>(g.get(), "dt");
-  c.stage.parent_hash = h5::read_string_attribute(g.get(), "parent_hash");
-  c.stage.start_step = h5::read_attribute<std::int64_t>(g.get(), "start_step");
+  c.stage.clock.dt = h5::read_attribute<double>(g.get(), "dt");
+  c.stage.clock.start_time = h5::read_attribute<double>(g.get(), "start_time");
+  c.stage.clock.start_step = h5::read_attribute<std::int64_t>(g.get(), "start_step");
   c.stage.end_step = h5::read_attribute<std::int64_t>(g.get(), "end_step");
+  c.stage.parent_hash = h5::read_string_attribute(g.get(), "parent_hash");
+  c.stage.fingerprint = h5::read_string_attribute(g.get(), "fingerprint");
+  c.stage.diagnostic = h5::read_string_attribute(g.get(), "diagnostic");
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
-  {
-    h5::Group scalars = h5::open_group(g.get(), "scalars");
-    for (const auto& name : h5::attribute_names(scalars.get()))
-      c.stage.scalars[name] = h5::read_attribute<double>(scalars.get(), name);
-  }
-  {
-    h5::Group labels = h5::open_group(g.get(), "labels");
-    for (const auto& name : h5::attribute_names(labels.get()))
-      c.stage.labels[name] = h5::read_string_attribute(labels.get(), name);
-  }
+  h5::Group record = h5::open_group(g.get(), "record");
+  std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);
 }
 
 void read_body_and_state(hid_t root, Checkpoint& c) {
-  auto position = h5::read_dataset<double>(root, path::position);
-  if (position.dims.size() != 3 || position.dims[0] != 1 || position.dims[2] != 3)
-    throw h5::Error(fmt::format("dataset {} has shape {}, expected [1, N, 3]", path::position, shape_text(position.dims)));
-  const hsize_t n = position.dims[1];
-  const char* n_from = "N from /particles/body/position/value";
-  c.state.position = std::move(position.values);
-  c.state.velocity = read_shaped<double>(root, path::velocity, {1, n, 3}, n_from);
-  c.body.mass = read_shaped<double>(root, path::mass, {n}, n_from);
-  c.body.species = read_shaped<std::uint8_t>(root, path::species, {n}, n_from);
-
+  read_element_arrays(root, c);
   const auto step = read_shaped<std::int64_t>(root, path::position_step, {1}, "one time slice");
   const auto time = read_shaped<double>(root, path::position_time, {1}, "one time slice");
   if (step[0] != c.state.step || std::memcmp(&time[0], &c.state.time, sizeof(double)) != 0)
     throw h5::Error(fmt::format("datasets {} and {} ({}, {}) disagree with /checkpoint@step and @time ({}, {})",
                                 path::position_step, path::position_time, step[0], time[0], c.state.step,
                                 c.state.time));
-
-  auto springs = read_rows<std::int32_t>(root, path::springs, 2);
-  const hsize_t ns = springs.dims[0];
-  c.body.springs = to_rows<2>(springs.values);
-  auto hinges = read_rows<std::int32_t>(root, path::hinges, 4);
-  const hsize_t nh = hinges.dims[0];
-  c.body.hinges = to_rows<4>(hinges.values);
-  c.body.faces = to_rows<3>(read_rows<std::int32_t>(root, path::faces, 3).values);
-
-  const char* ns_from = "Ns from /connectivity/springs";
-  const char* nh_from = "Nh from /connectivity/hinges";
-  c.state.springs.rest_length = read_shaped<double>(root, path::rest_length, {ns}, ns_from);
-  c.state.springs.stiffness = read_shaped<double>(root, path::spring_stiffness, {ns}, ns_from);
-  c.state.springs.damping = read_shaped<double>(root, path::spring_damping, {ns}, ns_from);
-  c.body.spring_kind = read_shaped<std::uint8_t>(root, path::spring_kind, {ns}, ns_from);
-  c.state.springs.failed = read_shaped<std::uint8_t>(root, path::spring_failed, {ns}, ns_from);
-  c.state.hinges.rest_angle = read_shaped<double>(root, path::rest_angle, {nh}, nh_from);
-  c.state.hinges.stiffness = read_shaped<double>(root, path::hinge_stiffness, {nh}, nh_from);
 
   c.state.perturber = Perturber{};
   if (h5::exists(root, path::perturber)) {
@@ -519,32 +583,33 @@ void read_body_and_state(hid_t root, Checkpoint& c) {
   }
 }
 
+/// The failure log and the timeseries (visit_columns); the first column of each defines n.
 void read_observables(hid_t root, Observables& o) {
-  {
-    auto time = read_rows<double>(root, "/observables/failures/time", 0);
-    const hsize_t n = time.dims[0];
-    const char* n_from = "n from /observables/failures/time";
-    auto step = read_shaped<std::int64_t>(root, "/observables/failures/step", {n}, n_from);
-    auto spring = read_shaped<std::int32_t>(root, "/observables/failures/spring", {n}, n_from);
-    auto strain = read_shaped<double>(root, "/observables/failures/strain", {n}, n_from);
-    auto position = read_shaped<double>(root, "/observables/failures/position", {n, 3}, n_from);
-    o.failures.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      o.failures[i] = {time.values[i], step[i], spring[i], strain[i], row3(position, i)};
-  }
-  {
-    auto time = read_rows<double>(root, "/observables/timeseries/time", 0);
-    const hsize_t n = time.dims[0];
-    const char* n_from = "n from /observables/timeseries/time";
-    auto failed = read_shaped<std::int64_t>(root, "/observables/timeseries/failed", {n}, n_from);
-    auto energy = read_shaped<double>(root, "/observables/timeseries/kinetic_energy", {n}, n_from);
-    auto momentum = read_shaped<double>(root, "/observables/timeseries/momentum", {n, 3}, n_from);
-    auto angular = read_shaped<double>(root, "/observables/timeseries/angular_momentum", {n, 3}, n_from);
-    auto offset = read_shaped<double>(root, "/observables/timeseries/perturber_offset", {n, 3}, n_from);
-    o.timeseries.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      o.timeseries[i] = {time.values[i], failed[i], energy[i], row3(momentum, i), row3(angular, i), row3(offset, i)};
-  }
+  visit_observables(o, [&](const char* group_path, auto& rows) {
+    using Row = typename std::decay_t<decltype(rows)>::value_type;
+    h5::Group group = h5::open_group(root, group_path);
+    std::optional<hsize_t> n;
+    std::string first;
+    visit_columns(std::type_identity<Row>{}, [&](const char* name, auto member) {
+      using Value = std::decay_t<decltype(std::declval<Row>().*member)>;
+      const std::string dataset = fmt::format("{}/{}", group_path, name);
+      auto array = h5::read_dataset<typename Flat<Value>::value_type>(root, dataset);
+      const bool rank_ok = array.dims.size() == column_dims<Value>(0).size() &&
+                           (Flat<Value>::width == 1 || array.dims[1] == Flat<Value>::width);
+      if (rank_ok && !n) {
+        n = array.dims[0];
+        first = dataset;
+        rows.resize(*n);
+      }
+      if (!rank_ok || array.dims[0] != *n)
+        throw h5::Error(fmt::format("dataset {} has shape {}, expected [{}{}]{}", dataset, shape_text(array.dims),
+                                    n ? std::to_string(*n) : "n", Flat<Value>::width > 1 ? ", 3" : "",
+                                    n ? fmt::format(" (n from {})", first) : ""));
+      std::vector<Value> column;
+      unflatten(std::move(array.values), column);
+      for (std::size_t i = 0; i < rows.size(); ++i) rows[i].*member = column[i];
+    });
+  });
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 
 namespace tidalcrust {
 
-inline constexpr std::int64_t checkpoint_format_version = 2;  ///< 2: /observables/timeseries/perturber_offset
+/// 2: /observables/timeseries/perturber_offset. 3: typed stage records (/checkpoint/record), the
+/// stage clock (@dt, @start_time), hinge stiffness as a body property, no per-spring damping.
+inline constexpr std::int64_t checkpoint_format_version = 3;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
 /// Never overwrites a valid checkpoint in place. Equal checkpoints give byte-identical files.

@@ -1,6 +1,7 @@
 #pragma once
-// The body description: particles, springs, hinges and faces. It never changes once built;
-// everything that evolves (positions, rest lengths, stiffnesses, failures) lives in State.
+// The body description: particles, springs, hinges and faces with their fixed properties. It
+// never changes once built; everything that evolves (positions, rest lengths, stiffnesses,
+// failures) lives in State.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -22,6 +23,7 @@ struct Body {
   /// counter-clockwise seen from outside; then hinge_angle() (hinge_geometry.hpp) has the
   /// same sign on every hinge of a convex shell.
   std::vector<std::array<std::int32_t, 4>> hinges;
+  std::vector<double> hinge_stiffness;               ///< [Nh] k_e in G M^2 / R^2 (a force; eq. 22)
   std::vector<std::array<std::int32_t, 3>> faces;    ///< [Nf] shell triangles, outward CCW
   double softening = 0.0;  ///< Plummer softening length in R (1/100 of min initial spacing)
 

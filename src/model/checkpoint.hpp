@@ -4,11 +4,14 @@
 // io/checkpoint_file.hpp.
 #include <array>
 #include <cstdint>
-#include <map>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "base/errors.hpp"
 #include "model/body.hpp"
+#include "model/stage_records.hpp"
 #include "model/state.hpp"
 
 namespace tidalcrust {
@@ -40,15 +43,29 @@ struct Observables {
   std::vector<TimeseriesSample> timeseries;
 };
 
-/// Which stage wrote the checkpoint and everything its next step depends on.
+/// Which stage wrote the checkpoint and everything its next step depends on besides the state.
 struct StageInfo {
-  std::string stage;               ///< "build", "stretch", "relax", "encounter"
-  bool complete = true;            ///< false for a mid-stage (periodic or SIGINT) checkpoint
-  std::int64_t start_step = 0;     ///< global step at which the stage started
-  std::int64_t end_step = 0;       ///< global step at which the stage ends
-  std::string parent_hash;         ///< state_hash of the checkpoint the stage started from
-  std::map<std::string, double> scalars;      ///< results and schedule phases, by name
-  std::map<std::string, std::string> labels;  ///< e.g. "encounter" -> "T5"
+  StageRecord record;          ///< which stage (the variant's alternative) and what it recorded
+  bool complete = true;        ///< false for a mid-stage (periodic, SIGINT or diagnostic) checkpoint
+  StepClock clock;             ///< time axis: clock.start_step is where the stage began, clock.dt its time step
+  std::int64_t end_step = 0;   ///< global step at which the stage ends
+  std::string parent_hash;     ///< state_hash of the checkpoint the stage started from ("" for build)
+  std::string fingerprint;     ///< what the result depends on (model/stage_fingerprint.hpp); "" outside `run`
+  std::string diagnostic;      ///< on a diagnostic checkpoint, what went wrong; else ""
+
+  const char* name() const { return stage_name(record); }
+  /// The record as stage R; std::logic_error if the checkpoint is of another stage (callers
+  /// check the stage first and report bad input themselves).
+  template <typename R>
+  R& as() {
+    if (auto* r = std::get_if<R>(&record)) return *r;
+    throw std::logic_error(std::string("stage record requested of the wrong stage: ") + name());
+  }
+  template <typename R>
+  const R& as() const {
+    if (const auto* r = std::get_if<R>(&record)) return *r;
+    throw std::logic_error(std::string("stage record requested of the wrong stage: ") + name());
+  }
 };
 
 struct Checkpoint {
@@ -58,5 +75,20 @@ struct Checkpoint {
   State state;
   Observables observables;
 };
+
+/// The name of stage R ("encounter" for EncounterRecord).
+template <typename R>
+const char* stage_name_of() {
+  return stage_name(StageRecord(std::in_place_type<R>));
+}
+
+/// The record of stage R; InputError naming `file` if the checkpoint is of another stage.
+template <typename R>
+const R& stage_record(const Checkpoint& checkpoint, std::string_view file) {
+  if (const auto* r = std::get_if<R>(&checkpoint.stage.record)) return *r;
+  const std::string wanted = stage_name_of<R>();
+  throw InputError(std::string(file) + ": stage is '" + checkpoint.stage.name() + "', expected " +
+                   (wanted == "encounter" ? "an '" : "a '") + wanted + "' checkpoint");
+}
 
 }  // namespace tidalcrust

@@ -194,8 +194,8 @@ void assign(Config& config, const Param& p, const toml::node& node, const std::s
   }
 }
 
-EncounterSpec parse_encounter(const toml::table& t, const std::string& where) {
-  EncounterSpec e;
+Encounter parse_encounter(const toml::table& t, const std::string& where) {
+  Encounter e;
   for (auto&& [k, node] : t) {
     std::string key(k.str());
     auto number = [&](const char* name) {
@@ -225,7 +225,7 @@ EncounterSpec parse_encounter(const toml::table& t, const std::string& where) {
   return e;
 }
 
-void check_encounter(const EncounterSpec& e, const std::string& where) {
+void check_encounter(const Encounter& e, const std::string& where) {
   if (e.name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", where));
   for (char ch : e.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
@@ -247,7 +247,7 @@ void check_encounter(const EncounterSpec& e, const std::string& where) {
 
 }  // namespace
 
-const EncounterSpec& Config::find_encounter(const std::string& name) const {
+const Encounter& Config::find_encounter(const std::string& name) const {
   std::string known;
   for (const auto& e : encounters) {
     if (e.name == name) return e;
@@ -379,7 +379,7 @@ void apply_override(Config& config, const std::string& assignment) {
       toml::table t;
       t.insert("name", e.name);
       t.insert(field, node);
-      EncounterSpec updated = parse_encounter(t, fmt::format("--set '{}'", assignment));
+      Encounter updated = parse_encounter(t, fmt::format("--set '{}'", assignment));
       if (field == "perturber_mass") e.perturber_mass = updated.perturber_mass;
       if (field == "pericenter") e.pericenter = updated.pericenter;
       if (field == "pericenter_speed") e.pericenter_speed = updated.pericenter_speed;
@@ -414,7 +414,7 @@ std::string section_toml(const Config& config, std::string_view section) {
   return out;
 }
 
-std::string encounter_toml(const EncounterSpec& e) {
+std::string encounter_toml(const Encounter& e) {
   std::string out = "[[encounters]]\n";
   out += fmt::format("name = {}\n", quote(e.name));
   out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "model/encounter.hpp"
+
 namespace tidalcrust {
 
 struct WorkflowConfig {
@@ -82,15 +84,6 @@ struct EncounterDefaults {
   std::int64_t sample_interval = 10;       ///< steps between timeseries samples
 };
 
-/// One encounter of Table 4.
-struct EncounterSpec {
-  std::string name;
-  double perturber_mass = 0.5;    ///< M2, M
-  double pericenter = 1.84;       ///< q, R
-  double pericenter_speed = 1.60; ///< V_q, sqrt(GM/R)
-  std::optional<double> failure_strain;  ///< eps_S override (T1 uses 0.002)
-};
-
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -100,10 +93,10 @@ struct Config {
   StretchConfig stretch;
   RelaxConfig relax;
   EncounterDefaults encounter;
-  std::vector<EncounterSpec> encounters;
+  std::vector<Encounter> encounters;
 
   /// The encounter with this name; InputError listing the known names otherwise.
-  const EncounterSpec& find_encounter(const std::string& name) const;
+  const Encounter& find_encounter(const std::string& name) const;
 };
 
 /// Parses TOML text. `origin` (a file name) prefixes every error message.
@@ -120,7 +113,7 @@ std::string to_toml(const Config& config);
 /// depends on, so that a changed value reruns exactly the stages it affects.
 std::string section_toml(const Config& config, std::string_view section);
 /// One [[encounters]] table of to_toml.
-std::string encounter_toml(const EncounterSpec& encounter);
+std::string encounter_toml(const Encounter& encounter);
 /// Scales the time step by `factor` (--dt-factor) and every schedule counted in steps by
 /// 1/factor (rounded, at least 1), so schedules keep their length in time: at half dt the
 /// failure interval t_fail is 6 steps instead of 3, and the run checks dt alone.

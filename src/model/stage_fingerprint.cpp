@@ -65,7 +65,7 @@ std::string relax_fingerprint(const Config& config) {
   return text;
 }
 
-std::string encounter_fingerprint(const Config& config, const EncounterSpec& spec) {
+std::string encounter_fingerprint(const Config& config, const Encounter& spec) {
   return keys_of(config, "encounter", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
          encounter_toml(spec) + fmt::format("integrator.dt = {}\n", config.integrator.dt);
 }

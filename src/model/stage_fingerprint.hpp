@@ -16,11 +16,10 @@ std::string stretch_fingerprint(const Config& config);
 std::string relax_fingerprint(const Config& config);
 /// [encounter] (but its checkpoint interval), the encounter's own table, force-law and failure
 /// keys and the encounter time step.
-std::string encounter_fingerprint(const Config& config, const EncounterSpec& spec);
+std::string encounter_fingerprint(const Config& config, const Encounter& spec);
 
 /// The first line that differs between two fingerprints, "a -> b", for messages.
 std::string first_difference(const std::string& old_text, const std::string& new_text);
 
-inline constexpr const char* fingerprint_label = "fingerprint";
 
 }  // namespace tidalcrust

@@ -1,6 +1,6 @@
 #pragma once
-// The evolving state of a run: everything a step reads or writes besides the fixed Body.
-// Together with Body and the stage bookkeeping it is the full content of a checkpoint.
+// The evolving state of a run: exactly what the steps change. What stays fixed is in Body; the
+// time step and the stage's damping rate are stage parameters (StageInfo, stage_records.hpp).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -11,13 +11,12 @@ namespace tidalcrust {
 struct SpringState {
   std::vector<double> rest_length;   ///< [Ns] L_0 in R
   std::vector<double> stiffness;     ///< [Ns] k in G M^2 / R^3
-  std::vector<double> damping;       ///< [Ns] gamma, a rate in 1/t_grav (eq. 14, reduced mass)
   std::vector<std::uint8_t> failed;  ///< [Ns] 1 once the spring has failed
 };
 
+/// Per-hinge quantities that stages change (relax resets rest angles).
 struct HingeState {
   std::vector<double> rest_angle;  ///< [Nh] theta_rest in radians
-  std::vector<double> stiffness;   ///< [Nh] k_e in G M^2 / R^2 (a force)
 };
 
 /// The point-mass perturber; it pulls on every particle and is pulled back.
@@ -29,9 +28,8 @@ struct Perturber {
 };
 
 struct State {
-  double time = 0.0;         ///< in t_grav; always step-derived: start_time + steps * dt
+  double time = 0.0;         ///< in t_grav; always step-derived: StepClock::time_at(step)
   std::int64_t step = 0;     ///< global step counter, continues across stages
-  double dt = 0.0;           ///< time step in t_grav
   std::vector<double> position;  ///< [N*3] in R
   std::vector<double> velocity;  ///< [N*3] in sqrt(GM/R)
   SpringState springs;

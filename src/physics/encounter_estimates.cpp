@@ -8,7 +8,7 @@
 
 namespace tidalcrust {
 
-EncounterEstimates estimate_encounter(const EncounterGeometry& encounter, double youngs_in_e_g) {
+EncounterEstimates estimate_encounter(const Encounter& encounter, double youngs_in_e_g) {
   const double m = encounter.perturber_mass;
   const double q = encounter.pericenter;
   const double vq = encounter.pericenter_speed;

@@ -2,6 +2,7 @@
 // Order-of-magnitude estimates of a tidal encounter in the impulse approximation (paper
 // section 1.1, after Press & Teukolsky 1977). Everything is in code units G = M = R = 1:
 // velocities in v_c = sqrt(GM/R), times in t_grav = sqrt(R^3/GM), moduli in e_g = GM^2/R^4.
+#include "model/encounter.hpp"
 #include "physics/physical_units.hpp"
 
 namespace tidalcrust {
@@ -9,12 +10,9 @@ namespace tidalcrust {
 /// Young's modulus of ice from tidal flexure of ice shelves (Vaughan 1995), as the paper uses.
 inline constexpr double ice_youngs_modulus_GPa = 0.9;
 
-/// The encounter: perturber mass m (M), pericenter q (R), speed at pericenter V_q (v_c).
-struct EncounterGeometry {
-  double perturber_mass = 1.0;
-  double pericenter = 2.0;
-  double pericenter_speed = 1.4142135623730951;  ///< sqrt(2): parabolic, equal mass, grazing
-};
+/// The encounter of the section 1.1 estimates when none is given: an equal-mass perturber on a
+/// parabolic orbit grazing at q = 2 R (V_q = sqrt(2 G (M + M2)/q) = sqrt(2)).
+inline Encounter grazing_parabolic_encounter() { return Encounter{"grazing", 1.0, 2.0, 1.4142135623730951, {}}; }
 
 struct EncounterEstimates {
   double delta_v = 0;        ///< eq. 3: Delta v = 2 m R / (q^2 V_q), v_c (Press's eta if parabolic)
@@ -29,7 +27,7 @@ struct EncounterEstimates {
 
 /// Estimates for Young's modulus E given in units of e_g. InputError unless m >= 0, q > 0,
 /// V_q > 0 and E > 0 (all finite).
-EncounterEstimates estimate_encounter(const EncounterGeometry& encounter, double youngs_in_e_g);
+EncounterEstimates estimate_encounter(const Encounter& encounter, double youngs_in_e_g);
 
 /// Young's modulus (GPa) in units of this body's e_g.
 double youngs_in_e_g(double youngs_GPa, const BodyScales& scales);

@@ -11,7 +11,7 @@
 
 #include "io/checkpoint_file.hpp"
 #include "io/json_writer.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "support/synthetic_encounter.hpp"
 
 using namespace std::string_literals;
@@ -73,7 +73,7 @@ class AnalyzeCompareCli : public ::testing::Test {
     write_checkpoint(dir / "other.h5", other);
 
     Checkpoint relaxed = c;
-    relaxed.stage.stage = "relax";
+    relaxed.stage.record = RelaxRecord{};
     write_checkpoint(dir / "relaxed.h5", relaxed);
     write_checkpoint(dir / "coarse.h5", tidalcrust::testing::synthetic_encounter(1));
   }

@@ -182,7 +182,7 @@ TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
   const auto half = run_cli("run " + q(workflow) + " --quiet --dt-factor 0.5 --only A --out " + q(out));
   ASSERT_EQ(half.exit_code, 0) << half.err;
   const auto half_dt = read_checkpoint(out / "dt0.5" / "A" / "encounter.h5");
-  EXPECT_DOUBLE_EQ(half_dt.state.dt, 0.0025);
+  EXPECT_DOUBLE_EQ(half_dt.stage.clock.dt, 0.0025);
   EXPECT_EQ(half_dt.stage.parent_hash, state_hash(read_checkpoint(out / "body" / "relax.h5").state));
   EXPECT_FALSE(fs::exists(out / "dt0.5" / "B"));
   EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "summary.json"));

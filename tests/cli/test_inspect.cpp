@@ -40,12 +40,12 @@ TEST(InspectReport, JsonHasEveryKeyOfTheDesign) {
                           "counts", "interior", "shell", "springs_interior", "springs_shell", "springs_cross",
                           "hinges", "faces", "failed", "derived", "E_I", "L_I", "k_I", "L_S", "k_S", "M_S", "L_C",
                           "k_C", "V_IP", "V_SP", "V_Co", "h_S", "dt_max", "conservation", "momentum",
-                          "angular_momentum", "kinetic_energy", "scalars", "labels", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "longest_crack", "clusters",
+                          "angular_momentum", "kinetic_energy", "record", "fail_interval", "snapshot_steps", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "longest_crack", "clusters",
                           "min_distance", "speed_at_min"})
     EXPECT_TRUE(contains(json, JsonWriter::quote(key) + ": ")) << key;
   EXPECT_TRUE(contains(json, "\"state_hash\": \"" + state_hash(c.state) + "\""));
   EXPECT_TRUE(contains(json, "\"stage\": \"encounter\""));
-  EXPECT_TRUE(contains(json, "\"note\": \"synthetic \\\"test\\\" & <body>\""));
+  EXPECT_TRUE(contains(json, "\"name\": \"T5 synthetic \\\"test\\\" & <body>\""));
   EXPECT_FALSE(contains(json, "\"stability\""));
 }
 
@@ -79,9 +79,12 @@ TEST(InspectReport, CountsAndTotalsAreExact) {
 
 TEST(InspectReport, RelaxedBodyShowsStabilityAndNoPerturber) {
   Checkpoint c = synthetic_checkpoint();
-  c.stage.stage = "relax";
+  RelaxRecord relaxed;
+  relaxed.probe_runs = 1;
+  relaxed.probe_failures = 0;
+  relaxed.probe_max_shell_strain = 0.0021;
+  c.stage.record = relaxed;
   c.state.perturber = Perturber{};
-  c.stage.scalars = {{"stability_failures", 0.0}, {"stability_max_shell_strain", 0.0021}};
   const std::string json = inspect_report_json(build_inspect_report(c, "relaxed.h5"));
   EXPECT_TRUE(contains(json, "\"stability\": {\n    \"failures\": 0,\n    \"max_shell_strain\": 0.0021\n  }"))
       << json;

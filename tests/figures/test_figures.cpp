@@ -13,7 +13,6 @@
 #include "figures/figure_output.hpp"
 #include "figures/figures.hpp"
 #include "physics/orbital_frame.hpp"
-#include "model/recorded_encounter.hpp"
 #include "support/synthetic_encounter.hpp"
 #include "physics/two_body_orbit.hpp"
 
@@ -144,7 +143,7 @@ TEST(Figures, OrbitFailureAndConservationPlotsAreWritten) {
     c.observables.timeseries.push_back(s);
   }
   for (int i = 0; i < 5; ++i) c.observables.failures.push_back({1.0 + 0.1 * i, 500 + 50 * i, i, 0.004, {0, 1, 0}});
-  const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
+  const EncounterRecord encounter = stage_record<EncounterRecord>(c, "synthetic.h5");
   const fs::path dir = fresh_dir("series");
   expect_png_and_svg(write_orbit_plot(c, encounter, {0.8, 1.2, 1.6}, dir / "orbit", "orbit"));
   expect_png_and_svg(write_failure_history(c, encounter.pericenter_time, dir / "failures", "failures"));
@@ -155,8 +154,8 @@ TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
   // A simulated track 0.8 R outside the analytic one (stage from t = 0 to 2, pericenter at 1.2),
   // sampled every 0.02 t_grav.
   Checkpoint c = synthetic_encounter(1);
-  const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
-  const TwoBodyOrbit orbit = perturber_orbit(encounter.perturber_mass, encounter.pericenter, encounter.pericenter_speed);
+  const EncounterRecord encounter = stage_record<EncounterRecord>(c, "synthetic.h5");
+  const TwoBodyOrbit orbit = perturber_orbit(encounter.encounter.perturber_mass, encounter.encounter.pericenter, encounter.encounter.pericenter_speed);
   auto simulated = [&](double t) {
     const Vec3 p = orbit.state_at_time(t - encounter.pericenter_time).position;
     return Vec3(p + 0.8 * p.normalized());
@@ -191,23 +190,20 @@ TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
   }
 }
 
-TEST(RecordedEncounter, RefusesOtherStagesAndMissingScalars) {
+TEST(StageRecord, TypedAccessRefusesOtherStagesNamingTheFile) {
   Checkpoint c = synthetic_encounter(1);
-  const RecordedEncounter e = recorded_encounter(c, "ENC.h5");
-  EXPECT_EQ(e.name, "T5");
-  EXPECT_EQ(e.perturber_mass, 0.5);
+  const EncounterRecord& e = stage_record<EncounterRecord>(c, "ENC.h5");
+  EXPECT_EQ(e.encounter.name, "T5");
+  EXPECT_EQ(e.encounter.perturber_mass, 0.5);
   EXPECT_EQ(e.pericenter_time, 1.2);
-  c.stage.scalars.erase(encounter_keys::pericenter_time);
+  c.stage.record = RelaxRecord{};
   try {
-    recorded_encounter(c, "ENC.h5");
+    stage_record<EncounterRecord>(c, "ENC.h5");
     FAIL();
   } catch (const InputError& err) {
-    EXPECT_NE(std::string(err.what()).find("pericenter_time"), std::string::npos);
+    EXPECT_STREQ(err.what(), "ENC.h5: stage is 'relax', expected an 'encounter' checkpoint");
   }
-  c.stage.stage = "relax";
-  EXPECT_THROW(recorded_encounter(c, "ENC.h5"), InputError);
 }
-
 
 TEST(ConservationDrift, ChangesRelativeToTheFirstSample) {
   std::vector<TimeseriesSample> samples(3);

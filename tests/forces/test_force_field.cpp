@@ -43,10 +43,9 @@ TEST(ForceField, ZeroForceAtRestWithoutGravity) {
 TEST(ForceField, AgreesWithTheTextbookStep) {
   Checkpoint c = small_body();
   shake(c.state, 5e-3, 0.05, 2);
-  for (double& g : c.state.springs.damping) g = 3.0;
   for (double& r : c.state.hinges.rest_angle) r *= 0.9;
   c.state.perturber = {true, 0.5, {2.0, 1.0, -0.5}, {0.0, -1.0, 0.0}};
-  ForceOptions options;
+  ForceOptions options = damped(3.0);
   options.cross_nonlinear = true;
   options.cross_strain_scale = 0.01;  // small, so that some cross springs are softened
   ForceField field(c.body, options);
@@ -89,9 +88,8 @@ TEST(ForceField, NonlinearCrossLawSoftensStretchedCrossSpringsOnly) {
 TEST(ForceField, BitwiseIndependentOfTheThreadCount) {
   Checkpoint c = quick_body();
   shake(c.state, 5e-3, 0.05, 3);
-  for (double& g : c.state.springs.damping) g = 1.0;
   c.state.perturber = {true, 1.0, {0.0, 2.5, 0.0}, {1.0, 0.0, 0.0}};
-  ForceOptions options;
+  ForceOptions options = damped(1.0);
   options.min_parallel_items = 1;  // every loop threaded
   ForceField field(c.body, options);
   const int threads = omp_get_max_threads();
@@ -136,7 +134,7 @@ TEST(ForceField, ReportsCollapsedHingesAndNonFiniteAccelerations) {
   ForceAlarms alarms = field.compute(bad, a);
   EXPECT_GE(alarms.collapsed_hinge, 0);
   EXPECT_LE(alarms.collapsed_hinge, 7);
-  const std::string message = field.describe(alarms, bad.position.data(), bad);
+  const std::string message = field.describe(alarms, bad.position.data(), bad, c.stage.clock.dt);
   EXPECT_NE(message.find("hinge"), std::string::npos) << message;
   EXPECT_NE(message.find("dt_max"), std::string::npos) << message;
 
@@ -151,6 +149,6 @@ TEST(ForceField, RejectsAStateThatDoesNotMatchTheBody) {
   Checkpoint c = small_body();
   ForceField field(c.body);
   Accelerations a;
-  c.state.springs.damping.pop_back();
+  c.state.springs.rest_length.pop_back();
   EXPECT_THROW(field.compute(c.state, a), InputError);
 }

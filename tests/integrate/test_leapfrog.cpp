@@ -17,11 +17,13 @@ using namespace tidalcrust::testing;
 
 namespace {
 
-/// A shaken, damped small body with a perturber passing at ~2.5 R.
+/// Spring damping of the lively bodies below, 1/t_grav.
+constexpr double lively_damping = 5.0;
+
+/// A shaken small body (to be damped at lively_damping) with a perturber passing at ~2.5 R.
 Checkpoint lively_body() {
   Checkpoint c = small_body();
   shake(c.state, 3e-3, 0.02, 4);
-  for (double& g : c.state.springs.damping) g = 5.0;
   c.state.perturber = {true, 0.5, {-1.0, 2.5, 0.2}, {0.9, 0.0, 0.0}};
   return c;
 }
@@ -41,8 +43,9 @@ bool same_state(const State& a, const State& b) {
 
 TEST(Leapfrog, ConservesMomentumAndAngularMomentumOverDampedSteps) {
   Checkpoint c = lively_body();
-  ForceField field(c.body);
-  Leapfrog leapfrog(field, StepClock::starting_at(c.state));
+  const double dt = c.stage.clock.dt;
+  ForceField field(c.body, damped(lively_damping));
+  Leapfrog leapfrog(field, clock_at(c.state, dt));
   const Conservation before = measure_conservation(c.body, c.state);
   // Scales: sum of |m v| and of |m x x v| over body and perturber.
   double p_scale = 0, l_scale = 0;
@@ -56,8 +59,8 @@ TEST(Leapfrog, ConservesMomentumAndAngularMomentumOverDampedSteps) {
   add_scale(c.state.perturber.mass, c.state.perturber.position.data(), c.state.perturber.velocity.data());
 
   State undamped = c.state;
-  for (double& g : undamped.springs.damping) g = 0.0;
-  Leapfrog(field, StepClock::starting_at(undamped)).advance(undamped, 300);
+  ForceField undamped_field(c.body);
+  Leapfrog(undamped_field, clock_at(undamped, dt)).advance(undamped, 300);
   leapfrog.advance(c.state, 300);
   const Conservation after = measure_conservation(c.body, c.state);
   for (int k = 0; k < 3; ++k) {
@@ -67,7 +70,7 @@ TEST(Leapfrog, ConservesMomentumAndAngularMomentumOverDampedSteps) {
   // Damping took energy out of the internal motion, and the perturber moved.
   EXPECT_LT(internal_kinetic_energy(c.body, c.state), 0.5 * internal_kinetic_energy(c.body, undamped));
   EXPECT_EQ(c.state.step, 300);
-  EXPECT_GT(c.state.perturber.position[0], -1.0 + 0.5 * 0.9 * 300 * c.state.dt);
+  EXPECT_GT(c.state.perturber.position[0], -1.0 + 0.5 * 0.9 * 300 * dt);
 }
 
 TEST(Leapfrog, KeplerOrbitKeepsEnergyAndReachesThePericenter) {
@@ -84,9 +87,8 @@ TEST(Leapfrog, KeplerOrbitKeepsEnergyAndReachesThePericenter) {
   state.perturber = {true, m2, {m1 / mu * apocenter, 0, 0}, {0, m1 / mu * v_apo, 0}};
   const double period = 2 * std::numbers::pi * std::sqrt(a * a * a / mu);
   const int steps = 4000;
-  state.dt = period / steps;
   ForceField field(body);
-  Leapfrog leapfrog(field, StepClock::starting_at(state));
+  Leapfrog leapfrog(field, clock_at(state, period / steps));
 
   auto separation = [&] {
     return std::hypot(state.perturber.position[0] - state.position[0], state.perturber.position[1] - state.position[1],
@@ -116,16 +118,16 @@ TEST(Leapfrog, TimeIsDerivedFromTheStepCount) {
   c.state.time = 1.5;
   c.state.step = 1000;
   ForceField field(c.body);
-  Leapfrog leapfrog(field, StepClock::starting_at(c.state));
+  Leapfrog leapfrog(field, clock_at(c.state, c.stage.clock.dt));
   leapfrog.advance(c.state, 7);
   EXPECT_EQ(c.state.step, 1007);
-  EXPECT_EQ(c.state.time, 1.5 + 7.0 * c.state.dt);
+  EXPECT_EQ(c.state.time, 1.5 + 7.0 * c.stage.clock.dt);
 }
 
 TEST(Leapfrog, ResumedRunEqualsStraightRun) {
   Checkpoint c = lively_body();
-  ForceField field(c.body);
-  const StepClock clock = StepClock::starting_at(c.state);
+  ForceField field(c.body, damped(lively_damping));
+  const StepClock clock = clock_at(c.state, c.stage.clock.dt);
   State straight = c.state;
   Leapfrog(field, clock).advance(straight, 20);
   State resumed = c.state;
@@ -137,17 +139,16 @@ TEST(Leapfrog, ResumedRunEqualsStraightRun) {
 TEST(Leapfrog, BitwiseIdenticalWithOneAndTwoThreads) {
   Checkpoint c = quick_body();
   shake(c.state, 3e-3, 0.02, 6);
-  for (double& g : c.state.springs.damping) g = 5.0;
   c.state.perturber = {true, 0.5, {-1.0, 2.5, 0.2}, {0.9, 0.0, 0.0}};
-  ForceOptions options;
+  ForceOptions options = damped(lively_damping);
   options.min_parallel_items = 1;  // every loop threaded
   ForceField field(c.body, options);
   const int threads = omp_get_max_threads();
   State one = c.state, two = c.state;
   omp_set_num_threads(1);
-  Leapfrog(field, StepClock::starting_at(c.state)).advance(one, 12);
+  Leapfrog(field, c.stage.clock).advance(one, 12);
   omp_set_num_threads(2);
-  Leapfrog(field, StepClock::starting_at(c.state)).advance(two, 12);
+  Leapfrog(field, c.stage.clock).advance(two, 12);
   omp_set_num_threads(threads);
   EXPECT_TRUE(same_state(one, two));
 }
@@ -156,9 +157,8 @@ TEST(Leapfrog, DetectsABlowUpAndNamesTheStep) {
   Checkpoint c = small_body();
   shake(c.state, 1e-3, 0.0, 5);
   const double bound = derive_quantities(c.body, c.state, 1.0).dt_max;
-  c.state.dt = 30 * bound;
   ForceField field(c.body);
-  Leapfrog leapfrog(field, StepClock::starting_at(c.state));
+  Leapfrog leapfrog(field, clock_at(c.state, 30 * bound));
   std::string message;
   std::int64_t failed_step = -1;
   try {

@@ -24,7 +24,6 @@ void small_body(Body& body, State& state) {
   state.velocity.assign(12, 0.0);
   state.springs.rest_length = {0.5, 0.2, 0.3, 0.1};
   state.springs.stiffness = {2.0, 0.06, 0.01, 0.03};
-  state.springs.damping.assign(4, 0.0);
   state.springs.failed.assign(4, 0);
 }
 

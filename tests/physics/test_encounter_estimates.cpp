@@ -11,7 +11,7 @@ using namespace tidalcrust;
 // Section 1.1: "the strain caused by the tidal encounter could be of order 10% for a parabolic
 // equal mass encounter" (q = 2R, V_q = sqrt(2) v_c) with e_g/E between 0.1 and 1.
 TEST(EncounterEstimates, GrazingParabolicEqualMassGivesStrainOfOrderTenPercent) {
-  const EncounterGeometry grazing;  // defaults: M2 = 1, q = 2, V_q = sqrt(2)
+  const Encounter grazing = grazing_parabolic_encounter();  // M2 = 1, q = 2, V_q = sqrt(2)
   // V_q is the escape speed at q: V_q^2 = 2 G (M + M2) / q.
   EXPECT_DOUBLE_EQ(grazing.pericenter_speed * grazing.pericenter_speed,
                    2.0 * (1.0 + grazing.perturber_mass) / grazing.pericenter);
@@ -26,7 +26,7 @@ TEST(EncounterEstimates, GrazingParabolicEqualMassGivesStrainOfOrderTenPercent) 
 }
 
 TEST(EncounterEstimates, EquationsAreMutuallyConsistent) {
-  const EncounterGeometry g{0.5, 1.84, 1.60};
+  const Encounter g{"T5", 0.5, 1.84, 1.60, {}};
   const double E = 3.0;  // e_g
   const auto est = estimate_encounter(g, E);
   const double tidal = 0.5 / (1.84 * 1.84) / 1.60;  // (R/q)^2 (m/M) (v_c/V_q)
@@ -46,7 +46,7 @@ TEST(EncounterEstimates, EquationsAreMutuallyConsistent) {
 // "The ratio E_ice/e_g is large enough that the time scale for the encounter could be a few
 // times longer than the elastic time scale": E = 3 e_g (the T-series interior, section 2.9).
 TEST(EncounterEstimates, EncounterIsAFewElasticTimesLong) {
-  const auto est = estimate_encounter(EncounterGeometry{}, 3.0);
+  const auto est = estimate_encounter(grazing_parabolic_encounter(), 3.0);
   EXPECT_GT(est.time_ratio, 1.0);
   EXPECT_LT(est.time_ratio, 5.0);
 }
@@ -55,7 +55,7 @@ TEST(EncounterEstimates, PhysicalUnitsForDione) {
   const auto scales = body_scales(find_table1_body("Dione"));
   const double E = youngs_in_e_g(ice_youngs_modulus_GPa, scales);
   EXPECT_NEAR(E, 0.9 / scales.e_g_GPa, 1e-15);
-  const auto est = estimate_encounter(EncounterGeometry{}, E);
+  const auto est = estimate_encounter(grazing_parabolic_encounter(), E);
   // Strain rate in 1/s is E-independent: (R/q)^2 (m/M) (v_c/V_q) / t_grav ~ 1e-4 /s for rho ~ 1.
   const double rate_per_s = est.strain_rate / scales.t_grav_s;
   EXPECT_NEAR(rate_per_s, 1.0 / (4.0 * std::sqrt(2.0)) / scales.t_grav_s, 1e-18);
@@ -64,12 +64,12 @@ TEST(EncounterEstimates, PhysicalUnitsForDione) {
 }
 
 TEST(EncounterEstimates, RejectsBadInput) {
-  EXPECT_THROW(estimate_encounter({1.0, 0.0, 1.4}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter({1.0, -2.0, 1.4}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter({-1.0, 2.0, 1.4}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter({1.0, 2.0, 0.0}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter({std::nan(""), 2.0, 1.4}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter({1.0, 2.0, 1.4}, 0.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 0.0, 1.4, {}}, 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, -2.0, 1.4, {}}, 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", -1.0, 2.0, 1.4, {}}, 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 2.0, 0.0, {}}, 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", std::nan(""), 2.0, 1.4, {}}, 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 2.0, 1.4, {}}, 0.0), InputError);
   EXPECT_THROW(youngs_in_e_g(-0.9, body_scales(find_table1_body("Rhea"))), InputError);
-  EXPECT_NO_THROW(estimate_encounter({0.0, 2.0, 1.4}, 1.0));  // no perturber: zero strain
+  EXPECT_NO_THROW(estimate_encounter(Encounter{"bad", 0.0, 2.0, 1.4, {}}, 1.0));  // no perturber: zero strain
 }

@@ -22,7 +22,6 @@ struct Line {
     state.velocity.assign(12, 0.0);
     state.springs.rest_length = {1.0, 1.0, 2.0, 2.0};
     state.springs.stiffness = {2.0, 3.0, 4.0, 5.0};
-    state.springs.damping.assign(4, 0.0);
     state.springs.failed = {0, 0, 0, 1};
   }
 };

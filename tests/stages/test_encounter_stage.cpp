@@ -16,13 +16,11 @@
 #include "io/checkpoint_file.hpp"
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
-#include "model/encounter_snapshot_steps.hpp"
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 #include "stages/encounter_stage.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "physics/orbital_frame.hpp"
-#include "model/recorded_encounter.hpp"
 #include "stages/relax_stage.hpp"
 #include "io/state_hash.hpp"
 #include "stages/stretch_stage.hpp"
@@ -67,7 +65,7 @@ fs::path scratch(const std::string& name) {
 /// with its snapshot files, once per test binary.
 struct StrongRun {
   Config config;
-  EncounterSpec spec;
+  Encounter spec;
   Checkpoint begun;
   Checkpoint done;
   fs::path output;
@@ -122,10 +120,10 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
   const Checkpoint& parent = quick_parent();
   const Checkpoint& c = r.begun;
 
-  EXPECT_EQ(c.stage.stage, "encounter");
+  EXPECT_STREQ(c.stage.name(), "encounter");
   EXPECT_FALSE(c.stage.complete);
   EXPECT_EQ(c.stage.parent_hash, state_hash(parent.state));
-  EXPECT_EQ(c.stage.labels.at("encounter"), "strong");
+  EXPECT_EQ(c.stage.as<EncounterRecord>().encounter.name, "strong");
   EXPECT_EQ(c.config_toml, to_toml(r.config));
   EXPECT_EQ(c.state.position, parent.state.position);
   EXPECT_EQ(c.state.velocity, parent.state.velocity);
@@ -133,8 +131,9 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
   EXPECT_EQ(c.state.springs.stiffness, parent.state.springs.stiffness);
   EXPECT_EQ(c.state.step, parent.state.step);
   EXPECT_EQ(c.state.time, parent.state.time);
-  EXPECT_EQ(c.state.dt, r.config.integrator.dt);
-  for (double gamma : c.state.springs.damping) ASSERT_EQ(gamma, r.config.encounter.damping);
+  const EncounterRecord& record = c.stage.as<EncounterRecord>();
+  EXPECT_EQ(c.stage.clock.dt, r.config.integrator.dt);
+  EXPECT_EQ(record.damping, r.config.encounter.damping);
 
   // Perturber on the incoming branch at start_distance from the body's centre of mass, with
   // the two-body relative velocity; the orbit's pericenter lies along +y.
@@ -153,29 +152,24 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
   // Schedule in steps.
   const double t_peri = start.time_to_pericenter;
   const double t_after = orbit.time_to_pericenter(r.config.encounter.end_distance);
-  EXPECT_EQ(c.stage.start_step, parent.state.step);
-  EXPECT_EQ(c.stage.end_step, c.stage.start_step + steps_for_duration(t_peri + t_after, c.state.dt));
-  EXPECT_EQ(c.stage.scalars.at("pericenter_step"),
-            static_cast<double>(c.stage.start_step + steps_for_duration(t_peri, c.state.dt)));
-  const RecordedEncounter recorded = recorded_encounter(c, "begun");
-  EXPECT_EQ(recorded.name, "strong");
-  EXPECT_EQ(recorded.perturber_mass, r.spec.perturber_mass);
-  EXPECT_EQ(recorded.pericenter, r.spec.pericenter);
-  EXPECT_EQ(recorded.pericenter_speed, r.spec.pericenter_speed);
-  EXPECT_EQ(recorded.pericenter_time, parent.state.time + t_peri);
-  EXPECT_NEAR(recorded.min_distance, r.config.encounter.start_distance, 1e-12);
-  EXPECT_EQ(c.stage.scalars.at("failure_strain"), r.config.shell.failure_strain);
-  EXPECT_EQ(c.stage.scalars.at("failed_stiffness_factor"), r.config.shell.failed_stiffness_factor);
-  EXPECT_EQ(c.stage.scalars.at("fail_interval"), static_cast<double>(r.config.encounter.fail_interval));
+  EXPECT_EQ(c.stage.clock.start_step, parent.state.step);
+  EXPECT_EQ(c.stage.end_step, c.stage.clock.start_step + steps_for_duration(t_peri + t_after, c.stage.clock.dt));
+  EXPECT_EQ(record.pericenter_step, c.stage.clock.start_step + steps_for_duration(t_peri, c.stage.clock.dt));
+  EXPECT_EQ(record.encounter, r.spec);
+  EXPECT_EQ(record.pericenter_time, parent.state.time + t_peri);
+  EXPECT_NEAR(record.min_distance, r.config.encounter.start_distance, 1e-12);
+  EXPECT_EQ(record.failure_strain, r.config.shell.failure_strain);
+  EXPECT_EQ(record.failed_stiffness_factor, r.config.shell.failed_stiffness_factor);
+  EXPECT_EQ(record.fail_interval, r.config.encounter.fail_interval);
+  EXPECT_EQ(record.sample_interval, r.config.encounter.sample_interval);
 
   // Snapshots: ascending, inside (start, end], at pericenter and at the end.
-  const auto snaps = snapshot_steps(c.stage);
+  const auto& snaps = record.snapshot_steps;
   ASSERT_GE(snaps.size(), 2u);
   EXPECT_TRUE(std::is_sorted(snaps.begin(), snaps.end()));
-  EXPECT_GT(snaps.front(), c.stage.start_step);
+  EXPECT_GT(snaps.front(), c.stage.clock.start_step);
   EXPECT_EQ(snaps.back(), c.stage.end_step);
-  EXPECT_TRUE(std::binary_search(snaps.begin(), snaps.end(),
-                                 static_cast<std::int64_t>(c.stage.scalars.at("pericenter_step"))));
+  EXPECT_TRUE(std::binary_search(snaps.begin(), snaps.end(), record.pericenter_step));
 
   // Fresh observables: no failures yet, one sample of the starting state.
   EXPECT_TRUE(c.observables.failures.empty());
@@ -190,12 +184,12 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
 
 TEST(EncounterStage, PerturberReachesPericenterAtQWithSpeedVq) {
   const StrongRun& r = strong_run();
-  const auto& s = r.done.stage.scalars;
+  const EncounterRecord& s = r.done.stage.as<EncounterRecord>();
   const double q = r.spec.pericenter, vq = r.spec.pericenter_speed;
-  EXPECT_NEAR(s.at("perturber_min_distance"), q, 0.01 * q);
-  EXPECT_NEAR(s.at("perturber_speed_at_min"), vq, 0.01 * vq);
+  EXPECT_NEAR(s.min_distance, q, 0.01 * q);
+  EXPECT_NEAR(s.speed_at_min, vq, 0.01 * vq);
   // ... at the time of the analytic pericenter (within 0.02 t_grav: 5 steps at dt = 0.004).
-  EXPECT_NEAR(s.at("time_of_min"), s.at("pericenter_time"), 0.02);
+  EXPECT_NEAR(s.time_of_min, s.pericenter_time, 0.02);
   EXPECT_TRUE(r.done.stage.complete);
   EXPECT_EQ(r.done.state.step, r.done.stage.end_step);
   // It ends back at end_distance (same orbit, within the same 1%).
@@ -216,9 +210,9 @@ TEST(EncounterStage, SampledPerturberOffsetsTraceTheOrbitAroundTheCentreOfMass) 
   for (std::size_t i = 0; i < series.size(); ++i)
     if (vec(series[i].perturber_offset).norm() < vec(series[nearest].perturber_offset).norm()) nearest = i;
   const double q = r.spec.pericenter, vq = r.spec.pericenter_speed;
-  const double h = static_cast<double>(r.config.encounter.sample_interval) * c.state.dt;
+  const double h = static_cast<double>(r.config.encounter.sample_interval) * c.stage.clock.dt;
   const double closest_sampled = vec(series[nearest].perturber_offset).norm();
-  const double min_distance = c.stage.scalars.at("perturber_min_distance");
+  const double min_distance = c.stage.as<EncounterRecord>().min_distance;
   EXPECT_GE(closest_sampled, min_distance);
   EXPECT_LE(closest_sampled - min_distance, 1.01 * (vq * h / 2) * (vq * h / 2) / (2 * q) + 1e-12);
   // Pericenter on +y, moving along -x, in the xy plane.
@@ -249,15 +243,15 @@ TEST(EncounterStage, StrongEncounterCracksTheCrustFacingThePerturber) {
   EXPECT_GT(fractures.hemisphere_fraction, 0.75);
   EXPECT_EQ(count_failed(c.state), failures.size() + count_failed(quick_parent().state));
 
-  const double eps = c.stage.scalars.at("failure_strain");
-  const double factor = c.stage.scalars.at("failed_stiffness_factor");
+  const double eps = c.stage.as<EncounterRecord>().failure_strain;
+  const double factor = c.stage.as<EncounterRecord>().failed_stiffness_factor;
   const std::int64_t interval = r.config.encounter.fail_interval;
   std::set<std::int32_t> springs;
   for (std::size_t i = 0; i < failures.size(); ++i) {
     const FailureEvent& e = failures[i];
     const auto n = static_cast<std::size_t>(e.spring);
     EXPECT_EQ(c.body.spring_kind[n], static_cast<std::uint8_t>(SpringKind::shell));
-    EXPECT_EQ((e.step - c.stage.start_step) % interval, 0) << "failure " << i << " off the t_fail schedule";
+    EXPECT_EQ((e.step - c.stage.clock.start_step) % interval, 0) << "failure " << i << " off the t_fail schedule";
     if (i > 0) {
       EXPECT_GT(e.step, failures[i - 1].step) << "at most one failure per check";
     }
@@ -286,7 +280,7 @@ TEST(EncounterStage, MomentumAndAngularMomentumAreConserved) {
   EXPECT_LT(dl / angular_scale, 1e-12);
 
   // Sampled every sample_interval steps from the start, and at the end.
-  const double dt = r.done.state.dt;
+  const double dt = r.done.stage.clock.dt;
   const std::int64_t interval = r.config.encounter.sample_interval;
   for (std::size_t i = 0; i + 1 < series.size(); ++i)
     EXPECT_EQ(series[i].time, r.begun.state.time + static_cast<double>(i * interval) * dt);
@@ -299,15 +293,15 @@ TEST(EncounterStage, SnapshotFilesAtTheirSteps) {
   // analyze finds exactly the planned snapshots beside the output.
   std::vector<std::int64_t> found;
   for (const SnapshotFile& f : find_snapshots(r.output)) found.push_back(f.step);
-  EXPECT_EQ(found, snapshot_steps(r.done.stage));
-  for (std::int64_t step : snapshot_steps(r.done.stage)) {
+  EXPECT_EQ(found, r.done.stage.as<EncounterRecord>().snapshot_steps);
+  for (std::int64_t step : r.done.stage.as<EncounterRecord>().snapshot_steps) {
     const fs::path file = snapshot_path(r.output, step);
     EXPECT_EQ(file.filename().string(), "strong.snap-" + std::to_string(step) + ".h5");
     ASSERT_TRUE(fs::exists(file)) << file;
     const Checkpoint snap = read_checkpoint(file);
-    EXPECT_EQ(snap.stage.stage, "encounter");
+    EXPECT_STREQ(snap.stage.name(), "encounter");
     EXPECT_EQ(snap.state.step, step);
-    EXPECT_EQ(snap.stage.labels.at("encounter"), "strong");
+    EXPECT_EQ(snap.stage.as<EncounterRecord>().encounter.name, "strong");
     if (step == r.done.stage.end_step) {
       EXPECT_EQ(state_hash(snap.state), state_hash(r.done.state));
     }
@@ -316,7 +310,7 @@ TEST(EncounterStage, SnapshotFilesAtTheirSteps) {
 
 TEST(EncounterStage, ResumedRunIsBitIdentical) {
   const StrongRun& r = strong_run();
-  const std::int64_t start = r.begun.stage.start_step;
+  const std::int64_t start = r.begun.stage.clock.start_step;
   const std::int64_t interval = r.config.encounter.fail_interval;
   // Stops: inside a t_fail interval, right at a failure step, and past pericenter.
   const auto& failures = r.done.observables.failures;
@@ -346,8 +340,8 @@ TEST(EncounterStage, ResumedRunIsBitIdentical) {
   EXPECT_EQ(state_hash(c.state), state_hash(r.done.state));
   expect_same_failures(c.observables.failures, r.done.observables.failures);
   expect_same_timeseries(c.observables.timeseries, r.done.observables.timeseries);
-  EXPECT_EQ(c.stage.scalars, r.done.stage.scalars);
-  for (std::int64_t step : snapshot_steps(c.stage))
+  EXPECT_EQ(c.stage.record, r.done.stage.record);
+  for (std::int64_t step : c.stage.as<EncounterRecord>().snapshot_steps)
     EXPECT_EQ(state_hash(read_checkpoint(snapshot_path(output, step)).state),
               state_hash(read_checkpoint(snapshot_path(r.output, step)).state))
         << "snapshot at step " << step;
@@ -366,19 +360,19 @@ TEST(EncounterStage, SameBitsOnOneAndTwoThreads) {
 
 TEST(EncounterStage, SecondPassReplacesThePerturberAndKeepsTheCracks) {
   const StrongRun& r = strong_run();
-  EncounterSpec again = r.spec;
+  Encounter again = r.spec;
   again.name = "again";
   again.perturber_mass = 0.25;
   again.failure_strain = 0.002;
   const Checkpoint c = begin_encounter(r.done, r.config, again);
   EXPECT_EQ(c.stage.parent_hash, state_hash(r.done.state));
-  EXPECT_EQ(c.stage.start_step, r.done.stage.end_step);
+  EXPECT_EQ(c.stage.clock.start_step, r.done.stage.end_step);
   EXPECT_EQ(c.state.springs.failed, r.done.state.springs.failed);
   EXPECT_EQ(c.state.springs.stiffness, r.done.state.springs.stiffness);
   EXPECT_EQ(c.state.position, r.done.state.position);
   EXPECT_EQ(c.state.perturber.mass, 0.25);
-  EXPECT_EQ(c.stage.scalars.at("failure_strain"), 0.002);
-  EXPECT_EQ(c.stage.labels.at("encounter"), "again");
+  EXPECT_EQ(c.stage.as<EncounterRecord>().failure_strain, 0.002);
+  EXPECT_EQ(c.stage.as<EncounterRecord>().encounter.name, "again");
   const Vec3 rel = vec(c.state.perturber.position) - body_center_of_mass(c.body, c.state);
   EXPECT_NEAR(rel.norm(), r.config.encounter.start_distance, 1e-12);
   EXPECT_TRUE(c.observables.failures.empty());
@@ -387,7 +381,7 @@ TEST(EncounterStage, SecondPassReplacesThePerturberAndKeepsTheCracks) {
 }
 
 /// The InputError message of begin_encounter, or "" if it did not throw.
-std::string rejection(const Checkpoint& parent, const Config& config, const EncounterSpec& spec) {
+std::string rejection(const Checkpoint& parent, const Config& config, const Encounter& spec) {
   try {
     begin_encounter(parent, config, spec);
   } catch (const InputError& err) {
@@ -398,28 +392,28 @@ std::string rejection(const Checkpoint& parent, const Config& config, const Enco
 
 TEST(EncounterStage, BadParametersAreRejected) {
   const Config config = quick_config();
-  const EncounterSpec good = config.find_encounter("strong");
+  const Encounter good = config.find_encounter("strong");
   const Checkpoint& parent = quick_parent();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto with = [&](auto change) {
-    EncounterSpec spec = good;
+    Encounter spec = good;
     change(spec);
     return rejection(parent, config, spec);
   };
-  EXPECT_NE(with([](EncounterSpec& s) { s.perturber_mass = -1; }).find("perturber_mass"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.perturber_mass = nan; }).find("perturber_mass"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 0.8; }).find("pericenter"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter = nan; }).find("pericenter"), std::string::npos);
-  EXPECT_NE(with([&](EncounterSpec& s) { s.pericenter_speed = nan; }).find("pericenter_speed"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter_speed = 0; }).find("pericenter_speed"), std::string::npos);
-  EXPECT_NE(with([](EncounterSpec& s) { s.failure_strain = -0.001; }).find("failure_strain"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.perturber_mass = -1; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.perturber_mass = nan; }).find("perturber_mass"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.pericenter = 0.8; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.pericenter = nan; }).find("pericenter"), std::string::npos);
+  EXPECT_NE(with([&](Encounter& s) { s.pericenter_speed = nan; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.pericenter_speed = 0; }).find("pericenter_speed"), std::string::npos);
+  EXPECT_NE(with([](Encounter& s) { s.failure_strain = -0.001; }).find("failure_strain"), std::string::npos);
   // Pericenter beyond the start distance: the orbit cannot start there.
-  EXPECT_NE(with([](EncounterSpec& s) { s.pericenter = 3.5; }), "");
-  EXPECT_EQ(with([](EncounterSpec&) {}), "");
+  EXPECT_NE(with([](Encounter& s) { s.pericenter = 3.5; }), "");
+  EXPECT_EQ(with([](Encounter&) {}), "");
 
   // Wrong parent: not relax/encounter, or unfinished.
   Checkpoint stretched = parent;
-  stretched.stage.stage = "stretch";
+  stretched.stage.record = StretchRecord{};
   EXPECT_NE(rejection(stretched, config, good).find("'stretch'"), std::string::npos);
   Checkpoint unfinished = parent;
   unfinished.stage.complete = false;

@@ -33,7 +33,7 @@ const Checkpoint& quick_stretched() {
 
 /// Mean a . r_hat over the shell nodes, recomputed independently of the stage.
 double mean_radial_shell_acceleration(const Checkpoint& c, const Config& config) {
-  ForceField forces(c.body, force_options(config));
+  ForceField forces(c.body, force_options(config, 0.0));
   Accelerations acc;
   forces.compute(c.state, acc);
   Vec3 centre = Vec3::Zero();
@@ -51,12 +51,11 @@ double mean_radial_shell_acceleration(const Checkpoint& c, const Config& config)
 /// max - min of the mean shell radius over `duration` at damping gamma (a nearly free body).
 double radius_excursion(const Checkpoint& start, const Config& config, double gamma, double duration) {
   State state = start.state;
-  state.dt = config.integrator.dt;
-  std::fill(state.springs.damping.begin(), state.springs.damping.end(), gamma);
-  ForceField forces(start.body, force_options(config));
-  Leapfrog leapfrog(forces, StepClock::starting_at(state));
+  const double dt = config.integrator.dt;
+  ForceField forces(start.body, force_options(config, gamma));
+  Leapfrog leapfrog(forces, StepClock{state.time, state.step, dt});
   double low = mean_shell_radius(start.body, state), high = low;
-  for (std::int64_t k = 0; k < steps_for_duration(duration, state.dt); ++k) {
+  for (std::int64_t k = 0; k < steps_for_duration(duration, dt); ++k) {
     leapfrog.step(state);
     const double r = mean_shell_radius(start.body, state);
     low = std::min(low, r);
@@ -83,21 +82,21 @@ TEST(StretchStage, ZeroesTheMeanRadialSurfaceAcceleration) {
   // Built at rest, gravity pulls the surface in by about g = 1.
   EXPECT_LT(mean_radial_shell_acceleration(built, config), -0.5);
   EXPECT_LT(std::abs(mean_radial_shell_acceleration(s, config)), config.stretch.tolerance);
-  const auto& sc = s.stage.scalars;
-  EXPECT_LT(std::abs(sc.at("residual_surface_acceleration")), config.stretch.tolerance);
-  EXPECT_GT(sc.at("stretch_factor"), 1.0);
-  EXPECT_LT(sc.at("stretch_factor"), 1.05);
-  EXPECT_LE(sc.at("iterations"), static_cast<double>(config.stretch.max_iterations));
+  const StretchRecord& sc = s.stage.as<StretchRecord>();
+  EXPECT_LT(std::abs(sc.residual_surface_acceleration), config.stretch.tolerance);
+  EXPECT_GT(sc.stretch_factor, 1.0);
+  EXPECT_LT(sc.stretch_factor, 1.05);
+  EXPECT_LE(sc.iterations, config.stretch.max_iterations);
   // The strengthened core must not break the time step bound.
-  EXPECT_GT(sc.at("dt_max"), config.integrator.dt);
+  EXPECT_GT(sc.dt_max, config.integrator.dt);
 }
 
 TEST(StretchStage, RestLengthsStiffnessesAndBookkeeping) {
   const Config config = quick_config();
   const Checkpoint& built = quick_built();
   const Checkpoint& s = quick_stretched();
-  const double f = s.stage.scalars.at("stretch_factor");
-  const double p_uniform = s.stage.scalars.at("P_uniform");
+  const double f = s.stage.as<StretchRecord>().stretch_factor;
+  const double p_uniform = s.stage.as<StretchRecord>().uniform_pressure;
   ASSERT_GT(p_uniform, 0);
   Vec3 centre = Vec3::Zero();
   for (std::size_t i = 0; i < built.body.particle_count(); ++i) centre += built.body.mass[i] * vec3_at(built.state.position, i);
@@ -121,22 +120,22 @@ TEST(StretchStage, RestLengthsStiffnessesAndBookkeeping) {
       if (s.state.springs.stiffness[n] > k) outermost_strengthened = std::max(outermost_strengthened, r);
     }
   }
-  EXPECT_NEAR(s.stage.scalars.at("strengthening_max"), largest, 1e-9);
+  EXPECT_NEAR(s.stage.as<StretchRecord>().strengthening_max, largest, 1e-9);
   EXPECT_GT(largest, 1.2);  // the core really is strengthened
-  EXPECT_LE(outermost_strengthened, s.stage.scalars.at("strengthening_radius") + 1e-3);
+  EXPECT_LE(outermost_strengthened, s.stage.as<StretchRecord>().strengthening_radius + 1e-3);
   // P_uniform is the virial pressure of the uniformly compressed network, 2 E_I (f - 1).
   const double E_I = derive_quantities(built.body, built.state, config.interior.radius).E_I;
   EXPECT_NEAR(p_uniform, 2 * E_I * (f - 1), 1e-14);
   // With a shell the surface nodes carry no interior springs: strengthening leaves f alone.
-  EXPECT_EQ(s.stage.scalars.at("stretch_factor_unstrengthened"), f);
+  EXPECT_EQ(s.stage.as<StretchRecord>().stretch_factor_unstrengthened, f);
   // Geometry, hinges, bookkeeping.
   EXPECT_EQ(s.state.position, built.state.position);
   EXPECT_EQ(s.state.velocity, built.state.velocity);
   EXPECT_EQ(s.state.hinges.rest_angle, built.state.hinges.rest_angle);
-  EXPECT_EQ(s.stage.stage, "stretch");
+  EXPECT_STREQ(s.stage.name(), "stretch");
   EXPECT_TRUE(s.stage.complete);
   EXPECT_EQ(s.stage.parent_hash, state_hash(built.state));
-  EXPECT_EQ(s.stage.start_step, built.state.step);
+  EXPECT_EQ(s.stage.clock.start_step, built.state.step);
   EXPECT_EQ(s.stage.end_step, built.state.step);
   EXPECT_EQ(s.config_toml, to_toml(config));
 }
@@ -147,7 +146,7 @@ TEST(StretchStage, UnstretchedBodyShrinksAndRingsTheStretchedOneDoesNot) {
   const double stretched = radius_excursion(quick_stretched(), config, gamma, duration);
   config.stretch.enabled = false;
   const Checkpoint plain = stretch_stage(quick_built(), config);
-  EXPECT_EQ(plain.stage.scalars.at("stretch_factor"), 1.0);
+  EXPECT_EQ(plain.stage.as<StretchRecord>().stretch_factor, 1.0);
   EXPECT_EQ(plain.state.springs.rest_length, quick_built().state.springs.rest_length);
   EXPECT_EQ(plain.state.springs.stiffness, quick_built().state.springs.stiffness);
   const double unstretched = radius_excursion(plain, config, gamma, duration);
@@ -174,17 +173,17 @@ dt = 0.004
                                "interior-only.toml");
   const Checkpoint built = build_stage(config);
   const Checkpoint s = stretch_stage(built, config);
-  EXPECT_LT(std::abs(s.stage.scalars.at("residual_surface_acceleration")), config.stretch.tolerance);
-  EXPECT_GT(s.stage.scalars.at("stretch_factor"), 1.0);
-  EXPECT_GT(s.stage.scalars.at("strengthening_max"), 1.0);
+  EXPECT_LT(std::abs(s.stage.as<StretchRecord>().residual_surface_acceleration), config.stretch.tolerance);
+  EXPECT_GT(s.stage.as<StretchRecord>().stretch_factor, 1.0);
+  EXPECT_GT(s.stage.as<StretchRecord>().strengthening_max, 1.0);
   // The strengthened outer interior pushes the surface out: less stretch is needed.
-  EXPECT_LT(s.stage.scalars.at("stretch_factor"), s.stage.scalars.at("stretch_factor_unstrengthened"));
+  EXPECT_LT(s.stage.as<StretchRecord>().stretch_factor, s.stage.as<StretchRecord>().stretch_factor_unstrengthened);
 }
 
 TEST(StretchStage, RefusesAnythingButACompleteBuildCheckpoint) {
   const Config config = quick_config();
   Checkpoint c = quick_stretched();
-  c.stage.stage = "relax";
+  c.stage.record = RelaxRecord{};
   std::string msg = error_of(c, config);
   EXPECT_NE(msg.find("stretch"), std::string::npos) << msg;
   EXPECT_NE(msg.find("'build'"), std::string::npos) << msg;

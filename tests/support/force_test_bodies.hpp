@@ -4,6 +4,7 @@
 // non-zero.
 #include <cstdint>
 
+#include "forces/force_field.hpp"
 #include "stages/build_stage.hpp"
 #include "model/config.hpp"
 #include "base/random.hpp"
@@ -48,5 +49,15 @@ inline void shake(State& state, double dx, double dv, std::uint64_t seed) {
   for (double& x : state.position) x += random.uniform(-dx, dx);
   for (double& v : state.velocity) v += random.uniform(-dv, dv);
 }
+
+/// Force options with every spring damped at rate gamma (1/t_grav).
+inline ForceOptions damped(double gamma) {
+  ForceOptions options;
+  options.damping = gamma;
+  return options;
+}
+
+/// A clock that starts at the state's step and time with time step dt (t_grav).
+inline StepClock clock_at(const State& state, double dt) { return StepClock{state.time, state.step, dt}; }
 
 }  // namespace tidalcrust::testing

@@ -15,13 +15,28 @@ namespace tidalcrust::test_support {
 
 inline Checkpoint synthetic_checkpoint() {
   Checkpoint c;
-  c.stage.stage = "encounter";
+  EncounterRecord record;
+  record.encounter = {"T5 synthetic \"test\" & <body>", 0.5, 1.84, 1.6, 0.002};
+  record.failure_strain = 0.002;
+  record.failed_stiffness_factor = 0.005;
+  record.damping = 0.01;
+  record.fail_interval = 3;
+  record.sample_interval = 10;
+  record.start_distance = 3.0;
+  record.end_distance = 3.0;
+  record.pericenter_time = 3.1;
+  record.pericenter_step = 1550;
+  record.snapshot_steps = {1050, 1550, 2050};
+  record.min_distance = 1.84;
+  record.speed_at_min = 1.6;
+  record.time_of_min = 2.2;
+  record.step_of_min = 1100;
+  c.stage.record = record;
   c.stage.complete = false;
-  c.stage.start_step = 1000;
+  c.stage.clock = {2.0, 1000, 0.002};
   c.stage.end_step = 2500;
   c.stage.parent_hash = "0123456789abcdef0123456789abcdef";
-  c.stage.scalars = {{"perturber_min_distance", 1.84}, {"perturber_speed_at_min", 1.6}, {"fail_phase", 2.0}};
-  c.stage.labels = {{"encounter", "T5"}, {"note", "synthetic \"test\" & <body>"}};
+  c.stage.fingerprint = "encounter.damping = 0.01\nintegrator.dt = 0.002\n";
   c.config_toml = "[workflow]\nname = \"synthetic\"\nseed = 7\n\n[interior]\nradius = 0.5\n"
                   "min_separation = 0.1\nspring_distance = 0.3\n";
 
@@ -38,18 +53,16 @@ inline Checkpoint synthetic_checkpoint() {
   State& s = c.state;
   s.time = 2.25;
   s.step = 1125;
-  s.dt = 0.002;
   const double r = 1.0 / std::sqrt(3.0);
   s.position = {0.0, 0.0, 0.0, r, r, r, r, -r, -r, -r, r, -r, -r, -r, r};
   for (std::size_t i = 0; i < s.position.size(); ++i) s.velocity.push_back(0.01 * std::sin(1.0 + i));
   for (std::size_t k = 0; k < b.springs.size(); ++k) {
     s.springs.rest_length.push_back(0.9 + 0.01 * k);
     s.springs.stiffness.push_back(k < 4 ? 0.005 : 0.06);
-    s.springs.damping.push_back(0.01);
     s.springs.failed.push_back(k == 5 ? 1 : 0);
   }
   s.hinges.rest_angle = {0.1, -0.2, 0.3};
-  s.hinges.stiffness = {0.0075, 0.0075, 0.0075};
+  b.hinge_stiffness = {0.0075, 0.0075, 0.0075};
   s.perturber = {true, 0.5, {3.0, -1.0, 0.0}, {-1.2, 0.4, 0.0}};
 
   c.observables.failures = {{2.1, 1050, 5, 0.0031, {0.0, 0.1, -0.9}}};

@@ -8,7 +8,6 @@
 
 #include "model/checkpoint.hpp"
 #include "bodies/icosphere.hpp"
-#include "model/recorded_encounter.hpp"
 #include "base/vec3.hpp"
 
 namespace tidalcrust::testing {
@@ -20,13 +19,14 @@ inline Checkpoint synthetic_encounter(int level = 2) {
   const Icosphere sphere = make_icosphere(level);
   const auto& nodes = sphere.nodes;
   Checkpoint c;
-  c.stage.stage = "encounter";
-  c.stage.start_step = 0;
+  EncounterRecord record;
+  record.encounter = {"T5", 0.5, 1.84, 1.6, {}};
+  record.pericenter_time = 1.2;
+  record.min_distance = 1.85;
+  record.speed_at_min = 1.59;
+  c.stage.record = record;
+  c.stage.clock = {0.0, 0, 0.002};
   c.stage.end_step = 1000;
-  c.stage.scalars = {{encounter_keys::perturber_mass, 0.5},  {encounter_keys::pericenter, 1.84},
-                     {encounter_keys::pericenter_speed, 1.6}, {encounter_keys::pericenter_time, 1.2},
-                     {encounter_keys::perturber_min_distance, 1.85}, {encounter_keys::perturber_speed_at_min, 1.59}};
-  c.stage.labels = {{encounter_keys::name_label, "T5"}};
   Body& b = c.body;
   b.mass.push_back(0.93);
   b.species.push_back(0);
@@ -47,7 +47,6 @@ inline Checkpoint synthetic_encounter(int level = 2) {
     b.spring_kind.push_back(static_cast<std::uint8_t>(SpringKind::cross));
   }
   State& s = c.state;
-  s.dt = 0.002;
   s.step = 1000;
   s.time = 2.0;
   s.position.assign(3 * b.particle_count(), 0.0);
@@ -56,7 +55,6 @@ inline Checkpoint synthetic_encounter(int level = 2) {
   const std::size_t ns = b.spring_count();
   s.springs.rest_length.assign(ns, 0.1);
   s.springs.stiffness.assign(ns, 0.06);
-  s.springs.damping.assign(ns, 0.01);
   s.springs.failed.assign(ns, 0);
   s.perturber.present = true;
   s.perturber.mass = 0.5;

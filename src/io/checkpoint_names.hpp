@@ -1,12 +1,20 @@
 #pragma once
-// Mid-stage snapshots of an encounter, kept beside its checkpoint for the snapshot row of the
-// hemisphere figure (Figure 6): ENC.h5 -> ENC.snap-<step>.h5 (step: global step, decimal).
+// The files kept beside a stage's checkpoint OUT.h5: its mid-stage checkpoint OUT.mid.h5 (periodic
+// and SIGINT, the one to resume from), its diagnostic checkpoint OUT.diagnostic.h5 (a blow-up), and
+// an encounter's snapshots OUT.snap-<step>.h5 (global step, decimal) for the snapshot row of the
+// hemisphere figure (Figure 6).
 #include <cstdint>
 #include <filesystem>
 #include <string_view>
 #include <vector>
 
 namespace tidalcrust {
+
+/// A file beside `out`: out.h5 -> out.<suffix>.h5 ("mid", "diagnostic").
+std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix);
+
+/// Removes a checkpoint and its .xdmf sidecar if they exist (a finished stage's mid file).
+void remove_checkpoint_files(const std::filesystem::path& file);
 
 inline constexpr std::string_view snapshot_infix = ".snap-";
 

@@ -1,4 +1,4 @@
-#include "io/snapshot_files.hpp"
+#include "io/checkpoint_names.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +8,20 @@
 #include <string>
 
 namespace tidalcrust {
+
+std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix) {
+  std::filesystem::path p = out;
+  p.replace_extension();
+  p += "." + suffix + ".h5";
+  return p;
+}
+
+void remove_checkpoint_files(const std::filesystem::path& file) {
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+  std::filesystem::path xdmf = file;
+  std::filesystem::remove(xdmf.replace_extension(".xdmf"), ignored);
+}
 
 std::filesystem::path snapshot_path(const std::filesystem::path& checkpoint_file, std::int64_t step) {
   return checkpoint_file.parent_path() /

@@ -1,0 +1,186 @@
+#include "stages/workflow.hpp"
+
+#include <fmt/format.h>
+
+#include "analysis/fracture_analysis.hpp"
+#include "base/errors.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/checkpoint_names.hpp"
+#include "io/json_writer.hpp"
+#include "io/progress.hpp"
+#include "io/state_hash.hpp"
+#include "model/stage_fingerprint.hpp"
+#include "stages/analysis_stage.hpp"
+#include "stages/build_stage.hpp"
+#include "stages/encounter_stage.hpp"
+#include "stages/relax_stage.hpp"
+#include "stages/stretch_stage.hpp"
+
+namespace tidalcrust {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunContext {
+  fs::path status_file;
+  bool quiet = false;
+};
+
+void say(const RunContext& ctx, const std::string& text) {
+  if (!ctx.quiet) fmt::print("{}\n", text);
+}
+
+/// A finished checkpoint that can be reused as it is, or nothing.
+std::optional<Checkpoint> reusable(const fs::path& file, const std::string& fingerprint,
+                                   const std::string& parent_hash) {
+  if (!fs::exists(file)) return std::nullopt;
+  Checkpoint existing = read_checkpoint(file);  // corrupt final file: exit 2, never guessed over
+  if (existing.stage.complete && existing.stage.fingerprint == fingerprint && existing.stage.parent_hash == parent_hash)
+    return existing;
+  return std::nullopt;
+}
+
+/// A mid-stage checkpoint to resume from, or nothing (stale or corrupt ones are ignored:
+/// they are only a shortcut, and the stage can always start again from its parent).
+std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fingerprint,
+                                    const std::string& parent_hash) {
+  if (!fs::exists(mid)) return std::nullopt;
+  Checkpoint existing;
+  try {
+    existing = read_checkpoint(mid);
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  if (existing.stage.fingerprint != fingerprint || existing.stage.parent_hash != parent_hash || existing.stage.complete)
+    return std::nullopt;
+  return existing;
+}
+
+/// A stage without time steps (build, stretch): its final file when that is current, else
+/// made anew and written.
+template <typename Make>
+Checkpoint instant_stage(const RunContext& ctx, const char* name, const fs::path& file, const std::string& fingerprint,
+                         const std::string& parent_hash, const char* doing, Make make) {
+  if (auto existing = reusable(file, fingerprint, parent_hash)) {
+    say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
+    return std::move(*existing);
+  }
+  say(ctx, fmt::format("{}: {}", name, doing));
+  Checkpoint made = make();
+  made.stage.fingerprint = fingerprint;
+  write_checkpoint(file, made);
+  return made;
+}
+
+/// A time-stepping stage (relax, encounter): its final file when that is current; else resumed
+/// from a matching mid-stage checkpoint or begun anew, run, written. Nothing when interrupted.
+/// A stage begun here runs with `config`; a resumed one with the configuration it started with
+/// (values outside its fingerprint may have changed since).
+template <typename Begin, typename Run>
+std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
+                                         const std::string& fingerprint, const std::string& parent_hash,
+                                         const Config& config, std::int64_t checkpoint_interval, Begin begin,
+                                         Run run) {
+  if (auto existing = reusable(file, fingerprint, parent_hash)) {
+    say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
+    return existing;
+  }
+  StepLoopOptions loop = stage_loop_options(file, name, checkpoint_interval);
+  loop.status_file = ctx.status_file;
+  loop.quiet = ctx.quiet;
+  std::optional<Checkpoint> checkpoint = resumable(loop.mid_checkpoint, fingerprint, parent_hash);
+  std::optional<Config> stored;
+  if (checkpoint) {
+    say(ctx, fmt::format("{}: resuming from {} (step {})", name, loop.mid_checkpoint.string(), checkpoint->state.step));
+    stored = parse_config(checkpoint->config_toml, loop.mid_checkpoint.string() + ":/parameters/config");
+  } else {
+    checkpoint = begin();
+    checkpoint->stage.fingerprint = fingerprint;
+  }
+  if (run(*checkpoint, stored ? *stored : config, loop, file) == LoopOutcome::interrupted) return std::nullopt;
+  write_checkpoint(file, *checkpoint);
+  remove_checkpoint_files(loop.mid_checkpoint);
+  return checkpoint;
+}
+
+/// Refuses an output folder that holds another body, before anything is written.
+void check_same_body(const fs::path& build_file, const Config& config) {
+  if (!fs::exists(build_file)) return;
+  const Checkpoint existing = read_checkpoint(build_file);
+  const std::string wanted = build_fingerprint(config);
+  if (existing.stage.fingerprint != wanted)
+    throw InputError(fmt::format(
+        "{}: the output folder holds checkpoints of a different body ({}); use --out DIR or remove the folder",
+        build_file.string(),
+        existing.stage.fingerprint.empty() ? "no fingerprint" : first_difference(existing.stage.fingerprint, wanted)));
+}
+
+void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpoint& encounter, const fs::path& out,
+                      const std::string& name) {
+  if (analysis_is_current(out, encounter)) {
+    say(ctx, fmt::format("analyze {}: up to date ({})", name, out.string()));
+    return;
+  }
+  analyze_encounter(file, encounter, out);
+  say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
+}
+
+}  // namespace
+
+WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
+  RunContext ctx;
+  ctx.quiet = options.quiet;
+  const fs::path body_dir = options.root / "body";
+  check_same_body(body_dir / "build.h5", config);
+  fs::create_directories(body_dir);
+  ctx.status_file = options.root / "status.json";
+  WorkflowResult result;
+
+  // Body chain.
+  const Checkpoint built = instant_stage(ctx, "build", body_dir / "build.h5", build_fingerprint(config), "",
+                                         "building the body", [&] { return build_stage(config); });
+  const Checkpoint stretched =
+      instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), state_hash(built.state),
+                    "stretching and strengthening", [&] { return stretch_stage(built, config); });
+  const auto relaxed = stepping_stage(
+      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), state_hash(stretched.state), config,
+      config.relax.checkpoint_interval, [&] { return begin_relax(stretched, config); },
+      [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path&) {
+        return run_relax(c, run_config, loop);
+      });
+  if (!relaxed) return result.interrupted = true, result;
+  result.relaxed = relaxed->stage.as<RelaxRecord>();
+
+  // Encounters, each branching from the relaxed body, at dt * dt_factor.
+  Config encounter_config = config;
+  if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
+  const fs::path encounter_root =
+      options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);
+  const std::string relaxed_hash = state_hash(relaxed->state);
+  for (const auto& spec : options.encounters) {
+    const fs::path dir = encounter_root / spec.name;
+    fs::create_directories(dir);
+    const fs::path file = dir / "encounter.h5";
+    const auto encounter = stepping_stage(
+        ctx, "encounter " + spec.name, file, encounter_fingerprint(encounter_config, spec), relaxed_hash,
+        encounter_config, encounter_config.encounter.checkpoint_interval,
+        [&] { return begin_encounter(*relaxed, encounter_config, spec); },
+        [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path& out) {
+          return run_encounter(c, run_config, loop, out);
+        });
+    if (!encounter) return result.interrupted = true, result;
+    analyze_if_stale(ctx, file, *encounter, dir / "analysis", spec.name);
+    result.encounters.push_back({spec.name, file, dir / "analysis",
+                                 fracture_summary_line(spec.name, analyze_fractures(encounter->body, encounter->state))});
+  }
+
+  JsonWriter status;
+  status.begin_object().value("stage", "workflow " + config.workflow.name).value("state", "done");
+  status.value("dt_factor", options.dt_factor).begin_array("encounters");
+  for (const auto& e : result.encounters) status.value({}, e.name);
+  status.end_array().end_object();
+  write_status_file(ctx.status_file, status.str());
+  return result;
+}
+
+}  // namespace tidalcrust

@@ -1,0 +1,43 @@
+#pragma once
+// The restart-driven workflow behind `tidalcrust run`: one body chain (build, stretch, relax)
+// shared by all encounters, each encounter and its analysis in a folder of its own. Rerunning
+// after an interruption continues from the newest valid checkpoint; finished stages whose
+// fingerprint (model/stage_fingerprint.hpp) and parent match are reused; a changed value reruns
+// exactly the stages it affects. Output layout: checkpoints/README.md.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+
+namespace tidalcrust {
+
+struct WorkflowOptions {
+  std::filesystem::path root;       ///< output folder (body/, one folder per encounter, status.json)
+  double dt_factor = 1.0;           ///< encounters run at dt * dt_factor into root/dt<factor>/ when != 1
+  std::vector<Encounter> encounters;///< the encounters to run (all of the workflow, or --only)
+  bool quiet = false;               ///< no progress lines
+};
+
+/// One finished encounter of a workflow.
+struct WorkflowEncounter {
+  std::string name;
+  std::filesystem::path checkpoint;  ///< its encounter.h5
+  std::filesystem::path analysis;    ///< its analysis folder
+  std::string summary;               ///< one line of fracture statistics (analysis_stage.hpp)
+};
+
+struct WorkflowResult {
+  bool interrupted = false;          ///< stopped by SIGINT/SIGTERM; mid-stage checkpoints written
+  std::optional<RelaxRecord> relaxed;///< the relaxed body's record (stability probe), when reached
+  std::vector<WorkflowEncounter> encounters;
+};
+
+/// Runs (or resumes) the workflow of `config`, which must be validated. InputError before
+/// anything is written if root holds checkpoints of another body; SimulationError on a blow-up
+/// (with a diagnostic checkpoint beside the stage's file).
+WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options);
+
+}  // namespace tidalcrust
