@@ -16,6 +16,7 @@
 #include "figures/figures.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
+#include "io/atomic_file.hpp"
 #include "io/json_writer.hpp"
 #include "model/recorded_encounter.hpp"
 #include "io/snapshot_files.hpp"
@@ -56,20 +57,6 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
 }
 
 std::string percent(double fraction) { return std::isfinite(fraction) ? fmt::format("{:.1f}%", 100 * fraction) : "n/a"; }
-
-/// Written beside and renamed, so a summary.json is never half written (run uses it to decide
-/// whether the analysis is up to date).
-void write_text_file(const fs::path& file, const std::string& text) {
-  fs::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw InputError(fmt::format("{}: cannot write", file.string()));
-  }
-  fs::rename(tmp, file);
-}
 
 }  // namespace
 
@@ -175,7 +162,9 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   for (const auto& f : figures) json.value({}, f.filename().string());
   json.end_array();
   json.end_object();
-  write_text_file(out / "summary.json", json.str());
+  // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
+  // is up to date.
+  write_file_atomically(out / "summary.json", json.str());
 
   return figures;
 }

@@ -4,8 +4,9 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 
+#include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "io/json_writer.hpp"
 
 namespace tidalcrust {
@@ -62,16 +63,11 @@ void ProgressReporter::write_status(std::int64_t step, double rate, double eta, 
 }
 
 void write_status_file(const std::filesystem::path& file, const std::string& json_text) {
-  // Write beside and rename, so a reader never sees half a file.
-  auto tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << json_text;
-    if (!out) return;  // a status file is a courtesy; never fail the run for it
+  try {
+    write_file_atomically(file, json_text);
+  } catch (const InputError&) {
+    // a status file is a courtesy; never fail the run for it
   }
-  std::error_code ignored;
-  std::filesystem::rename(tmp, file, ignored);
 }
 
 }  // namespace tidalcrust

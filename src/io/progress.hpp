@@ -9,8 +9,8 @@
 
 namespace tidalcrust {
 
-/// Writes `json_text` to `file` atomically (beside, then renamed); a status file is a courtesy,
-/// so failures are ignored.
+/// Writes `json_text` to `file` atomically (io/atomic_file.hpp), so a poller never reads half a
+/// file; a status file is a courtesy, so failures are ignored.
 void write_status_file(const std::filesystem::path& file, const std::string& json_text);
 
 class ProgressReporter {
