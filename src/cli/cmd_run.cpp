@@ -9,7 +9,6 @@
 
 #include "stages/analysis_stage.hpp"
 #include "analysis/fracture_analysis.hpp"
-#include "io/json_writer.hpp"
 #include "io/progress.hpp"
 #include "stages/build_stage.hpp"
 #include "io/checkpoint_file.hpp"
@@ -233,12 +232,10 @@ int command_run(int argc, char** argv) {
                             fmt::format("\n    figures: {}", (dir / "analysis").string()));
   }
 
-  JsonWriter status;
-  status.begin_object().value("stage", "workflow " + config.workflow.name).value("state", "done");
-  status.value("dt_factor", dt_factor).begin_array("encounters");
-  for (const auto& spec : encounters) status.value({}, spec.name);
-  status.end_array().end_object();
-  write_status_file(ctx.status_file, status.str());
+  Json status = {
+      {"stage", "workflow " + config.workflow.name}, {"state", "done"}, {"dt_factor", dt_factor}, {"encounters", Json::array()}};
+  for (const auto& spec : encounters) status["encounters"].push_back(spec.name);
+  write_status_file(ctx.status_file, status);
   fmt::print("\nworkflow {} finished: checkpoints in {}\n", config.workflow.name, ctx.root.string());
   const auto& probe = relaxed->stage.scalars;
   if (probe.count("stability_failures"))
