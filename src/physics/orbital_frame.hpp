@@ -1,8 +1,8 @@
 #pragma once
-// The frame of the fracture maps: the orbital plane is the equator
-// (xy), longitude is measured in the xy-plane from +x, latitude from the equator toward +z, and
-// the subsatellite point (direction of the perturber at pericenter) lies on +y, longitude +90 deg.
-// Surface points are taken relative to the body's centre of mass, because the body moves.
+// The frame of the fracture maps: the orbital plane is the equator (xy), longitude is measured
+// in the xy-plane from +x, latitude from the equator toward +z, and the subsatellite point
+// (direction of the perturber at pericenter) lies on +y, longitude +90 deg. Surface points are
+// taken relative to the body's centre of mass, because the body moves.
 #include "base/vec3.hpp"
 #include "model/center_of_mass.hpp"  // the frame's origin: body_center_of_mass
 
