@@ -4,7 +4,7 @@
 BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
-            libtomlplusplus-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev
+            libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev
 EXE      := $(BUILD)/tidalcrust
 
 .PHONY: all deps configure build test run bench clean

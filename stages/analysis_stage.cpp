@@ -16,7 +16,8 @@
 #include "figures/figures.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
-#include "io/json_writer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/state_hash.hpp"
 #include "io/checkpoint_file.hpp"
@@ -55,20 +56,6 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
 }
 
 std::string percent(double fraction) { return std::isfinite(fraction) ? fmt::format("{:.1f}%", 100 * fraction) : "n/a"; }
-
-/// Written beside and renamed, so a summary.json is never half written (run uses it to decide
-/// whether the analysis is up to date).
-void write_text_file(const fs::path& file, const std::string& text) {
-  fs::path tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw InputError(fmt::format("{}: cannot write", file.string()));
-  }
-  fs::rename(tmp, file);
-}
 
 }  // namespace
 
@@ -113,78 +100,71 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
                               fmt::format("{}: conservation diagnostics", name)));
 
-  JsonWriter json;
-  json.begin_object()
-      .value("source", from.string())
-      .value("stage", checkpoint.stage.name())
-      .value("complete", checkpoint.stage.complete)
-      .value("time", checkpoint.state.time)
-      .value("step", checkpoint.state.step)
-      .value("state_hash", state_hash(checkpoint.state));
-  json.begin_object("encounter")
-      .value("name", record.encounter.name)
-      .value("perturber_mass", record.encounter.perturber_mass)
-      .value("pericenter", record.encounter.pericenter)
-      .value("pericenter_speed", record.encounter.pericenter_speed)
-      .value("pericenter_time", record.pericenter_time)
-      .value("min_distance", record.min_distance)
-      .value("speed_at_min", record.speed_at_min)
-      .end_object();
-  add_failure_summary(json, fractures);
-  json.value("shell_springs", fractures.shell_springs);
-  std::vector<double> springs, longitudes, latitudes, angles;
+  Json failed_springs = {{"spring", Json::array()},
+                         {"longitude_deg", Json::array()},
+                         {"latitude_deg", Json::array()},
+                         {"angle_from_subsatellite_deg", Json::array()}};
   for (const auto& f : fractures.failed) {
-    springs.push_back(f.spring);
-    longitudes.push_back(f.longitude_deg);
-    latitudes.push_back(f.latitude_deg);
-    angles.push_back(f.angle_from_subsatellite_deg);
+    failed_springs["spring"].push_back(f.spring);
+    failed_springs["longitude_deg"].push_back(f.longitude_deg);
+    failed_springs["latitude_deg"].push_back(f.latitude_deg);
+    failed_springs["angle_from_subsatellite_deg"].push_back(f.angle_from_subsatellite_deg);
   }
-  json.begin_object("angles_from_subsatellite_deg")
-      .value("mean", fractures.mean_angle_from_subsatellite_deg)
-      .value("bin_width", FractureSummary::angle_bin_width_deg)
-      .numbers("histogram", fractures.angle_histogram)
-      .end_object();
-  json.begin_object("failed_springs")
-      .numbers("spring", springs)
-      .numbers("longitude_deg", longitudes)
-      .numbers("latitude_deg", latitudes)
-      .numbers("angle_from_subsatellite_deg", angles)
-      .end_object();
-  json.begin_array("clusters");
+  Json clusters = Json::array();
   for (const auto& cluster : fractures.clusters)
-    json.begin_object().value("springs", cluster.springs.size()).value("length", cluster.length).value("extent", cluster.extent).end_object();
-  json.end_array();
-  json.begin_object("conservation")
-      .value("samples", drift.samples)
-      .value("max_momentum_change", drift.max_momentum_change)
-      .value("max_angular_momentum_change", drift.max_angular_momentum_change)
-      .value("max_relative_angular_momentum_change", drift.max_relative_angular_momentum_change)
-      .value("final_kinetic_energy_change", drift.final_kinetic_energy_change)
-      .value("max_kinetic_energy_change", drift.max_kinetic_energy_change)
-      .end_object();
-  json.begin_array("snapshots");
+    clusters.push_back({{"springs", cluster.springs.size()}, {"length", cluster.length}, {"extent", cluster.extent}});
+  Json snapshot_list = Json::array();
   for (const std::size_t i : panel_indices)
-    json.begin_object()
-        .value("file", candidate_files[i].string())
-        .value("step", candidates[i]->state.step)
-        .value("time", candidates[i]->state.time)
-        .end_object();
-  json.end_array();
-  json.begin_array("figures");
-  for (const auto& f : figures) json.value({}, f.filename().string());
-  json.end_array();
-  json.end_object();
-  write_text_file(out / "summary.json", json.str());
+    snapshot_list.push_back(
+        {{"file", candidate_files[i].string()}, {"step", candidates[i]->state.step}, {"time", candidates[i]->state.time}});
+  Json figure_names = Json::array();
+  for (const auto& f : figures) figure_names.push_back(f.filename().string());
+
+  const Json summary = {
+      {"source", from.string()},
+      {"stage", checkpoint.stage.name()},
+      {"complete", checkpoint.stage.complete},
+      {"time", checkpoint.state.time},
+      {"step", checkpoint.state.step},
+      {"state_hash", state_hash(checkpoint.state)},
+      {"encounter",
+       {{"name", record.encounter.name},
+        {"perturber_mass", record.encounter.perturber_mass},
+        {"pericenter", record.encounter.pericenter},
+        {"pericenter_speed", record.encounter.pericenter_speed},
+        {"pericenter_time", record.pericenter_time},
+        {"min_distance", record.min_distance},
+        {"speed_at_min", record.speed_at_min}}},
+      {"failures", failure_summary_json(fractures)},
+      {"shell_springs", fractures.shell_springs},
+      {"angles_from_subsatellite_deg",
+       {{"mean", fractures.mean_angle_from_subsatellite_deg},
+        {"bin_width", FractureSummary::angle_bin_width_deg},
+        {"histogram", fractures.angle_histogram}}},
+      {"failed_springs", failed_springs},
+      {"clusters", clusters},
+      {"conservation",
+       {{"samples", drift.samples},
+        {"max_momentum_change", drift.max_momentum_change},
+        {"max_angular_momentum_change", drift.max_angular_momentum_change},
+        {"max_relative_angular_momentum_change", drift.max_relative_angular_momentum_change},
+        {"final_kinetic_energy_change", drift.final_kinetic_energy_change},
+        {"max_kinetic_energy_change", drift.max_kinetic_energy_change}}},
+      {"snapshots", snapshot_list},
+      {"figures", figure_names}};
+  // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
+  // is up to date.
+  write_file_atomically(out / "summary.json", json_text(summary));
 
   return figures;
 }
 
 bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
-  const fs::path summary = out / "summary.json";
-  if (!fs::exists(summary)) return false;
-  std::ifstream in(summary);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return text.find(fmt::format("\"state_hash\": \"{}\"", state_hash(checkpoint.state))) != std::string::npos;
+  std::ifstream in(out / "summary.json");
+  if (!in) return false;
+  const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  const auto hash = summary.find("state_hash");  // end() for a non-object or a parse failure
+  return hash != summary.end() && *hash == state_hash(checkpoint.state);
 }
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {

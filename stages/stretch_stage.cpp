@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "model/center_of_mass.hpp"
 #include "model/derived_quantities.hpp"
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
@@ -24,16 +25,6 @@ namespace {
 constexpr double largest_stretch_factor = 2.0;
 /// Strengthening no more than this: a stiffer core would need a much smaller time step.
 constexpr double largest_strengthening = 100.0;
-
-Vec3 centre_of_mass(const Body& body, const State& state) {
-  Vec3 sum = Vec3::Zero();
-  double mass = 0;
-  for (std::size_t i = 0; i < body.particle_count(); ++i) {
-    sum += body.mass[i] * vec3_at(state.position, i);
-    mass += body.mass[i];
-  }
-  return sum / mass;
-}
 
 /// The surface whose mean radial acceleration the stretch zeroes: the shell nodes, or for a
 /// body without shell the interior nodes within d_I/2 of the outermost one (those that lack
@@ -69,7 +60,7 @@ class StretchTrial {
         cross_compression_(config.stretch.cross_compression),
         forces_(built.body, force_options(config, 0.0)),  // the body is at rest: no damping
         state_(built.state),
-        centre_(centre_of_mass(built.body, built.state)),
+        centre_(body_center_of_mass(built.body, built.state)),
         surface_(surface_nodes(built.body, built.state, centre_, config.interior.spring_distance)) {
     std::fill(state_.velocity.begin(), state_.velocity.end(), 0.0);
     state_.perturber = Perturber{};

@@ -6,7 +6,7 @@
 #include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "io/progress.hpp"
 #include "io/state_hash.hpp"
 #include "model/stage_fingerprint.hpp"
@@ -174,12 +174,12 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
                                  fracture_summary_line(spec.name, analyze_fractures(encounter->body, encounter->state))});
   }
 
-  JsonWriter status;
-  status.begin_object().value("stage", "workflow " + config.workflow.name).value("state", "done");
-  status.value("dt_factor", options.dt_factor).begin_array("encounters");
-  for (const auto& e : result.encounters) status.value({}, e.name);
-  status.end_array().end_object();
-  write_status_file(ctx.status_file, status.str());
+  Json status = {{"stage", "workflow " + config.workflow.name},
+                 {"state", "done"},
+                 {"dt_factor", options.dt_factor},
+                 {"encounters", Json::array()}};
+  for (const auto& e : result.encounters) status["encounters"].push_back(e.name);
+  write_status_file(ctx.status_file, status);
   return result;
 }
 

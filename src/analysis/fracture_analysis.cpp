@@ -138,21 +138,15 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
   return summary;
 }
 
-std::vector<std::pair<std::string, double>> failure_summary_fields(const FractureSummary& summary) {
-  return {{"count", static_cast<double>(summary.count())},
+Json failure_summary_json(const FractureSummary& summary) {
+  return {{"count", summary.count()},
           {"fraction_shell", summary.fraction_shell},
           {"hemisphere_fraction", summary.hemisphere_fraction},
           {"mean_angle_from_subsatellite_deg", summary.mean_angle_from_subsatellite_deg},
           {"median_angle_from_subsatellite_deg", summary.median_angle_from_subsatellite_deg},
           {"longest_crack", summary.longest_crack_length},
           {"longest_crack_extent", summary.longest_crack_extent},
-          {"clusters", static_cast<double>(summary.clusters.size())}};
-}
-
-void add_failure_summary(JsonWriter& json, const FractureSummary& summary) {
-  json.begin_object("failures");
-  for (const auto& [key, value] : failure_summary_fields(summary)) json.value(key, value);
-  json.end_object();
+          {"clusters", summary.clusters.size()}};
 }
 
 }  // namespace tidalcrust

@@ -7,12 +7,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <string>
-#include <utility>
 #include <vector>
 
+#include "io/json.hpp"
 #include "model/body.hpp"
-#include "io/json_writer.hpp"
 #include "model/state.hpp"
 #include "base/vec3.hpp"
 
@@ -67,11 +65,10 @@ struct FractureSummary {
 /// Throws InputError if the shell faces and springs do not match.
 FractureSummary analyze_fractures(const Body& body, const State& state);
 
-/// Writes design.md's `failures {count, fraction_shell, hemisphere_fraction,
-/// mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg, longest_crack, longest_crack_extent, clusters}` object
-/// (lengths in R, clusters = number of clusters; undefined values are null).
-void add_failure_summary(JsonWriter& json, const FractureSummary& summary);
-/// The same fields as (key, value) pairs, in output order (counts are whole numbers).
-std::vector<std::pair<std::string, double>> failure_summary_fields(const FractureSummary& summary);
+/// The `failures` object of summary.json, compare --json and inspect: count, fraction_shell,
+/// hemisphere_fraction, mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg,
+/// longest_crack, longest_crack_extent (R) and clusters (number of clusters), in that order;
+/// count and clusters are integers, undefined (NaN) values are written as null.
+Json failure_summary_json(const FractureSummary& summary);
 
 }  // namespace tidalcrust

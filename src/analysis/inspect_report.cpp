@@ -10,7 +10,7 @@
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
 #include "model/derived_quantities.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "io/state_hash.hpp"
 #include "io/checkpoint_file.hpp"
 
@@ -69,13 +69,13 @@ ReportSection record_section(const Checkpoint& c) {
   return s;
 }
 
-std::string value_text(const ReportValue& v, bool for_table) {
-  auto number = [&](double x) { return for_table ? fmt::format("{:.6g}", x) : JsonWriter::number(x); };
+std::string value_text(const ReportValue& v) {
+  auto number = [](double x) { return fmt::format("{:.6g}", x); };
   switch (v.kind) {
     case ReportValue::Kind::integer: return fmt::format("{}", v.integer);
     case ReportValue::Kind::number: return number(v.number);
     case ReportValue::Kind::flag: return v.flag ? "true" : "false";
-    case ReportValue::Kind::text: return for_table ? v.text : JsonWriter::quote(v.text);
+    case ReportValue::Kind::text: return v.text;
     case ReportValue::Kind::numbers: {
       std::string out = "[";
       for (std::size_t i = 0; i < v.numbers.size(); ++i) out += (i ? ", " : "") + number(v.numbers[i]);
@@ -85,16 +85,18 @@ std::string value_text(const ReportValue& v, bool for_table) {
   return {};
 }
 
-void write_entries(JsonWriter& json, const ReportSection& s) {
+Json json_of(const ReportSection& s) {
+  Json json = Json::object();
   for (const auto& [key, v] : s.entries) {
     switch (v.kind) {
-      case ReportValue::Kind::integer: json.value(key, v.integer); break;
-      case ReportValue::Kind::number: json.value(key, v.number); break;
-      case ReportValue::Kind::flag: json.value(key, v.flag); break;
-      case ReportValue::Kind::text: json.value(key, std::string_view(v.text)); break;
-      case ReportValue::Kind::numbers: json.numbers(key, v.numbers); break;
+      case ReportValue::Kind::integer: json[key] = v.integer; break;
+      case ReportValue::Kind::number: json[key] = v.number; break;
+      case ReportValue::Kind::flag: json[key] = v.flag; break;
+      case ReportValue::Kind::text: json[key] = v.text; break;
+      case ReportValue::Kind::numbers: json[key] = v.numbers; break;
     }
   }
+  return json;
 }
 
 }  // namespace
@@ -109,9 +111,10 @@ ReportSection& InspectReport::section(const std::string& name) {
 void add_failures_section(const Checkpoint& c, InspectReport& r) {
   if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
-  for (const auto& [key, value] : failure_summary_fields(analyze_fractures(c.body, c.state))) {
-    if (key == "count" || key == "clusters") failures.add(key, static_cast<std::int64_t>(value));
-    else failures.add(key, value);
+  const Json summary = failure_summary_json(analyze_fractures(c.body, c.state));
+  for (const auto& [key, value] : summary.items()) {
+    if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>());
+    else failures.add(key, value.get<double>());
   }
 }
 
@@ -143,16 +146,9 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
 }
 
 std::string inspect_report_json(const InspectReport& r) {
-  JsonWriter json;
-  json.begin_object();
-  write_entries(json, r.top);
-  for (const auto& s : r.sections) {
-    json.begin_object(s.name);
-    write_entries(json, s);
-    json.end_object();
-  }
-  json.end_object();
-  return json.str();
+  Json json = json_of(r.top);
+  for (const auto& s : r.sections) json[s.name] = json_of(s);
+  return json_text(json);
 }
 
 std::string inspect_report_table(const InspectReport& r) {
@@ -161,11 +157,11 @@ std::string inspect_report_table(const InspectReport& r) {
   for (const auto& s : r.sections)
     for (const auto& [key, value] : s.entries) width = std::max(width, key.size() + 2);
   std::string out;
-  for (const auto& [key, value] : r.top.entries) out += fmt::format("{:<{}}  {}\n", key, width, value_text(value, true));
+  for (const auto& [key, value] : r.top.entries) out += fmt::format("{:<{}}  {}\n", key, width, value_text(value));
   for (const auto& s : r.sections) {
     out += s.name + (s.entries.empty() ? "  (none)\n" : "\n");
     for (const auto& [key, value] : s.entries)
-      out += fmt::format("  {:<{}}  {}\n", key, width - 2, value_text(value, true));
+      out += fmt::format("  {:<{}}  {}\n", key, width - 2, value_text(value));
   }
   return out;
 }

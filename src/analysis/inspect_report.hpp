@@ -87,7 +87,7 @@ InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::stri
 /// adds nothing yet; the analysis code fills it in.
 void add_failures_section(const Checkpoint& checkpoint, InspectReport& report);
 
-/// One JSON object (json_writer.hpp); doubles read back to the same bits.
+/// One JSON object (io/json.hpp: doubles read back to the same bits, NaN is null).
 std::string inspect_report_json(const InspectReport& report);
 
 /// Aligned "key  value" lines, sections indented below their names.

@@ -13,7 +13,6 @@ class Random {
   double uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
   /// Uniform in [lo, hi).
   double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
-  std::uint64_t bits() { return engine_(); }
 
  private:
   std::mt19937_64 engine_;

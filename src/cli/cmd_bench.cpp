@@ -15,7 +15,7 @@
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "integrate/leapfrog.hpp"
 #include "integrate/textbook_step.hpp"
 
@@ -120,28 +120,22 @@ int command_bench(int argc, char** argv) {
   const double speedup = textbook_ms > 0 ? textbook_ms / ms_per_step : 0.0;
 
   if (parsed.count("json")) {
-    JsonWriter json;
-    json.begin_object()
-        .value("workflow", config.workflow.name)
-        .value("particles", body.body.particle_count())
-        .value("springs", body.body.spring_count())
-        .value("hinges", body.body.hinge_count())
-        .value("threads", threads)
-        .value("steps", steps)
-        .value("repeats", repeats)
-        .value("ms_per_step", ms_per_step)
-        .begin_object("kernels_ms")
-        .value("springs", springs_ms)
-        .value("hinges", hinges_ms)
-        .value("gravity", gravity_ms)
-        .end_object()
-        .value("textbook_ms_per_step", textbook_ms)
-        .value("textbook", "one thread, array of particle structs, pair loop over half the pairs; same forces "
-                           "(springs, hinges, gravity, perturber) and same drift-kick-drift")
-        .value("speedup", speedup)
-        .value("build_ms", build_ms)
-        .end_object();
-    fmt::print("{}", json.str());
+    const Json json = {
+        {"workflow", config.workflow.name},
+        {"particles", body.body.particle_count()},
+        {"springs", body.body.spring_count()},
+        {"hinges", body.body.hinge_count()},
+        {"threads", threads},
+        {"steps", steps},
+        {"repeats", repeats},
+        {"ms_per_step", ms_per_step},
+        {"kernels_ms", {{"springs", springs_ms}, {"hinges", hinges_ms}, {"gravity", gravity_ms}}},
+        {"textbook_ms_per_step", textbook_ms},
+        {"textbook", "one thread, array of particle structs, pair loop over half the pairs; same forces "
+                     "(springs, hinges, gravity, perturber) and same drift-kick-drift"},
+        {"speedup", speedup},
+        {"build_ms", build_ms}};
+    fmt::print("{}", json_text(json));
   } else {
     fmt::print("workflow: {}\n", config.workflow.name);
     fmt::print("particles: {}\nsprings: {}\nhinges: {}\nthreads: {}\n", body.body.particle_count(),

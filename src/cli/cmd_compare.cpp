@@ -11,23 +11,20 @@
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_comparison.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "io/state_hash.hpp"
 
 namespace tidalcrust {
 namespace {
 
-void write_side(JsonWriter& json, const char* key, const std::string& file, const Checkpoint& c,
-                const FractureSummary& f) {
-  json.begin_object(key)
-      .value("file", file)
-      .value("stage", c.stage.name())
-      .value("encounter", c.stage.as<EncounterRecord>().encounter.name)
-      .value("time", c.state.time)
-      .value("step", c.state.step)
-      .value("state_hash", state_hash(c.state));
-  add_failure_summary(json, f);
-  json.end_object();
+Json side_json(const std::string& file, const Checkpoint& c, const FractureSummary& f) {
+  return {{"file", file},
+          {"stage", c.stage.name()},
+          {"encounter", c.stage.as<EncounterRecord>().encounter.name},
+          {"time", c.state.time},
+          {"step", c.state.step},
+          {"state_hash", state_hash(c.state)},
+          {"failures", failure_summary_json(f)}};
 }
 
 std::string number(double v, const char* format = "{:.4g}") {
@@ -63,18 +60,15 @@ int command_compare(int argc, char** argv) {
   const FractureComparison r = compare_fractures(a.body, a.state, b.state);
 
   if (parsed.count("json")) {
-    JsonWriter json;
-    json.begin_object();
-    write_side(json, "a", files[0], a, r.a);
-    write_side(json, "b", files[1], b, r.b);
-    json.value("same_body", true)
-        .value("identical_state", state_hash(a.state) == state_hash(b.state))
-        .value("common_failed", r.common_failed)
-        .value("either_failed", r.either_failed)
-        .value("jaccard", r.jaccard)
-        .value("ks_distance_angle_from_subsatellite", r.ks_distance)
-        .end_object();
-    fmt::print("{}", json.str());
+    const Json json = {{"a", side_json(files[0], a, r.a)},
+                       {"b", side_json(files[1], b, r.b)},
+                       {"same_body", true},
+                       {"identical_state", state_hash(a.state) == state_hash(b.state)},
+                       {"common_failed", r.common_failed},
+                       {"either_failed", r.either_failed},
+                       {"jaccard", r.jaccard},
+                       {"ks_distance_angle_from_subsatellite", r.ks_distance}};
+    fmt::print("{}", json_text(json));
     return exit_ok;
   }
   fmt::print("{:<34} {:>16} {:>16}\n", "", "A", "B");

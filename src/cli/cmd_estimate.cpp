@@ -13,7 +13,7 @@
 #include "cli/commands.hpp"
 #include "physics/encounter_estimates.hpp"
 #include "base/errors.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "physics/physical_units.hpp"
 
 namespace tidalcrust {
@@ -56,32 +56,27 @@ BodyReport report_for(const PhysicalBody& body, const Encounter& encounter, doub
   return r;
 }
 
-void write_body_json(JsonWriter& json, const BodyReport& r) {
+Json body_json(const BodyReport& r) {
   const auto& e = r.estimates;
-  json.value("body", r.body.name)
-      .value("mass_kg", r.body.mass_kg)
-      .value("radius_km", r.body.radius_km)
-      .value("e_g_GPa", r.scales.e_g_GPa)
-      .value("t_grav_s", r.scales.t_grav_s)
-      .value("rho_g_cm3", r.scales.density_g_cm3)
-      .value("v_c_km_s", r.scales.v_c_km_s)
-      .value("e_g_over_E", r.e_g_over_E)
-      .value("delta_v", e.delta_v)
-      .value("delta_v_km_s", e.delta_v * r.scales.v_c_km_s)
-      .value("strain", e.strain)
-      .value("t_enc_s", e.encounter_time * r.scales.t_grav_s)
-      .value("t_elas_s", e.elastic_time * r.scales.t_grav_s)
-      .value("t_enc_over_t_elas", e.time_ratio)
-      .value("strain_rate_per_s", e.strain_rate / r.scales.t_grav_s);
+  return {{"body", r.body.name},
+          {"mass_kg", r.body.mass_kg},
+          {"radius_km", r.body.radius_km},
+          {"e_g_GPa", r.scales.e_g_GPa},
+          {"t_grav_s", r.scales.t_grav_s},
+          {"rho_g_cm3", r.scales.density_g_cm3},
+          {"v_c_km_s", r.scales.v_c_km_s},
+          {"e_g_over_E", r.e_g_over_E},
+          {"delta_v", e.delta_v},
+          {"delta_v_km_s", e.delta_v * r.scales.v_c_km_s},
+          {"strain", e.strain},
+          {"t_enc_s", e.encounter_time * r.scales.t_grav_s},
+          {"t_elas_s", e.elastic_time * r.scales.t_grav_s},
+          {"t_enc_over_t_elas", e.time_ratio},
+          {"strain_rate_per_s", e.strain_rate / r.scales.t_grav_s}};
 }
 
-void write_inputs_json(JsonWriter& json, const Encounter& g, double youngs_GPa) {
-  json.begin_object("encounter")
-      .value("m2", g.perturber_mass)
-      .value("q", g.pericenter)
-      .value("vq", g.pericenter_speed)
-      .value("youngs_GPa", youngs_GPa)
-      .end_object();
+Json inputs_json(const Encounter& g, double youngs_GPa) {
+  return {{"m2", g.perturber_mass}, {"q", g.pericenter}, {"vq", g.pericenter_speed}, {"youngs_GPa", youngs_GPa}};
 }
 
 std::string inputs_line(const Encounter& g, double youngs_GPa) {
@@ -166,22 +161,14 @@ int command_estimate(int argc, char** argv) {
   const bool single = parsed.count("body") || has_mass;
 
   if (parsed.count("json")) {
-    JsonWriter json;
-    json.begin_object();
-    write_inputs_json(json, geometry, youngs_GPa);
+    Json json = {{"encounter", inputs_json(geometry, youngs_GPa)}};
     if (single) {
-      write_body_json(json, reports.front());
+      json.update(body_json(reports.front()));
     } else {
-      json.begin_array("bodies");
-      for (const auto& r : reports) {
-        json.begin_object();
-        write_body_json(json, r);
-        json.end_object();
-      }
-      json.end_array();
+      json["bodies"] = Json::array();
+      for (const auto& r : reports) json["bodies"].push_back(body_json(r));
     }
-    json.end_object();
-    fmt::print("{}", json.str());
+    fmt::print("{}", json_text(json));
   } else if (single) {
     print_body(reports.front(), geometry, youngs_GPa);
   } else {

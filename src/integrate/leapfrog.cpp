@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "base/errors.hpp"
+#include "model/center_of_mass.hpp"
 
 namespace tidalcrust {
 
@@ -68,12 +69,7 @@ void Leapfrog::advance(State& state, std::int64_t count) {
 void Leapfrog::check_positions(const double* x, const Perturber& perturber, const State& state) const {
   const Body& body = forces_.body();
   const std::size_t n = body.particle_count();
-  double mass = 0, centre[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    mass += body.mass[i];
-    for (std::size_t k = 0; k < 3; ++k) centre[k] += body.mass[i] * x[3 * i + k];
-  }
-  for (double& c : centre) c /= mass;
+  const Vec3 centre = mass_weighted_mean(body, x);
   const double limit2 = blow_up_distance * blow_up_distance;
   std::size_t far = n;
   for (std::size_t i = 0; i < n && far == n; ++i) {

@@ -2,18 +2,15 @@
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include "io/checkpoint_file.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
-#include <functional>
 #include <stdexcept>
 
 #include "build_info.hpp"
 #include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
 
@@ -442,38 +439,6 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
   return x;
 }
 
-// ---- atomic replacement ---------------------------------------------------------------------
-
-/// fsync on a file or folder so that its content (or its directory entries) reach the disk.
-void sync_path(const fs::path& p, bool directory) {
-  int fd = ::open(p.c_str(), O_RDONLY | (directory ? O_DIRECTORY : 0));
-  if (fd < 0) throw InputError(fmt::format("{}: cannot open for fsync: {}", p.string(), std::strerror(errno)));
-  int rc = ::fsync(fd);
-  int err = errno;
-  ::close(fd);
-  if (rc != 0) throw InputError(fmt::format("{}: fsync failed: {}", p.string(), std::strerror(err)));
-}
-
-/// Writes `file` through a temporary beside it and rename(2), so a reader (or a crash) only ever
-/// sees the old complete file or the new complete file. The temporary is removed on failure.
-void write_atomically(const fs::path& file, const std::function<void(const fs::path&)>& write_to) {
-  fs::path tmp = file;
-  tmp += fmt::format(".tmp-{}", ::getpid());
-  fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  try {
-    write_to(tmp);
-    sync_path(tmp, false);
-    std::error_code ec;
-    fs::rename(tmp, file, ec);
-    if (ec) throw InputError(fmt::format("{}: cannot rename {} into place: {}", file.string(), tmp.string(), ec.message()));
-    sync_path(folder, true);
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
-  }
-}
-
 fs::path sidecar_path(const fs::path& file) {
   fs::path p = file;
   return p.replace_extension(".xdmf");
@@ -617,7 +582,7 @@ void read_observables(hid_t root, Observables& o) {
 void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
   if (auto problem = consistency_problem(checkpoint); !problem.empty())
     throw std::logic_error(fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
-  write_atomically(file, [&](const fs::path& tmp) {
+  replace_file_atomically(file, [&](const fs::path& tmp) {
     try {
       write_hdf5(tmp, checkpoint);
     } catch (const h5::Error& err) {
@@ -625,13 +590,7 @@ void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
                                    file.string(), err.what(), tmp.string()));
     }
   });
-  const fs::path sidecar = sidecar_path(file);
-  write_atomically(sidecar, [&](const fs::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << xdmf_text(checkpoint, file.filename().string());
-    out.close();
-    if (!out) throw InputError(fmt::format("{}: cannot write XDMF sidecar {}", sidecar.string(), tmp.string()));
-  });
+  write_file_atomically(sidecar_path(file), xdmf_text(checkpoint, file.filename().string()));
 }
 
 Checkpoint read_checkpoint(const fs::path& file) {

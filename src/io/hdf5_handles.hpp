@@ -94,44 +94,28 @@ inline std::string object_path(hid_t loc, std::string_view name) {
 
 // ---- element types: file type (fixed little endian) and memory type -------------------------
 
+/// How values of one C++ type are stored: the HDF5 file type, the memory type, the type class
+/// and the name used in messages.
+struct TypeInfo {
+  hid_t file;
+  hid_t memory;
+  H5T_class_t type_class;
+  const char* name;
+};
 template <typename T>
-struct TypeOf;
-template <>
-struct TypeOf<double> {
-  static hid_t file() { return H5T_IEEE_F64LE; }
-  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
-  static constexpr H5T_class_t type_class = H5T_FLOAT;
-  static constexpr const char* name = "float64";
-};
-template <>
-struct TypeOf<std::int32_t> {
-  static hid_t file() { return H5T_STD_I32LE; }
-  static hid_t memory() { return H5T_NATIVE_INT32; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-  static constexpr const char* name = "int32";
-};
-template <>
-struct TypeOf<std::int64_t> {
-  static hid_t file() { return H5T_STD_I64LE; }
-  static hid_t memory() { return H5T_NATIVE_INT64; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-  static constexpr const char* name = "int64";
-};
-template <>
-struct TypeOf<std::uint8_t> {
-  static hid_t file() { return H5T_STD_U8LE; }
-  static hid_t memory() { return H5T_NATIVE_UINT8; }
-  static constexpr H5T_class_t type_class = H5T_INTEGER;
-  static constexpr const char* name = "uint8";
-};
+TypeInfo type_of();
+template <> inline TypeInfo type_of<double>() { return {H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, H5T_FLOAT, "float64"}; }
+template <> inline TypeInfo type_of<std::int32_t>() { return {H5T_STD_I32LE, H5T_NATIVE_INT32, H5T_INTEGER, "int32"}; }
+template <> inline TypeInfo type_of<std::int64_t>() { return {H5T_STD_I64LE, H5T_NATIVE_INT64, H5T_INTEGER, "int64"}; }
+template <> inline TypeInfo type_of<std::uint8_t>() { return {H5T_STD_U8LE, H5T_NATIVE_UINT8, H5T_INTEGER, "uint8"}; }
 
 /// Checks that a stored type has the class, size and signedness of T (no silent conversion).
 template <typename T>
 void check_type(hid_t type, const std::string& what) {
-  bool ok = H5Tget_class(type) == TypeOf<T>::type_class && H5Tget_size(type) == sizeof(T);
-  if (ok && TypeOf<T>::type_class == H5T_INTEGER)
+  bool ok = H5Tget_class(type) == type_of<T>().type_class && H5Tget_size(type) == sizeof(T);
+  if (ok && type_of<T>().type_class == H5T_INTEGER)
     ok = (H5Tget_sign(type) == H5T_SGN_2) == std::is_signed_v<T>;
-  if (!ok) throw Error(what + ": stored type is not " + TypeOf<T>::name);
+  if (!ok) throw Error(what + ": stored type is not " + type_of<T>().name);
 }
 
 // ---- files and groups ---------------------------------------------------------------------
@@ -209,11 +193,11 @@ void write_dataset(hid_t loc, std::string_view name, const T* data, const std::v
                         "cannot create dataspace for " + what));
   PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
   std::string n(name);
-  Dataset set(check(H5Dcreate2(loc, n.c_str(), TypeOf<T>::file(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+  Dataset set(check(H5Dcreate2(loc, n.c_str(), type_of<T>().file, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
                     "cannot create dataset " + what));
   hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (count > 0)
-    check(H5Dwrite(set.get(), TypeOf<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + what);
+    check(H5Dwrite(set.get(), type_of<T>().memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + what);
 }
 
 template <typename T>
@@ -251,7 +235,7 @@ Array<T> read_dataset(hid_t loc, std::string_view name) {
   if (count < 0) throw Error("cannot read the shape of " + what);
   out.values.resize(static_cast<std::size_t>(count));
   if (count > 0)
-    check(H5Dread(set.get(), TypeOf<T>::memory(), H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()),
+    check(H5Dread(set.get(), type_of<T>().memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.values.data()),
           "cannot read " + what + " (corrupt data)");
   return out;
 }
@@ -337,11 +321,6 @@ inline std::string read_string_dataset(hid_t loc, std::string_view name) {
 
 // ---- attributes -----------------------------------------------------------------------------
 
-inline bool has_attribute(hid_t loc, std::string_view name) {
-  std::string n(name);
-  return H5Aexists(loc, n.c_str()) > 0;
-}
-
 /// Writes an attribute of shape `dims` (empty: scalar) from raw memory of type `memory`.
 inline void write_attribute_raw(hid_t loc, std::string_view name, hid_t file_type, hid_t memory_type,
                                 const void* data, const std::vector<hsize_t>& dims) {
@@ -357,12 +336,12 @@ inline void write_attribute_raw(hid_t loc, std::string_view name, hid_t file_typ
 
 template <typename T>
 void write_attribute(hid_t loc, std::string_view name, T value) {
-  write_attribute_raw(loc, name, TypeOf<T>::file(), TypeOf<T>::memory(), &value, {});
+  write_attribute_raw(loc, name, type_of<T>().file, type_of<T>().memory, &value, {});
 }
 
 template <typename T>
 void write_attribute_array(hid_t loc, std::string_view name, const std::vector<T>& values) {
-  write_attribute_raw(loc, name, TypeOf<T>::file(), TypeOf<T>::memory(), values.data(), {values.size()});
+  write_attribute_raw(loc, name, type_of<T>().file, type_of<T>().memory, values.data(), {values.size()});
 }
 
 inline void write_string_attribute(hid_t loc, std::string_view name, const std::string& text) {
@@ -381,8 +360,8 @@ inline void write_string_array_attribute(hid_t loc, std::string_view name, const
 
 /// Opens attribute `name` of `loc`; Error naming it if missing.
 inline Attribute open_attribute(hid_t loc, std::string_view name, const std::string& what) {
-  if (!has_attribute(loc, name)) throw Error(what + " is missing");
   std::string n(name);
+  if (H5Aexists(loc, n.c_str()) <= 0) throw Error(what + " is missing");
   return Attribute(check(H5Aopen(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
 }
 
@@ -397,7 +376,7 @@ std::vector<T> read_attribute_array(hid_t loc, std::string_view name) {
   hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (count < 0) throw Error("cannot read the shape of " + what);
   std::vector<T> values(static_cast<std::size_t>(count));
-  if (count > 0) check(H5Aread(attr.get(), TypeOf<T>::memory(), values.data()), "cannot read " + what);
+  if (count > 0) check(H5Aread(attr.get(), type_of<T>().memory, values.data()), "cannot read " + what);
   return values;
 }
 

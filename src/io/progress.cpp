@@ -4,9 +4,9 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <fstream>
 
-#include "io/json_writer.hpp"
+#include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace tidalcrust {
 
@@ -47,31 +47,23 @@ void ProgressReporter::finish(std::int64_t step, const std::string& state) {
 
 void ProgressReporter::write_status(std::int64_t step, double rate, double eta, const std::string& state) const {
   if (!status_file_) return;
-  JsonWriter json;
-  json.begin_object()
-      .value("stage", label_)
-      .value("state", state)
-      .value("step", step)
-      .value("first_step", first_step_)
-      .value("last_step", last_step_)
-      .value("steps_per_second", rate)
-      .value("eta_seconds", eta)
-      .value("pid", static_cast<std::int64_t>(getpid()))
-      .end_object();
-  write_status_file(*status_file_, json.str());
+  const Json status = {{"stage", label_},
+                       {"state", state},
+                       {"step", step},
+                       {"first_step", first_step_},
+                       {"last_step", last_step_},
+                       {"steps_per_second", rate},
+                       {"eta_seconds", eta},
+                       {"pid", static_cast<std::int64_t>(getpid())}};
+  write_status_file(*status_file_, status);
 }
 
-void write_status_file(const std::filesystem::path& file, const std::string& json_text) {
-  // Write beside and rename, so a reader never sees half a file.
-  auto tmp = file;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << json_text;
-    if (!out) return;  // a status file is a courtesy; never fail the run for it
+void write_status_file(const std::filesystem::path& file, const Json& status) {
+  try {
+    write_file_atomically(file, json_text(status));
+  } catch (const InputError&) {
+    // a status file is a courtesy; never fail the run for it
   }
-  std::error_code ignored;
-  std::filesystem::rename(tmp, file, ignored);
 }
 
 }  // namespace tidalcrust

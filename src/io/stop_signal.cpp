@@ -15,6 +15,4 @@ void install_stop_handlers() {
 
 bool stop_requested() { return stop_flag != 0; }
 
-void set_stop_requested(bool value) { stop_flag = value ? 1 : 0; }
-
 }  // namespace tidalcrust

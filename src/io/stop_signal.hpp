@@ -8,7 +8,5 @@ namespace tidalcrust {
 void install_stop_handlers();
 /// True once SIGINT or SIGTERM arrived.
 bool stop_requested();
-/// For tests: raise or clear the flag without a signal.
-void set_stop_requested(bool value);
 
 }  // namespace tidalcrust

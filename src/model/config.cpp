@@ -1,248 +1,302 @@
 #include "model/config.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <concepts>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
+#include <type_traits>
 
 #include "base/errors.hpp"
 
 namespace tidalcrust {
 namespace {
 
-enum class ParamType { real, integer, boolean, text };
+constexpr double inf = std::numeric_limits<double>::infinity();
+/// TOML integers are signed 64-bit: a larger seed could not be written back.
+constexpr std::uint64_t max_toml_integer = std::numeric_limits<std::int64_t>::max();
 
-/// One configuration key: where it lives, its type, its range, its unit and what it means.
-struct Param {
-  const char* section;
-  const char* key;
-  ParamType type;
-  std::function<void*(Config&)> field;
-  double min;
-  double max;
-  const char* unit;
-  const char* doc;
+/// The description of one configuration key whose value has type T (double, std::int64_t,
+/// std::uint64_t, bool or std::string): where it lives in the TOML, its unit and meaning (the
+/// comment to_toml writes; none when `unit` is empty), and for numbers the accepted range
+/// [min, max], or (min, max] when `open_min`.
+template <class T>
+struct Key {
+  using type = T;
+  std::string_view section;
+  std::string_view name;
+  std::string_view unit;
+  std::string_view doc;
+  T min{};
+  T max{};
+  bool open_min = false;
 };
 
-constexpr double inf = std::numeric_limits<double>::infinity();
+template <class F> struct ValueOf { using type = F; };
+template <class T> struct ValueOf<std::optional<T>> { using type = T; };
+/// The value type of a field: T for T and for std::optional<T> (an optional key).
+template <class F> using value_of = typename ValueOf<std::remove_const_t<F>>::type;
 
-#define TC_FIELD(expr) [](Config& c) -> void* { return &c.expr; }
+template <class F> constexpr bool is_optional = !std::is_same_v<value_of<F>, std::remove_const_t<F>>;
 
-const std::vector<Param>& params() {
-  static const std::vector<Param> table = {
-      {"workflow", "name", ParamType::text, TC_FIELD(workflow.name), 0, 0, "-",
-       "workflow name; default output folder checkpoints/<name>/"},
-      {"workflow", "seed", ParamType::integer, TC_FIELD(workflow.seed), 0, 9.0e18, "-",
-       "seed of the random interior (std::mt19937_64)"},
+// The one description of the configuration: visit_keys calls visit(field, key) for every key, in
+// to_toml order, with the field of `c` (const for a const Config) and its Key. parse_config,
+// apply_override, validate, to_toml, scale_time_step and the fingerprints (section_values) all
+// go through it; the field's type is the key's type.
 
-      {"interior", "count", ParamType::integer, TC_FIELD(interior.count), 1, 1e6, "-",
-       "N_I, target number of interior nodes"},
-      {"interior", "radius", ParamType::real, TC_FIELD(interior.radius), 0.05, 1.0, "R",
-       "r_I, radius of the sphere the interior nodes fill"},
-      {"interior", "min_separation", ParamType::real, TC_FIELD(interior.min_separation), 1e-3, 1.0, "R",
-       "d_IS, minimum distance between interior nodes"},
-      {"interior", "spring_distance", ParamType::real, TC_FIELD(interior.spring_distance), 1e-3, 2.0, "R",
-       "d_I, interior nodes closer than this are joined by a spring"},
-      {"interior", "spring_constant", ParamType::real, TC_FIELD(interior.spring_constant), 0, inf, "G M^2/R^3",
-       "k_I, interior spring constant"},
-      {"interior", "max_trials", ParamType::integer, TC_FIELD(interior.max_trials), 1, 1e12, "-",
-       "random sequential addition stops after this many trial points"},
+template <class C, class V>
+  requires std::same_as<std::remove_const_t<C>, Config>
+void visit_keys(C& c, V&& visit) {
+  auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
+  key(c.workflow.name, {"workflow", "name", "-", "workflow name; default output folder checkpoints/<name>/"});
+  key(c.workflow.seed,
+      {"workflow", "seed", "-", "seed of the random interior (std::mt19937_64)", 0, max_toml_integer});
 
-      {"shell", "enabled", ParamType::boolean, TC_FIELD(shell.enabled), 0, 0, "-",
-       "false for an interior-only body (paper run N)"},
-      {"shell", "level", ParamType::integer, TC_FIELD(shell.level), 0, 7, "-",
-       "L, icosahedron subdivision level: 10*4^L+2 nodes"},
-      {"shell", "mass", ParamType::real, TC_FIELD(shell.mass), 0, 0.99, "M", "M_S, total shell mass"},
-      {"shell", "spring_constant", ParamType::real, TC_FIELD(shell.spring_constant), 0, inf, "G M^2/R^3",
-       "k_S, shell spring constant"},
-      {"shell", "bending_constant", ParamType::real, TC_FIELD(shell.bending_constant), 0, inf, "G M^2/R^2",
-       "k_e, hinge (bending) force constant"},
-      {"shell", "failure_strain", ParamType::real, TC_FIELD(shell.failure_strain), 1e-9, 10, "-",
-       "eps_S, tensile strain at which a shell spring fails"},
-      {"shell", "failed_stiffness_factor", ParamType::real, TC_FIELD(shell.failed_stiffness_factor), 1e-9, 1,
-       "-", "F_Sk, a failed spring keeps this fraction of its stiffness (never 0)"},
+  key(c.interior.count, {"interior", "count", "-", "N_I, target number of interior nodes", 1, 1'000'000});
+  key(c.interior.radius, {"interior", "radius", "R", "r_I, radius of the sphere the interior nodes fill", 0.05, 1.0});
+  key(c.interior.min_separation,
+      {"interior", "min_separation", "R", "d_IS, minimum distance between interior nodes", 1e-3, 1.0});
+  key(c.interior.spring_distance,
+      {"interior", "spring_distance", "R", "d_I, interior nodes closer than this are joined by a spring", 1e-3, 2.0});
+  key(c.interior.spring_constant,
+      {"interior", "spring_constant", "G M^2/R^3", "k_I, interior spring constant", 0, inf});
+  key(c.interior.max_trials,
+      {"interior", "max_trials", "-",
+       "random sequential addition stops after this many trial points", 1, 1'000'000'000'000});
 
-      {"cross", "distance", ParamType::real, TC_FIELD(cross.distance), 0, 2.0, "R",
-       "d_C, shell-interior pairs closer than this are joined by a cross spring"},
-      {"cross", "spring_constant", ParamType::real, TC_FIELD(cross.spring_constant), 0, inf, "G M^2/R^3",
-       "k_C, cross spring constant"},
-      {"cross", "nonlinear", ParamType::boolean, TC_FIELD(cross.nonlinear), 0, 0, "-",
-       "apply the softening law f(eps) of eq. 26 to cross springs"},
-      {"cross", "strain_scale", ParamType::real, TC_FIELD(cross.strain_scale), 1e-9, 10, "-",
-       "eps_C of eq. 26"},
-      {"cross", "min_force_factor", ParamType::real, TC_FIELD(cross.min_force_factor), 1e-9, 1, "-",
-       "F_Ck of eq. 26"},
+  key(c.shell.enabled, {"shell", "enabled", "-", "false for an interior-only body (paper run N)"});
+  key(c.shell.level, {"shell", "level", "-", "L, icosahedron subdivision level: 10*4^L+2 nodes", 0, 7});
+  key(c.shell.mass, {"shell", "mass", "M", "M_S, total shell mass", 0, 0.99});
+  key(c.shell.spring_constant, {"shell", "spring_constant", "G M^2/R^3", "k_S, shell spring constant", 0, inf});
+  key(c.shell.bending_constant,
+      {"shell", "bending_constant", "G M^2/R^2", "k_e, hinge (bending) force constant", 0, inf});
+  key(c.shell.failure_strain,
+      {"shell", "failure_strain", "-", "eps_S, tensile strain at which a shell spring fails", 1e-9, 10});
+  key(c.shell.failed_stiffness_factor,
+      {"shell", "failed_stiffness_factor", "-",
+       "F_Sk, a failed spring keeps this fraction of its stiffness (never 0)", 1e-9, 1});
 
-      {"integrator", "dt", ParamType::real, TC_FIELD(integrator.dt), 1e-7, 1.0, "t_grav",
-       "leapfrog time step"},
-      {"integrator", "softening_fraction", ParamType::real, TC_FIELD(integrator.softening_fraction), 0, 1, "-",
-       "Plummer softening as a fraction of the minimum initial spacing"},
+  key(c.cross.distance,
+      {"cross", "distance", "R", "d_C, shell-interior pairs closer than this are joined by a cross spring", 0, 2.0});
+  key(c.cross.spring_constant, {"cross", "spring_constant", "G M^2/R^3", "k_C, cross spring constant", 0, inf});
+  key(c.cross.nonlinear, {"cross", "nonlinear", "-", "apply the softening law f(eps) of eq. 26 to cross springs"});
+  key(c.cross.strain_scale, {"cross", "strain_scale", "-", "eps_C of eq. 26", 1e-9, 10});
+  key(c.cross.min_force_factor, {"cross", "min_force_factor", "-", "F_Ck of eq. 26", 1e-9, 1});
 
-      {"stretch", "enabled", ParamType::boolean, TC_FIELD(stretch.enabled), 0, 0, "-",
-       "false skips stretching and strengthening (for comparisons)"},
-      {"stretch", "max_iterations", ParamType::integer, TC_FIELD(stretch.max_iterations), 1, 10000, "-",
-       "iterations allowed to find the common stretch factor"},
-      {"stretch", "tolerance", ParamType::real, TC_FIELD(stretch.tolerance), 0, 1, "G M/R^2",
-       "target |mean radial acceleration| of the surface"},
-      {"stretch", "cross_compression", ParamType::real, TC_FIELD(stretch.cross_compression), 0, 0.5, "-",
-       "extra compressive strain given to cross springs"},
+  key(c.integrator.dt, {"integrator", "dt", "t_grav", "leapfrog time step", 1e-7, 1.0});
+  key(c.integrator.softening_fraction,
+      {"integrator", "softening_fraction", "-",
+       "Plummer softening as a fraction of the minimum initial spacing", 0, 1});
 
-      {"relax", "damping", ParamType::real, TC_FIELD(relax.damping), 0, 1e4, "1/t_grav",
-       "gamma during relaxation"},
-      {"relax", "duration", ParamType::real, TC_FIELD(relax.duration), 0, 1e4, "t_grav",
-       "T, length of the relaxation run"},
-      {"relax", "rest_length_interval", ParamType::integer, TC_FIELD(relax.rest_length_interval), 1, 1e9,
-       "steps", "steps between moves of shell rest lengths toward current lengths"},
-      {"relax", "rest_length_rate", ParamType::real, TC_FIELD(relax.rest_length_rate), 0, 1, "-",
-       "fraction of (L - L0) a shell rest length moves per update"},
-      {"relax", "hinge_reset_interval", ParamType::integer, TC_FIELD(relax.hinge_reset_interval), 1, 1e9,
-       "steps", "steps between resets of hinge rest angles to current angles"},
-      {"relax", "settle_duration", ParamType::real, TC_FIELD(relax.settle_duration), 0, 1e4, "t_grav",
-       "last part of T: the crust is reset to zero stress, then the body settles without creep or resets"},
-      {"relax", "checkpoint_interval", ParamType::integer, TC_FIELD(relax.checkpoint_interval), 0, 1e12,
-       "steps", "steps between mid-stage checkpoints (0: none)"},
-      {"relax", "stability_probe", ParamType::boolean, TC_FIELD(relax.stability_probe), 0, 0, "-",
-       "run the stability probe (encounter damping, failures on, no perturber) after relaxing"},
-      {"relax", "probe_damping", ParamType::real, TC_FIELD(relax.probe_damping), 0, 1e4, "1/t_grav",
-       "gamma of the stability probe"},
-      {"relax", "probe_duration", ParamType::real, TC_FIELD(relax.probe_duration), 0, 1e4, "t_grav",
-       "length of the stability probe"},
+  key(c.stretch.enabled, {"stretch", "enabled", "-", "false skips stretching and strengthening (for comparisons)"});
+  key(c.stretch.max_iterations,
+      {"stretch", "max_iterations", "-", "iterations allowed to find the common stretch factor", 1, 10'000});
+  key(c.stretch.tolerance,
+      {"stretch", "tolerance", "G M/R^2", "target |mean radial acceleration| of the surface", 0, 1});
+  key(c.stretch.cross_compression,
+      {"stretch", "cross_compression", "-", "extra compressive strain given to cross springs", 0, 0.5});
 
-      {"encounter", "damping", ParamType::real, TC_FIELD(encounter.damping), 0, 1e4, "1/t_grav",
-       "gamma during encounters"},
-      {"encounter", "fail_interval", ParamType::integer, TC_FIELD(encounter.fail_interval), 1, 1e9, "steps",
-       "t_fail: at most one shell spring fails per this many steps"},
-      {"encounter", "start_distance", ParamType::real, TC_FIELD(encounter.start_distance), 1e-3, 1e6, "R",
-       "perturber distance when the encounter starts (before pericenter)"},
-      {"encounter", "end_distance", ParamType::real, TC_FIELD(encounter.end_distance), 1e-3, 1e6, "R",
-       "perturber distance when the encounter ends (after pericenter)"},
-      {"encounter", "checkpoint_interval", ParamType::integer, TC_FIELD(encounter.checkpoint_interval), 0,
-       1e12, "steps", "steps between mid-stage checkpoints (0: none)"},
-      {"encounter", "sample_interval", ParamType::integer, TC_FIELD(encounter.sample_interval), 1, 1e9,
-       "steps", "steps between timeseries samples"},
-  };
-  return table;
-}
-#undef TC_FIELD
+  key(c.relax.damping, {"relax", "damping", "1/t_grav", "gamma during relaxation", 0, 1e4});
+  key(c.relax.duration, {"relax", "duration", "t_grav", "T, length of the relaxation run", 0, 1e4});
+  key(c.relax.rest_length_interval,
+      {"relax", "rest_length_interval", "steps",
+       "steps between moves of shell rest lengths toward current lengths", 1, 1'000'000'000});
+  key(c.relax.rest_length_rate,
+      {"relax", "rest_length_rate", "-", "fraction of (L - L0) a shell rest length moves per update", 0, 1});
+  key(c.relax.hinge_reset_interval,
+      {"relax", "hinge_reset_interval", "steps",
+       "steps between resets of hinge rest angles to current angles", 1, 1'000'000'000});
+  key(c.relax.settle_duration,
+      {"relax", "settle_duration", "t_grav",
+       "last part of T: the crust is reset to zero stress, then the body settles without creep or resets", 0, 1e4});
+  key(c.relax.checkpoint_interval,
+      {"relax", "checkpoint_interval", "steps",
+       "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
+  key(c.relax.stability_probe,
+      {"relax", "stability_probe", "-",
+       "run the stability probe (encounter damping, failures on, no perturber) after relaxing"});
+  key(c.relax.probe_damping, {"relax", "probe_damping", "1/t_grav", "gamma of the stability probe", 0, 1e4});
+  key(c.relax.probe_duration, {"relax", "probe_duration", "t_grav", "length of the stability probe", 0, 1e4});
 
-const std::vector<const char*>& section_order() {
-  static const std::vector<const char*> order = {"workflow", "interior", "shell",   "cross",
-                                                 "integrator", "stretch", "relax", "encounter"};
-  return order;
+  key(c.encounter.damping, {"encounter", "damping", "1/t_grav", "gamma during encounters", 0, 1e4});
+  key(c.encounter.fail_interval,
+      {"encounter", "fail_interval", "steps",
+       "t_fail: at most one shell spring fails per this many steps", 1, 1'000'000'000});
+  key(c.encounter.start_distance,
+      {"encounter", "start_distance", "R",
+       "perturber distance when the encounter starts (before pericenter)", 1e-3, 1e6});
+  key(c.encounter.end_distance,
+      {"encounter", "end_distance", "R", "perturber distance when the encounter ends (after pericenter)", 1e-3, 1e6});
+  key(c.encounter.checkpoint_interval,
+      {"encounter", "checkpoint_interval", "steps",
+       "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
+  key(c.encounter.sample_interval,
+      {"encounter", "sample_interval", "steps", "steps between timeseries samples", 1, 1'000'000'000});
 }
 
-const Param* find_param(std::string_view section, std::string_view key) {
-  for (const auto& p : params())
-    if (section == p.section && key == p.key) return &p;
-  return nullptr;
+/// The keys of one [[encounters]] table (paper Table 4).
+template <class E, class V>
+  requires std::same_as<std::remove_const_t<E>, Encounter>
+void visit_keys(E& e, V&& visit) {
+  auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
+  key(e.name, {"encounters", "name", "", ""});
+  key(e.perturber_mass, {"encounters", "perturber_mass", "M", "M2", 0, inf, true});
+  key(e.pericenter, {"encounters", "pericenter", "R", "q", 1, inf, true});  // outside the body
+  key(e.pericenter_speed, {"encounters", "pericenter_speed", "sqrt(GM/R)", "V_q", 0, inf, true});
+  key(e.failure_strain, {"encounters", "failure_strain", "-", "eps_S override", 0, inf, true});
 }
 
-std::string format_real(double v) {
+/// The sections of Config in to_toml order (without "encounters").
+const std::vector<std::string_view>& section_names() {
+  static const std::vector<std::string_view> names = [] {
+    std::vector<std::string_view> out;
+    const Config defaults;
+    visit_keys(defaults, [&](const auto&, const auto& key) {
+      if (out.empty() || out.back() != key.section) out.push_back(key.section);
+    });
+    return out;
+  }();
+  return names;
+}
+
+/// "a, b, c": the keys of `section` in a `Target` (Config or Encounter), for error messages.
+template <class Target>
+std::string known_keys(std::string_view section) {
+  std::string out;
+  const Target defaults{};
+  visit_keys(defaults, [&](const auto&, const auto& key) {
+    if (key.section == section) out += fmt::format("{}{}", out.empty() ? "" : ", ", key.name);
+  });
+  return out;
+}
+
+// ---- values as TOML text ----------------------------------------------------------------------
+
+std::string toml_text(double v) {
   std::string s = fmt::format("{}", v);
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // keep it a TOML float
   return s;
 }
-
-std::string quote(const std::string& s) {
+std::string toml_text(std::int64_t v) { return fmt::format("{}", v); }
+std::string toml_text(std::uint64_t v) { return fmt::format("{}", v); }
+std::string toml_text(bool v) { return v ? "true" : "false"; }
+std::string toml_text(const std::string& s) {
   std::ostringstream out;
   out << toml::value<std::string>(s);
   return out.str();
 }
 
-/// Stores a TOML node into a parameter; `where` names the key for messages.
-void assign(Config& config, const Param& p, const toml::node& node, const std::string& where) {
-  void* field = p.field(config);
-  switch (p.type) {
-    case ParamType::real:
-      if (auto v = node.value_exact<double>()) {
-        *static_cast<double*>(field) = *v;
-      } else if (auto i = node.value_exact<std::int64_t>()) {
-        *static_cast<double*>(field) = static_cast<double>(*i);
-      } else {
-        throw InputError(fmt::format("{}: '{}' must be a number", where, p.key));
-      }
-      break;
-    case ParamType::integer: {
-      auto i = node.value_exact<std::int64_t>();
-      if (!i) throw InputError(fmt::format("{}: '{}' must be an integer", where, p.key));
-      if (std::string_view(p.key) == "seed") {
-        if (*i < 0) throw InputError(fmt::format("{}: 'seed' must be >= 0", where));
-        *static_cast<std::uint64_t*>(field) = static_cast<std::uint64_t>(*i);
-      } else {
-        *static_cast<std::int64_t*>(field) = *i;
-      }
-      break;
-    }
-    case ParamType::boolean: {
-      auto b = node.value_exact<bool>();
-      if (!b) throw InputError(fmt::format("{}: '{}' must be true or false", where, p.key));
-      *static_cast<bool*>(field) = *b;
-      break;
-    }
-    case ParamType::text: {
-      auto s = node.value_exact<std::string>();
-      if (!s) throw InputError(fmt::format("{}: '{}' must be a string", where, p.key));
-      *static_cast<std::string*>(field) = *s;
-      break;
-    }
+/// "name = value  # [unit] doc\n" ("name = value\n" without a unit); nothing for an unset
+/// optional key.
+template <class F, class T>
+std::string toml_line(const F& field, const Key<T>& key) {
+  if constexpr (is_optional<F>) {
+    return field ? toml_line(*field, key) : std::string();
+  } else {
+    std::string line = fmt::format("{} = {}", key.name, toml_text(field));
+    if (!key.unit.empty()) line += fmt::format("  # [{}] {}", key.unit, key.doc);
+    return line + "\n";
   }
 }
 
-Encounter parse_encounter(const toml::table& t, const std::string& where) {
-  Encounter e;
-  for (auto&& [k, node] : t) {
-    std::string key(k.str());
-    auto number = [&](const char* name) {
-      if (auto v = node.value<double>()) {
-        if (node.is_number()) return *v;
-      }
-      throw InputError(fmt::format("{}: '{}' must be a number", where, name));
-    };
-    if (key == "name") {
-      auto s = node.value_exact<std::string>();
-      if (!s) throw InputError(fmt::format("{}: 'name' must be a string", where));
-      e.name = *s;
-    } else if (key == "perturber_mass") {
-      e.perturber_mass = number("perturber_mass");
-    } else if (key == "pericenter") {
-      e.pericenter = number("pericenter");
-    } else if (key == "pericenter_speed") {
-      e.pericenter_speed = number("pericenter_speed");
-    } else if (key == "failure_strain") {
-      e.failure_strain = number("failure_strain");
-    } else {
-      throw InputError(fmt::format(
-          "{}: unknown key '{}' (known: name, perturber_mass, pericenter, pericenter_speed, failure_strain)",
-          where, key));
-    }
+// ---- reading and checking values --------------------------------------------------------------
+
+/// The value of a TOML node for `key`; `where` prefixes the message of a wrong type.
+template <class T>
+T read_value(const toml::node& node, const Key<T>& key, const std::string& where) {
+  auto wrong = [&](const char* expected) {
+    return InputError(fmt::format("{}: '{}' must be {}", where, key.name, expected));
+  };
+  if constexpr (std::is_same_v<T, double>) {
+    if (auto v = node.value_exact<double>()) return *v;
+    if (auto i = node.value_exact<std::int64_t>()) return static_cast<double>(*i);
+    throw wrong("a number");
+  } else if constexpr (std::is_same_v<T, std::int64_t>) {
+    if (auto i = node.value_exact<std::int64_t>()) return *i;
+    throw wrong("an integer");
+  } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+    auto i = node.value_exact<std::int64_t>();
+    if (!i) throw wrong("an integer");
+    if (*i < 0) throw wrong(">= 0");
+    return static_cast<std::uint64_t>(*i);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (auto b = node.value_exact<bool>()) return *b;
+    throw wrong("true or false");
+  } else {
+    static_assert(std::is_same_v<T, std::string>);
+    if (auto s = node.value_exact<std::string>()) return *s;
+    throw wrong("a string");
   }
-  return e;
 }
 
-void check_encounter(const Encounter& e, const std::string& where) {
-  if (e.name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", where));
-  for (char ch : e.name)
+/// Sets the key `name` of `section` in `target` (a Config or an Encounter) from a TOML node;
+/// false when there is no such key.
+template <class Target>
+bool set_key(Target& target, std::string_view section, std::string_view name, const toml::node& node,
+             const std::string& where) {
+  bool found = false;
+  visit_keys(target, [&](auto& field, const auto& key) {
+    if (key.section != section || key.name != name) return;
+    field = read_value(node, key, where);
+    found = true;
+  });
+  return found;
+}
+
+/// InputError "<what> = <value> is out of range [min, max] (unit)" for a number outside its
+/// key's range (NaN and infinities included); bool, text and unset optional keys have no range.
+template <class F, class T>
+void check_range(const F& field, const Key<T>& key, const std::string& what) {
+  if constexpr (is_optional<F>) {
+    if (field) check_range(*field, key, what);
+  } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    bool inside = field >= key.min && field <= key.max && !(key.open_min && field == key.min);
+    if constexpr (std::is_floating_point_v<T>) inside = inside && std::isfinite(field);
+    if (!inside)
+      throw InputError(fmt::format("{} = {} is out of range {}{}, {}] ({})", what, field, key.open_min ? '(' : '[',
+                                   key.min, key.max, key.unit));
+  }
+}
+
+void check_encounter_name(const std::string& name, const std::string& origin) {
+  if (name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", origin));
+  for (char ch : name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
       throw InputError(fmt::format("{}: encounter name '{}' may only use letters, digits, '-', '_', '.'",
-                                   where, e.name));
-  if (!std::isfinite(e.perturber_mass) || e.perturber_mass <= 0)
-    throw InputError(fmt::format("{}: encounter '{}': perturber_mass must be a finite number > 0, got {}",
-                                 where, e.name, e.perturber_mass));
-  if (!std::isfinite(e.pericenter) || e.pericenter <= 1.0)
-    throw InputError(fmt::format(
-        "{}: encounter '{}': pericenter must be > 1 (outside the body, in R), got {}", where, e.name,
-        e.pericenter));
-  if (!std::isfinite(e.pericenter_speed) || e.pericenter_speed <= 0)
-    throw InputError(fmt::format("{}: encounter '{}': pericenter_speed must be a finite number > 0, got {}",
-                                 where, e.name, e.pericenter_speed));
-  if (e.failure_strain && (!std::isfinite(*e.failure_strain) || *e.failure_strain <= 0))
-    throw InputError(fmt::format("{}: encounter '{}': failure_strain must be > 0", where, e.name));
+                                   origin, name));
+}
+
+std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
+  auto* array = node.as_array();
+  if (!array) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
+  std::vector<Encounter> encounters;
+  for (auto&& element : *array) {
+    const std::string where = fmt::format("{}: encounters[{}]", origin, encounters.size());
+    auto* table = element.as_table();
+    if (!table) throw InputError(where + ": must be a table");
+    Encounter& e = encounters.emplace_back();
+    for (auto&& [k, value] : *table)
+      if (!set_key(e, "encounters", k.str(), value, where))
+        throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
+                                     known_keys<Encounter>("encounters")));
+  }
+  return encounters;
+}
+
+/// One [section] of to_toml.
+std::string section_toml(const Config& config, std::string_view section) {
+  std::string out = fmt::format("[{}]\n", section);
+  visit_keys(config, [&](const auto& field, const auto& key) {
+    if (key.section == section) out += toml_line(field, key);
+  });
+  return out;
 }
 
 }  // namespace
@@ -259,29 +313,17 @@ const Encounter& Config::find_encounter(const std::string& name) const {
 
 void scale_time_step(Config& config, double factor) {
   config.integrator.dt *= factor;
-  auto rescale = [factor](std::int64_t& steps) {
-    if (steps > 0) steps = std::max<std::int64_t>(1, std::llround(static_cast<double>(steps) / factor));
-  };
-  rescale(config.relax.rest_length_interval);
-  rescale(config.relax.hinge_reset_interval);
-  rescale(config.relax.checkpoint_interval);
-  rescale(config.encounter.fail_interval);
-  rescale(config.encounter.checkpoint_interval);
-  rescale(config.encounter.sample_interval);
+  visit_keys(config, [factor](auto& steps, const auto& key) {
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(steps)>, std::int64_t>)
+      if (key.unit == "steps" && steps > 0)
+        steps = std::max<std::int64_t>(1, std::llround(static_cast<double>(steps) / factor));
+  });
 }
 
 void validate(const Config& config, const std::string& origin) {
-  Config& c = const_cast<Config&>(config);  // only read through the field accessors
-  for (const auto& p : params()) {
-    double v = 0;
-    if (p.type == ParamType::real) v = *static_cast<double*>(p.field(c));
-    else if (p.type == ParamType::integer && std::string_view(p.key) != "seed")
-      v = static_cast<double>(*static_cast<std::int64_t*>(p.field(c)));
-    else continue;
-    if (!std::isfinite(v) || v < p.min || v > p.max)
-      throw InputError(fmt::format("{}: {}.{} = {} is out of range [{}, {}] ({})", origin, p.section, p.key,
-                                   v, p.min, p.max, p.unit));
-  }
+  visit_keys(config, [&](const auto& field, const auto& key) {
+    check_range(field, key, fmt::format("{}: {}.{}", origin, key.section, key.name));
+  });
   if (config.workflow.name.empty())
     throw InputError(fmt::format("{}: workflow.name must not be empty", origin));
   if (config.interior.min_separation >= config.interior.spring_distance)
@@ -294,7 +336,10 @@ void validate(const Config& config, const std::string& origin) {
                                  config.relax.settle_duration, config.relax.duration));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
-    check_encounter(e, origin);
+    check_encounter_name(e.name, origin);
+    visit_keys(e, [&](const auto& field, const auto& key) {
+      check_range(field, key, fmt::format("{}: encounter '{}': {}", origin, e.name, key.name));
+    });
     if (!names.insert(e.name).second)
       throw InputError(fmt::format("{}: encounter name '{}' appears twice", origin, e.name));
   }
@@ -311,32 +356,20 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   }
   Config config;
   for (auto&& [sk, snode] : root) {
-    std::string section(sk.str());
+    const std::string section(sk.str());
     if (section == "encounters") {
-      auto* arr = snode.as_array();
-      if (!arr) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
-      std::size_t idx = 0;
-      for (auto&& el : *arr) {
-        auto* t = el.as_table();
-        std::string where = fmt::format("{}: encounters[{}]", origin, idx++);
-        if (!t) throw InputError(where + ": must be a table");
-        config.encounters.push_back(parse_encounter(*t, where));
-      }
+      config.encounters = parse_encounters(snode, origin);
       continue;
     }
-    bool known_section = false;
-    for (auto s : section_order()) known_section |= (section == s);
-    if (!known_section)
-      throw InputError(fmt::format("{}: unknown section '{}' (known: workflow, interior, shell, cross, integrator, "
-                                   "stretch, relax, encounter, encounters)", origin, section));
+    if (std::find(section_names().begin(), section_names().end(), section) == section_names().end())
+      throw InputError(fmt::format("{}: unknown section '{}' (known: {}, encounters)", origin, section,
+                                   fmt::join(section_names(), ", ")));
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));
-    for (auto&& [k, node] : *table) {
-      std::string key(k.str());
-      const Param* p = find_param(section, key);
-      if (!p) throw InputError(fmt::format("{}: unknown key '{}.{}'", origin, section, key));
-      assign(config, *p, node, fmt::format("{}: {}", origin, section));
-    }
+    for (auto&& [k, node] : *table)
+      if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section)))
+        throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
+                                     known_keys<Config>(section)));
   }
   validate(config, origin);
   return config;
@@ -351,82 +384,53 @@ Config load_config(const std::filesystem::path& file) {
 }
 
 void apply_override(Config& config, const std::string& assignment) {
-  auto eq = assignment.find('=');
-  if (eq == std::string::npos)
-    throw InputError(fmt::format("--set '{}': expected section.key=value", assignment));
-  std::string path = assignment.substr(0, eq);
-  std::string value = assignment.substr(eq + 1);
+  const std::string where = fmt::format("--set '{}'", assignment);
+  const auto eq = assignment.find('=');
+  const auto dot = assignment.substr(0, eq).find('.');
+  if (eq == std::string::npos || dot == std::string::npos)
+    throw InputError(where + ": expected section.key=value");
+  const std::string section = assignment.substr(0, dot);
+  std::string key = assignment.substr(dot + 1, eq - dot - 1);
   toml::table parsed;
   try {
-    parsed = toml::parse(std::string_view("v = " + value), std::string_view("--set"));
+    parsed = toml::parse(std::string_view("v = " + assignment.substr(eq + 1)), std::string_view("--set"));
   } catch (const toml::parse_error& err) {
-    throw InputError(fmt::format("--set '{}': value is not valid TOML: {}", assignment, err.description()));
+    throw InputError(fmt::format("{}: value is not valid TOML: {}", where, err.description()));
   }
   const toml::node& node = *parsed.get("v");
-  auto dot = path.find('.');
-  if (dot == std::string::npos)
-    throw InputError(fmt::format("--set '{}': expected section.key=value", assignment));
-  std::string section = path.substr(0, dot);
-  std::string key = path.substr(dot + 1);
-  if (section == "encounters") {  // encounters.NAME.key=value
-    auto dot2 = key.find('.');
-    if (dot2 == std::string::npos)
-      throw InputError(fmt::format("--set '{}': expected encounters.NAME.key=value", assignment));
-    std::string name = key.substr(0, dot2);
-    std::string field = key.substr(dot2 + 1);
-    for (auto& e : config.encounters) {
-      if (e.name != name) continue;
-      toml::table t;
-      t.insert("name", e.name);
-      t.insert(field, node);
-      Encounter updated = parse_encounter(t, fmt::format("--set '{}'", assignment));
-      if (field == "perturber_mass") e.perturber_mass = updated.perturber_mass;
-      if (field == "pericenter") e.pericenter = updated.pericenter;
-      if (field == "pericenter_speed") e.pericenter_speed = updated.pericenter_speed;
-      if (field == "failure_strain") e.failure_strain = updated.failure_strain;
-      return;
-    }
-    throw InputError(fmt::format("--set '{}': no encounter named '{}'", assignment, name));
+  if (section != "encounters") {
+    if (!set_key(config, section, key, node, "--set"))
+      throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
+    return;
   }
-  const Param* p = find_param(section, key);
-  if (!p) throw InputError(fmt::format("--set '{}': unknown key '{}'", assignment, path));
-  assign(config, *p, node, "--set");
+  const auto dot2 = key.find('.');  // encounters.NAME.key=value
+  if (dot2 == std::string::npos) throw InputError(where + ": expected encounters.NAME.key=value");
+  const std::string name = key.substr(0, dot2);
+  key = key.substr(dot2 + 1);
+  const auto e = std::find_if(config.encounters.begin(), config.encounters.end(),
+                              [&](const Encounter& spec) { return spec.name == name; });
+  if (e == config.encounters.end()) throw InputError(fmt::format("{}: no encounter named '{}'", where, name));
+  if (!set_key(*e, "encounters", key, node, where))
+    throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
 }
 
-std::string section_toml(const Config& config, std::string_view section) {
-  Config& c = const_cast<Config&>(config);  // only read through the field accessors
-  std::string out = fmt::format("[{}]\n", section);
-  for (const auto& p : params()) {
-    if (std::string_view(p.section) != section) continue;
-    void* f = p.field(c);
-    std::string value;
-    switch (p.type) {
-      case ParamType::real: value = format_real(*static_cast<double*>(f)); break;
-      case ParamType::integer:
-        value = std::string_view(p.key) == "seed" ? fmt::format("{}", *static_cast<std::uint64_t*>(f))
-                                                  : fmt::format("{}", *static_cast<std::int64_t*>(f));
-        break;
-      case ParamType::boolean: value = *static_cast<bool*>(f) ? "true" : "false"; break;
-      case ParamType::text: value = quote(*static_cast<std::string*>(f)); break;
-    }
-    out += fmt::format("{} = {}  # [{}] {}\n", p.key, value, p.unit, p.doc);
-  }
-  return out;
+std::vector<std::pair<std::string, std::string>> section_values(const Config& config, std::string_view section) {
+  std::vector<std::pair<std::string, std::string>> values;
+  visit_keys(config, [&](const auto& field, const auto& key) {
+    if (key.section == section) values.emplace_back(key.name, toml_text(field));
+  });
+  return values;
 }
 
-std::string encounter_toml(const Encounter& e) {
+std::string encounter_toml(const Encounter& encounter) {
   std::string out = "[[encounters]]\n";
-  out += fmt::format("name = {}\n", quote(e.name));
-  out += fmt::format("perturber_mass = {}  # [M] M2\n", format_real(e.perturber_mass));
-  out += fmt::format("pericenter = {}  # [R] q\n", format_real(e.pericenter));
-  out += fmt::format("pericenter_speed = {}  # [sqrt(GM/R)] V_q\n", format_real(e.pericenter_speed));
-  if (e.failure_strain) out += fmt::format("failure_strain = {}  # [-] eps_S override\n", format_real(*e.failure_strain));
+  visit_keys(encounter, [&](const auto& field, const auto& key) { out += toml_line(field, key); });
   return out;
 }
 
 std::string to_toml(const Config& config) {
   std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
-  for (auto section : section_order()) out += "\n" + section_toml(config, section);
+  for (auto section : section_names()) out += "\n" + section_toml(config, section);
   for (const auto& e : config.encounters) out += "\n" + encounter_toml(e);
   return out;
 }

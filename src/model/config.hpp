@@ -1,11 +1,15 @@
 #pragma once
 // The workflow configuration: every parameter of the paper with a default, a unit and a range.
 // Read from TOML (toml++); unknown keys and out-of-range values are InputErrors naming the key.
+// Each key (section, name, type, unit, range, meaning) is described once, in config.cpp
+// (visit_keys), and parsing, --set, validation, the resolved TOML text and the stage
+// fingerprints all read that description.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "model/encounter.hpp"
@@ -103,20 +107,23 @@ struct Config {
 Config parse_config(const std::string& toml_text, const std::string& origin);
 /// Reads and parses a TOML file; a missing file is an InputError.
 Config load_config(const std::filesystem::path& file);
-/// Applies one "section.key=value" override (value in TOML syntax, e.g. 0.002 or true).
+/// Applies one "section.key=value" or "encounters.NAME.key=value" override (value in TOML
+/// syntax, e.g. 0.002 or true); InputError for an unknown key or a value of the wrong type.
 /// Ranges are checked by validate() once all overrides are applied (they may depend on each other).
 void apply_override(Config& config, const std::string& assignment);
 /// The resolved configuration, every key with its default, as TOML with unit comments.
 /// parse_config(to_toml(c)) == c, and equal configs give equal text.
 std::string to_toml(const Config& config);
-/// One section ("interior", "shell", ...) of to_toml: used as the fingerprint of what a stage
-/// depends on, so that a changed value reruns exactly the stages it affects.
-std::string section_toml(const Config& config, std::string_view section);
+/// The (key, value) pairs of one section ("interior", "shell", ...) in to_toml order, values as
+/// to_toml writes them: the stage fingerprints record the keys a stage reads, so that a changed
+/// value reruns exactly the stages it affects. Empty for an unknown section.
+std::vector<std::pair<std::string, std::string>> section_values(const Config& config, std::string_view section);
 /// One [[encounters]] table of to_toml.
 std::string encounter_toml(const Encounter& encounter);
-/// Scales the time step by `factor` (--dt-factor) and every schedule counted in steps by
-/// 1/factor (rounded, at least 1), so schedules keep their length in time: at half dt the
-/// failure interval t_fail is 6 steps instead of 3, and the run checks dt alone.
+/// Scales the time step by `factor` (--dt-factor) and every schedule counted in steps (the keys
+/// whose unit is "steps") by 1/factor (rounded, at least 1), so schedules keep their length in
+/// time: at half dt the failure interval t_fail is 6 steps instead of 3, and the run checks dt
+/// alone.
 void scale_time_step(Config& config, double factor);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);

@@ -12,18 +12,14 @@ namespace {
 
 enum class Keys { only, all_but };
 
-/// The "key = value" lines of one section of the resolved configuration, restricted to (or
-/// excluding) the given keys, without the unit comments.
+/// The "section.key = value" lines of one section of the resolved configuration, restricted to
+/// (or excluding) the given keys.
 std::string keys_of(const Config& config, std::string_view section, Keys mode,
                     std::initializer_list<std::string_view> keys) {
-  std::istringstream lines(section_toml(config, section));
-  std::string out, line;
-  while (std::getline(lines, line)) {
-    const auto eq = line.find(" = ");
-    if (eq == std::string::npos) continue;  // the [section] header
-    const std::string_view key(line.data(), eq);
+  std::string out;
+  for (const auto& [key, value] : section_values(config, section)) {
     const bool listed = std::find(keys.begin(), keys.end(), key) != keys.end();
-    if (listed == (mode == Keys::only)) out += fmt::format("{}.{}\n", section, line.substr(0, line.find("  #")));
+    if (listed == (mode == Keys::only)) out += fmt::format("{}.{} = {}\n", section, key, value);
   }
   return out;
 }

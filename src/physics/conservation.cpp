@@ -1,5 +1,7 @@
 #include "physics/conservation.hpp"
 
+#include "model/center_of_mass.hpp"
+
 namespace tidalcrust {
 
 namespace {
@@ -22,16 +24,12 @@ Conservation measure_conservation(const Body& body, const State& state) {
 }
 
 double internal_kinetic_energy(const Body& body, const State& state) {
-  double mass = 0, p[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < body.particle_count(); ++i) {
-    mass += body.mass[i];
-    for (int k = 0; k < 3; ++k) p[k] += body.mass[i] * state.velocity[3 * i + k];
-  }
+  const Vec3 center_velocity = body_center_of_mass_velocity(body, state);
   double energy = 0;
   for (std::size_t i = 0; i < body.particle_count(); ++i) {
     double v2 = 0;
     for (int k = 0; k < 3; ++k) {
-      double dv = state.velocity[3 * i + k] - p[k] / mass;
+      double dv = state.velocity[3 * i + k] - center_velocity[k];
       v2 += dv * dv;
     }
     energy += 0.5 * body.mass[i] * v2;

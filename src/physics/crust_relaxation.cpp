@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "forces/hinge_geometry.hpp"
+#include "model/center_of_mass.hpp"
 #include "base/vec3.hpp"
 
 namespace tidalcrust {
@@ -27,13 +28,7 @@ void reset_hinge_rest_angles(const Body& body, State& state) {
 }
 
 double mean_shell_radius(const Body& body, const State& state) {
-  Vec3 centre = Vec3::Zero();
-  double mass = 0;
-  for (std::size_t i = 0; i < body.particle_count(); ++i) {
-    centre += body.mass[i] * vec3_at(state.position, i);
-    mass += body.mass[i];
-  }
-  centre /= mass;
+  const Vec3 centre = body_center_of_mass(body, state);
   double sum = 0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < body.particle_count(); ++i) {

@@ -217,18 +217,15 @@ TEST(FractureAnalysis, FailureSummaryJson) {
   Checkpoint c = synthetic_encounter(1);
   c.state.springs.failed[0] = 1;
   const FractureSummary s = analyze_fractures(c.body, c.state);
-  JsonWriter json;
-  json.begin_object();
-  add_failure_summary(json, s);
-  json.end_object();
-  EXPECT_EQ(json.str(), "{\n  \"failures\": {\n    \"count\": 1,\n    \"fraction_shell\": " + JsonWriter::number(1.0 / 120) +
-                            ",\n    \"hemisphere_fraction\": " + JsonWriter::number(s.hemisphere_fraction) +
-                            ",\n    \"mean_angle_from_subsatellite_deg\": " +
-                            JsonWriter::number(s.mean_angle_from_subsatellite_deg) +
-                            ",\n    \"median_angle_from_subsatellite_deg\": " +
-                            JsonWriter::number(s.median_angle_from_subsatellite_deg) + ",\n    \"longest_crack\": " +
-                            JsonWriter::number(s.longest_crack_length) + ",\n    \"longest_crack_extent\": " +
-                            JsonWriter::number(s.longest_crack_extent) + ",\n    \"clusters\": 1\n  }\n}\n");
+  // Ordered JSON compares key order too.
+  EXPECT_EQ(failure_summary_json(s), Json({{"count", 1},
+                                           {"fraction_shell", 1.0 / 120},
+                                           {"hemisphere_fraction", s.hemisphere_fraction},
+                                           {"mean_angle_from_subsatellite_deg", s.mean_angle_from_subsatellite_deg},
+                                           {"median_angle_from_subsatellite_deg", s.median_angle_from_subsatellite_deg},
+                                           {"longest_crack", s.longest_crack_length},
+                                           {"longest_crack_extent", s.longest_crack_extent},
+                                           {"clusters", 1}}));
   EXPECT_GT(s.longest_crack_length, 0.0);
 }
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "io/checkpoint_file.hpp"
-#include "io/json_writer.hpp"
+#include "io/json.hpp"
 #include "io/checkpoint_names.hpp"
 #include "support/synthetic_encounter.hpp"
 
@@ -94,13 +94,14 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
     EXPECT_NE(read_text(out / (stem + ".svg"s)).find("</svg>"), std::string::npos) << stem;
   }
   const std::string summary = read_text(out / "summary.json");
-  EXPECT_NE(summary.find("\"count\": 5,"), std::string::npos) << summary;
-  EXPECT_NE(summary.find("\"fraction_shell\": " + JsonWriter::number(5.0 / 480)), std::string::npos);
-  EXPECT_NE(summary.find("\"spring\": [10, 20, 30, 40, 50]"), std::string::npos);
-  EXPECT_NE(summary.find("\"name\": \"T5\""), std::string::npos);
-  EXPECT_NE(summary.find("\"pericenter_time\": 1.2"), std::string::npos);
-  EXPECT_NE(summary.find("\"max_momentum_change\": 0,"), std::string::npos);
-  EXPECT_NE(summary.find("\"samples\": 20"), std::string::npos);
+  const Json json = Json::parse(summary);
+  EXPECT_EQ(json["failures"]["count"], 5) << summary;
+  EXPECT_EQ(json["failures"]["fraction_shell"], 5.0 / 480);
+  EXPECT_EQ(json["failed_springs"]["spring"], Json({10, 20, 30, 40, 50}));
+  EXPECT_EQ(json["encounter"]["name"], "T5");
+  EXPECT_EQ(json["encounter"]["pericenter_time"], 1.2);
+  EXPECT_EQ(json["conservation"]["max_momentum_change"], 0.0);
+  EXPECT_EQ(json["conservation"]["samples"], 20);
   // Snapshot row: the readable snapshot at step 600 and the final state; the corrupt one skipped.
   EXPECT_NE(summary.find("enc.snap-600.h5"), std::string::npos);
   EXPECT_EQ(summary.find("enc.snap-700.h5"), std::string::npos);
@@ -121,18 +122,20 @@ TEST_F(AnalyzeCompareCli, AnalyzeRefusesOtherStagesAndMissingFiles) {
 TEST_F(AnalyzeCompareCli, CompareWithItselfIsIdentical) {
   const auto r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + encounter.string() + "\" --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("\"jaccard\": 1,"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"ks_distance_angle_from_subsatellite\": 0"), std::string::npos);
-  EXPECT_NE(r.out.find("\"identical_state\": true"), std::string::npos);
-  EXPECT_NE(r.out.find("\"state_hash\": \""), std::string::npos);
+  const Json json = Json::parse(r.out);
+  EXPECT_EQ(json["jaccard"], 1.0) << r.out;
+  EXPECT_EQ(json["ks_distance_angle_from_subsatellite"], 0.0);
+  EXPECT_EQ(json["identical_state"], true);
+  EXPECT_EQ(json["a"]["state_hash"], json["b"]["state_hash"]);
 }
 
 TEST_F(AnalyzeCompareCli, CompareCountsOverlap) {
   const auto r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\" --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("\"common_failed\": 2,"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\"either_failed\": 6,"), std::string::npos);
-  EXPECT_NE(r.out.find("\"jaccard\": " + JsonWriter::number(2.0 / 6)), std::string::npos);
+  const Json json = Json::parse(r.out);
+  EXPECT_EQ(json["common_failed"], 2) << r.out;
+  EXPECT_EQ(json["either_failed"], 6);
+  EXPECT_EQ(json["jaccard"], 2.0 / 6);
   const auto text = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\"");
   EXPECT_EQ(text.exit_code, 0);
   EXPECT_NE(text.out.find("Jaccard index 0.3333"), std::string::npos) << text.out;

@@ -63,8 +63,9 @@ TEST(Config, OutOfRangeAndWrongType) {
   EXPECT_NE(message_of("[shell]\nlevel = 2.5\n").find("'level' must be an integer"), std::string::npos);
   EXPECT_NE(message_of("[interior]\nmin_separation = 0.5\nspring_distance = 0.3\n").find("min_separation"),
             std::string::npos);
-  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 0.5\n").find("outside the body"),
+  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 0.5\n").find("pericenter = 0.5 is out of range (1,"),
             std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 1\n").find("out of range"), std::string::npos);
   EXPECT_NE(message_of("[[encounters]]\nname = 'x'\nperturber_mass = nan\n").find("perturber_mass"),
             std::string::npos);
   EXPECT_NE(message_of("[[encounters]]\nname='a'\n[[encounters]]\nname='a'\n").find("twice"),
@@ -92,8 +93,57 @@ TEST(Config, ScalingTheTimeStepKeepsSchedulesInTime) {
   EXPECT_DOUBLE_EQ(config.integrator.dt, 0.001);
   EXPECT_EQ(config.encounter.fail_interval, 6);  // t_fail stays 3 x 0.002 = 0.006 t_grav
   EXPECT_EQ(config.encounter.sample_interval, 20);
+  const Config unscaled = load_config(workflow("paper-T.toml"));
+  EXPECT_EQ(config.relax.rest_length_interval, 2 * unscaled.relax.rest_length_interval);
+  EXPECT_EQ(config.relax.hinge_reset_interval, 2 * unscaled.relax.hinge_reset_interval);
+  EXPECT_EQ(config.relax.checkpoint_interval, 2 * unscaled.relax.checkpoint_interval);
+  EXPECT_EQ(config.encounter.checkpoint_interval, 2 * unscaled.encounter.checkpoint_interval);
+  EXPECT_EQ(config.interior.count, unscaled.interior.count);  // counts that are not schedules stay
+  EXPECT_EQ(config.stretch.max_iterations, unscaled.stretch.max_iterations);
   scale_time_step(config, 4.0);  // dt 0.004: 1.5 steps rounds to 2, never below 1
   EXPECT_EQ(config.encounter.fail_interval, 2);
   scale_time_step(config, 10.0);
   EXPECT_EQ(config.encounter.fail_interval, 1);
+}
+
+TEST(Config, SeedIsAnUnsignedInteger) {
+  EXPECT_EQ(parse_config("[workflow]\nseed = 9223372036854775807\n", "a").workflow.seed, 9223372036854775807u);
+  EXPECT_NE(message_of("[workflow]\nseed = -1\n").find("'seed' must be >= 0"), std::string::npos);
+  EXPECT_NE(message_of("[workflow]\nseed = 1.5\n").find("'seed' must be an integer"), std::string::npos);
+  Config config;
+  config.workflow.seed = 9223372036854775808u;  // TOML could not store it
+  EXPECT_THROW(validate(config, "x"), InputError);
+}
+
+TEST(Config, EncounterTablesUseTheSameDescription) {
+  Encounter spec;
+  spec.name = "T1";
+  EXPECT_EQ(encounter_toml(spec),
+            "[[encounters]]\nname = 'T1'\nperturber_mass = 0.5  # [M] M2\npericenter = 1.84  # [R] q\n"
+            "pericenter_speed = 1.6  # [sqrt(GM/R)] V_q\n");
+  spec.failure_strain = 0.002;
+  EXPECT_NE(encounter_toml(spec).find("failure_strain = 0.002  # [-] eps_S override\n"), std::string::npos);
+  EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 'far'\n").find("'pericenter' must be a number"),
+            std::string::npos);
+  EXPECT_EQ(parse_config("[[encounters]]\nname = 'x'\npericenter = 2\n", "a").encounters.at(0).pericenter, 2.0);
+
+  auto config = load_config(workflow("paper-T.toml"));
+  apply_override(config, "encounters.T5.failure_strain=0.004");
+  EXPECT_EQ(config.find_encounter("T5").failure_strain, 0.004);
+  EXPECT_THROW(apply_override(config, "encounters.T5.mass=1"), InputError);
+  EXPECT_THROW(apply_override(config, "encounters.T9.pericenter=2"), InputError);
+  EXPECT_THROW(apply_override(config, "encounters.T5.pericenter=true"), InputError);
+}
+
+TEST(Config, SectionValuesAreTheResolvedText) {
+  const auto config = load_config(workflow("quick.toml"));
+  const std::string text = to_toml(config);
+  for (const char* section : {"workflow", "interior", "shell", "cross", "integrator", "stretch", "relax", "encounter"}) {
+    const auto values = section_values(config, section);
+    ASSERT_FALSE(values.empty()) << section;
+    for (const auto& [key, value] : values)
+      EXPECT_NE(text.find("\n" + key + " = " + value + "  # ["), std::string::npos) << section << "." << key;
+  }
+  EXPECT_TRUE(section_values(config, "nope").empty());
+  EXPECT_NE(text.find("\n[integrator]\ndt = "), std::string::npos);
 }
