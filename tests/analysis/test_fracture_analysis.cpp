@@ -14,8 +14,8 @@
 #include "support/synthetic_encounter.hpp"
 
 using namespace tidalcrust;
-using tidalcrust::testing::spring_between;
-using tidalcrust::testing::synthetic_encounter;
+using tidalcrust::test_support::spring_between;
+using tidalcrust::test_support::synthetic_encounter;
 
 namespace {
 

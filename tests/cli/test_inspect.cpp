@@ -11,7 +11,8 @@
 
 #include "support/bad_checkpoints.hpp"
 #include "support/cli_runner.hpp"
-#include "stages/build_stage.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
 #include "io/checkpoint_file.hpp"
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
@@ -26,8 +27,6 @@ using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -140,8 +139,8 @@ TEST(InspectCli, TableIsAlignedAndNamesEveryKey) {
 TEST(InspectCli, BuiltQuickBodyCountsMatch) {
   const ScratchFolder scratch("inspect_quick");
   const fs::path& dir = scratch.path;
-  const Config config = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml");
-  Checkpoint c = build_stage(config);
+  const Config config = quick_config();
+  Checkpoint c = quick_built();
   c.config_toml = to_toml(config);
   write_checkpoint(dir / "body.h5", c);
   const CliResult r = run_cli("inspect " + quoted(dir / "body.h5") + " --json");

@@ -3,7 +3,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -14,26 +13,15 @@
 #include "figures/figures.hpp"
 #include "physics/orbital_frame.hpp"
 #include "model/recorded_encounter.hpp"
-#include "support/synthetic_encounter.hpp"
 #include "physics/two_body_orbit.hpp"
+#include "support/files.hpp"
+#include "support/synthetic_encounter.hpp"
 
 using namespace tidalcrust;
-using tidalcrust::testing::synthetic_encounter;
+using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("tidalcrust_figures_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
 
 void expect_png_and_svg(const FigureFiles& files) {
   ASSERT_EQ(files.size(), 2u);
@@ -80,7 +68,8 @@ TEST(Figures, FractureMapDrawsCrackBarsWhereTheyAre) {
   fail_spring_near(c, {-0.6, 0.2, 0.5});
   fail_spring_near(c, {-1, -0.01, 0.1});  // faces close to the dateline (longitude 180)
   const FractureSummary fractures = analyze_fractures(c.body, c.state);
-  const fs::path dir = fresh_dir("map");
+  const ScratchFolder scratch("figures_map");
+  const fs::path& dir = scratch.path;
   const auto files = write_fracture_map(fractures, dir / "map", "test map");
   expect_png_and_svg(files);
   const Png png(files[0]);
@@ -102,7 +91,8 @@ TEST(Figures, HemisphereViewShowsCracksFacingTheViewer) {
   Checkpoint later = c;
   later.state.time = 2.5;
   later.state.perturber.position = {-1.9, 1.5, 0};  // off to the right on screen, partly in view
-  const fs::path dir = fresh_dir("hemisphere");
+  const ScratchFolder scratch("figures_hemisphere");
+  const fs::path& dir = scratch.path;
   const auto files = write_hemisphere_views({&c, &later}, 1.2, dir / "hemisphere", "test views");
   expect_png_and_svg(files);
   const Png png(files[0]);
@@ -145,7 +135,8 @@ TEST(Figures, OrbitFailureAndConservationPlotsAreWritten) {
   }
   for (int i = 0; i < 5; ++i) c.observables.failures.push_back({1.0 + 0.1 * i, 500 + 50 * i, i, 0.004, {0, 1, 0}});
   const RecordedEncounter encounter = recorded_encounter(c, "synthetic.h5");
-  const fs::path dir = fresh_dir("series");
+  const ScratchFolder scratch("figures_series");
+  const fs::path& dir = scratch.path;
   expect_png_and_svg(write_orbit_plot(c, encounter, {0.8, 1.2, 1.6}, dir / "orbit", "orbit"));
   expect_png_and_svg(write_failure_history(c, encounter.pericenter_time, dir / "failures", "failures"));
   expect_png_and_svg(write_conservation_plot(c, encounter.pericenter_time, dir / "conservation", "conservation"));
@@ -172,7 +163,8 @@ TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
   // from the analytic track.
   const Vec3 between = 0.5 * (simulated(0.64) + simulated(0.66));
   ASSERT_GT((between - orbit.state_at_time(0.65 - encounter.pericenter_time).position).norm(), 0.7);
-  const fs::path dir = fresh_dir("simulated_orbit");
+  const ScratchFolder scratch("figures_simulated_orbit");
+  const fs::path& dir = scratch.path;
   {
     const auto files = write_orbit_plot(c, encounter, {}, dir / "simulated", "simulated");
     expect_png_and_svg(files);

@@ -8,7 +8,7 @@
 #include "model/config.hpp"
 #include "base/random.hpp"
 
-namespace tidalcrust::testing {
+namespace tidalcrust::test_support {
 
 inline Config small_body_config() {
   return parse_config(R"(
@@ -49,4 +49,4 @@ inline void shake(State& state, double dx, double dv, std::uint64_t seed) {
   for (double& v : state.velocity) v += random.uniform(-dv, dv);
 }
 
-}  // namespace tidalcrust::testing
+}  // namespace tidalcrust::test_support
