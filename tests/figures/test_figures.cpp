@@ -7,8 +7,6 @@
 #include <numbers>
 #include <string>
 
-#include "analysis/conservation_drift.hpp"
-#include "base/errors.hpp"
 #include "figures/figure_output.hpp"
 #include "figures/figures.hpp"
 #include "physics/orbital_frame.hpp"
@@ -181,41 +179,4 @@ TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
     const Vec3 on_analytic = orbit.state_at_time(0.65 - encounter.pericenter_time).position;
     EXPECT_LT(Png(files[0]).luminance(axes.page_x(on_analytic.x()), axes.page_y(on_analytic.y())), 0.5);
   }
-}
-
-TEST(RecordedEncounter, RefusesOtherStagesAndMissingScalars) {
-  Checkpoint c = synthetic_encounter(1);
-  const RecordedEncounter e = recorded_encounter(c, "ENC.h5");
-  EXPECT_EQ(e.name, "T5");
-  EXPECT_EQ(e.perturber_mass, 0.5);
-  EXPECT_EQ(e.pericenter_time, 1.2);
-  c.stage.scalars.erase(encounter_keys::pericenter_time);
-  try {
-    recorded_encounter(c, "ENC.h5");
-    FAIL();
-  } catch (const InputError& err) {
-    EXPECT_NE(std::string(err.what()).find("pericenter_time"), std::string::npos);
-  }
-  c.stage.stage = "relax";
-  EXPECT_THROW(recorded_encounter(c, "ENC.h5"), InputError);
-}
-
-
-TEST(ConservationDrift, ChangesRelativeToTheFirstSample) {
-  std::vector<TimeseriesSample> samples(3);
-  samples[0].kinetic_energy = 2.0;
-  samples[0].angular_momentum = {0, 0, 4.0};
-  samples[1].kinetic_energy = 2.5;
-  samples[1].momentum = {3e-15, 4e-15, 0};
-  samples[1].angular_momentum = {0, 0, 4.0 + 2e-12};
-  samples[2].kinetic_energy = 1.0;
-  samples[2].angular_momentum = {0, 0, 4.0};
-  const ConservationDrift d = conservation_drift(samples);
-  EXPECT_EQ(d.samples, 3u);
-  EXPECT_DOUBLE_EQ(d.max_momentum_change, 5e-15);
-  EXPECT_NEAR(d.max_angular_momentum_change, 2e-12, 1e-15);  // ulp(4) ~ 9e-16
-  EXPECT_NEAR(d.max_relative_angular_momentum_change, 5e-13, 1e-15 / 4);
-  EXPECT_DOUBLE_EQ(d.final_kinetic_energy_change, -0.5);
-  EXPECT_DOUBLE_EQ(d.max_kinetic_energy_change, 0.5);
-  EXPECT_TRUE(std::isnan(conservation_drift({}).max_momentum_change));
 }
