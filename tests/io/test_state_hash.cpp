@@ -96,7 +96,7 @@ TEST(StateHash, ChangesWhenAnyHashedFieldChangesByOneUlp) {
 }
 
 TEST(StateHash, IgnoresFieldsOutsideTheDefinition) {
-  // dt, damping and hinge stiffness are not part of the hashed state (design.md).
+  // dt, damping and hinge stiffness are not part of the hashed state (io/state_hash.hpp).
   const State base = test_support::synthetic_checkpoint().state;
   State s = base;
   s.dt *= 2;
