@@ -1,6 +1,5 @@
 #pragma once
-// Runs the tidalcrust binary as a user would (run_cli: exit code, stdout, stderr) and quotes
-// paths for its command line.
+// Runs the tidalcrust binary as a user would (run_cli: exit code, stdout, stderr; quoted paths).
 #include <fmt/format.h>
 #include <sys/wait.h>
 

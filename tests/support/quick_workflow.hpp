@@ -1,5 +1,5 @@
 #pragma once
-// The quick workflow's body (workflows/quick.toml) built, stretched and relaxed, once per process.
+// The quick workflow (workflows/quick.toml): its config, its body built, stretched, relaxed once.
 #include <stdexcept>
 
 #include "model/checkpoint.hpp"
