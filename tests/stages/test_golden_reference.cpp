@@ -117,7 +117,10 @@ TEST(GoldenReference, QuickStrongEncounterFirstStepsMatchTheStoredValues) {
   const std::vector<Value> measured = measure(first_steps_of_strong(*steps));
   for (const auto& [key, value] : measured) {
     const auto node = stored[key];
-    ASSERT_TRUE(node) << file << ": no key " << key;
+    if (!node) {
+      ADD_FAILURE() << file << ": no key " << key;
+      continue;
+    }
     if (const auto* s = std::get_if<std::string>(&value)) {
       if (same_gravity_kernel) {
         EXPECT_EQ(node.value_or(std::string()), *s) << key;
