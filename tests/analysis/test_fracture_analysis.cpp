@@ -2,20 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <set>
 
-#include "base/errors.hpp"
 #include "analysis/fracture_analysis.hpp"
-#include "analysis/fracture_comparison.hpp"
+#include "io/json.hpp"
 #include "physics/orbital_frame.hpp"
-#include "bodies/shell_topology.hpp"
 #include "support/synthetic_encounter.hpp"
 
 using namespace tidalcrust;
-using tidalcrust::testing::spring_between;
-using tidalcrust::testing::synthetic_encounter;
+using tidalcrust::test_support::spring_between;
+using tidalcrust::test_support::synthetic_encounter;
 
 namespace {
 
@@ -55,37 +52,6 @@ std::vector<std::size_t> strip_toward_minus_x(const Checkpoint& c, int length) {
 }
 
 }  // namespace
-
-TEST(OrbitalFrame, SubsatellitePointIsAtLongitude90) {
-  EXPECT_DOUBLE_EQ(longitude_deg({0, 1, 0}), 90.0);
-  EXPECT_DOUBLE_EQ(longitude_deg({1, 0, 0}), 0.0);
-  EXPECT_DOUBLE_EQ(longitude_deg({-1, 0, 0}), 180.0);
-  EXPECT_DOUBLE_EQ(longitude_deg({0, -1, 0}), -90.0);
-  EXPECT_DOUBLE_EQ(latitude_deg({0, 0, 2}), 90.0);
-  EXPECT_DOUBLE_EQ(latitude_deg({3, 0, 0}), 0.0);
-  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, 4, 0}), 0.0);
-  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, 0, 1}), 90.0);
-  EXPECT_DOUBLE_EQ(angle_from_subsatellite_deg({0, -1, 0}), 180.0);
-}
-
-TEST(ShellTopology, EveryShellEdgeHasTwoFaces) {
-  const Checkpoint c = synthetic_encounter(2);
-  const ShellTopology t = shell_topology(c.body);
-  EXPECT_EQ(c.body.count_springs(SpringKind::shell), 30u * 16u);
-  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
-    const bool shell = c.body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::shell);
-    EXPECT_EQ(t.spring_faces[s][0] >= 0 && t.spring_faces[s][1] >= 0, shell) << s;
-  }
-  for (std::size_t f = 0; f < c.body.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k)
-      EXPECT_EQ(t.face_edge_spring[f][k], spring_between(c.body, c.body.faces[f][k], c.body.faces[f][(k + 1) % 3]));
-}
-
-TEST(ShellTopology, FaceEdgeWithoutSpringIsInputError) {
-  Checkpoint c = synthetic_encounter(1);
-  c.body.spring_kind[0] = static_cast<std::uint8_t>(SpringKind::interior);
-  EXPECT_THROW(shell_topology(c.body), InputError);
-}
 
 TEST(FractureAnalysis, NoFailures) {
   const FractureSummary s = analyze_fractures(synthetic_encounter(1).body, synthetic_encounter(1).state);
@@ -227,50 +193,4 @@ TEST(FractureAnalysis, FailureSummaryJson) {
                                            {"longest_crack_extent", s.longest_crack_extent},
                                            {"clusters", 1}}));
   EXPECT_GT(s.longest_crack_length, 0.0);
-}
-
-TEST(FractureComparison, SelfComparisonIsIdentical) {
-  Checkpoint c = synthetic_encounter(2);
-  for (std::size_t s = 0; s < 480; s += 7) c.state.springs.failed[s] = 1;
-  const FractureComparison r = compare_fractures(c.body, c.state, c.state);
-  EXPECT_EQ(r.jaccard, 1.0);
-  EXPECT_EQ(r.ks_distance, 0.0);
-  EXPECT_EQ(r.common_failed, r.a.count());
-  EXPECT_EQ(r.either_failed, r.b.count());
-}
-
-TEST(FractureComparison, OverlapAndDistance) {
-  Checkpoint a = synthetic_encounter(1), b = synthetic_encounter(1);
-  for (std::size_t s : {0, 1, 2, 3}) a.state.springs.failed[s] = 1;
-  for (std::size_t s : {2, 3, 4, 5, 6, 7}) b.state.springs.failed[s] = 1;
-  const FractureComparison r = compare_fractures(a.body, a.state, b.state);
-  EXPECT_EQ(r.common_failed, 2u);
-  EXPECT_EQ(r.either_failed, 8u);
-  EXPECT_DOUBLE_EQ(r.jaccard, 0.25);
-  EXPECT_GE(r.ks_distance, 0.0);
-  EXPECT_LE(r.ks_distance, 1.0);
-}
-
-TEST(FractureComparison, KolmogorovSmirnovDistance) {
-  EXPECT_EQ(kolmogorov_smirnov_distance({1, 2, 3}, {4, 5, 6}), 1.0);
-  EXPECT_EQ(kolmogorov_smirnov_distance({1, 2, 3, 4}, {3, 4, 5, 6}), 0.5);
-  EXPECT_EQ(kolmogorov_smirnov_distance({3, 1, 2}, {2, 3, 1}), 0.0);
-  EXPECT_EQ(kolmogorov_smirnov_distance({1, 1, 2}, {1, 2, 2}), 1.0 / 3);
-  EXPECT_EQ(kolmogorov_smirnov_distance({}, {}), 0.0);
-  EXPECT_TRUE(std::isnan(kolmogorov_smirnov_distance({}, {1.0})));
-}
-
-TEST(FractureComparison, DifferentBodiesAreRefused) {
-  const Checkpoint a = synthetic_encounter(1), b = synthetic_encounter(2);
-  try {
-    require_same_body(a.body, b.body, "A.h5", "B.h5");
-    FAIL() << "expected InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("A.h5"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("particle counts"), std::string::npos);
-  }
-  Checkpoint c = synthetic_encounter(1);
-  std::swap(c.body.springs[0], c.body.springs[1]);
-  EXPECT_THROW(require_same_body(a.body, c.body, "A.h5", "C.h5"), InputError);
-  EXPECT_NO_THROW(require_same_body(a.body, synthetic_encounter(1).body, "A.h5", "A2.h5"));
 }

@@ -1,52 +1,28 @@
-#include <cairo.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "io/checkpoint_file.hpp"
 #include "io/json.hpp"
 #include "io/checkpoint_names.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
 #include "support/synthetic_encounter.hpp"
 
 using namespace std::string_literals;
 using namespace tidalcrust;
+using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-CommandResult run_cli(const fs::path& dir, const std::string& args) {
-  const auto out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string command = "\""s + TIDALCRUST_EXE + "\" " + args + " >\"" + out.string() + "\" 2>\"" + err.string() + "\"";
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_text(out), read_text(err)};
-}
-
 class AnalyzeCompareCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() / ("tidalcrust_analyze_test_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
     // Final state: five failed shell springs; a snapshot at an earlier step with two of them.
-    Checkpoint c = tidalcrust::testing::synthetic_encounter(2);
+    Checkpoint c = synthetic_encounter(2);
     for (int i = 0; i < 20; ++i) {
       TimeseriesSample s;
       s.time = 0.1 * i;
@@ -75,25 +51,25 @@ class AnalyzeCompareCli : public ::testing::Test {
     Checkpoint relaxed = c;
     relaxed.stage.record = RelaxRecord{};
     write_checkpoint(dir / "relaxed.h5", relaxed);
-    write_checkpoint(dir / "coarse.h5", tidalcrust::testing::synthetic_encounter(1));
+    write_checkpoint(dir / "coarse.h5", synthetic_encounter(1));
   }
-  void TearDown() override { fs::remove_all(dir); }
-
-  fs::path dir, encounter;
+  const ScratchFolder scratch{"analyze_compare"};
+  const fs::path& dir = scratch.path;
+  fs::path encounter;
 };
 
 }  // namespace
 
 TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   const fs::path out = dir / "analysis";
-  const auto r = run_cli(dir, "analyze --from \"" + encounter.string() + "\" --out \"" + out.string() + "\"");
+  const auto r = run_cli("analyze --from \"" + encounter.string() + "\" --out \"" + out.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* stem : {"fracture_map", "hemisphere", "orbit", "failures", "conservation"}) {
-    const std::string png = read_text(out / (stem + ".png"s));
+    const std::string png = read_file(out / (stem + ".png"s));
     EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << stem;
-    EXPECT_NE(read_text(out / (stem + ".svg"s)).find("</svg>"), std::string::npos) << stem;
+    EXPECT_NE(read_file(out / (stem + ".svg"s)).find("</svg>"), std::string::npos) << stem;
   }
-  const std::string summary = read_text(out / "summary.json");
+  const std::string summary = read_file(out / "summary.json");
   const Json json = Json::parse(summary);
   EXPECT_EQ(json["failures"]["count"], 5) << summary;
   EXPECT_EQ(json["failures"]["fraction_shell"], 5.0 / 480);
@@ -110,17 +86,17 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
 }
 
 TEST_F(AnalyzeCompareCli, AnalyzeRefusesOtherStagesAndMissingFiles) {
-  auto r = run_cli(dir, "analyze --from \"" + (dir / "relaxed.h5").string() + "\" --out \"" + (dir / "x").string() + "\"");
+  auto r = run_cli("analyze --from \"" + (dir / "relaxed.h5").string() + "\" --out \"" + (dir / "x").string() + "\"");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("expected an 'encounter' checkpoint"), std::string::npos) << r.err;
-  r = run_cli(dir, "analyze --from \"" + (dir / "missing.h5").string() + "\" --out \"" + (dir / "x").string() + "\"");
+  r = run_cli("analyze --from \"" + (dir / "missing.h5").string() + "\" --out \"" + (dir / "x").string() + "\"");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("missing.h5"), std::string::npos);
-  EXPECT_EQ(run_cli(dir, "analyze --out x").exit_code, 2);
+  EXPECT_EQ(run_cli("analyze --out x").exit_code, 2);
 }
 
 TEST_F(AnalyzeCompareCli, CompareWithItselfIsIdentical) {
-  const auto r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + encounter.string() + "\" --json");
+  const auto r = run_cli("compare \"" + encounter.string() + "\" \"" + encounter.string() + "\" --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json json = Json::parse(r.out);
   EXPECT_EQ(json["jaccard"], 1.0) << r.out;
@@ -130,32 +106,22 @@ TEST_F(AnalyzeCompareCli, CompareWithItselfIsIdentical) {
 }
 
 TEST_F(AnalyzeCompareCli, CompareCountsOverlap) {
-  const auto r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\" --json");
+  const auto r = run_cli("compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\" --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json json = Json::parse(r.out);
   EXPECT_EQ(json["common_failed"], 2) << r.out;
   EXPECT_EQ(json["either_failed"], 6);
   EXPECT_EQ(json["jaccard"], 2.0 / 6);
-  const auto text = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\"");
+  const auto text = run_cli("compare \"" + encounter.string() + "\" \"" + (dir / "other.h5").string() + "\"");
   EXPECT_EQ(text.exit_code, 0);
   EXPECT_NE(text.out.find("Jaccard index 0.3333"), std::string::npos) << text.out;
 }
 
 TEST_F(AnalyzeCompareCli, CompareRefusesDifferentBodiesAndStages) {
-  auto r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "coarse.h5").string() + "\"");
+  auto r = run_cli("compare \"" + encounter.string() + "\" \"" + (dir / "coarse.h5").string() + "\"");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("do not branch from the same body"), std::string::npos) << r.err;
-  r = run_cli(dir, "compare \"" + encounter.string() + "\" \"" + (dir / "relaxed.h5").string() + "\"");
+  r = run_cli("compare \"" + encounter.string() + "\" \"" + (dir / "relaxed.h5").string() + "\"");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(run_cli(dir, "compare \"" + encounter.string() + "\"").exit_code, 2);
-}
-
-TEST(SnapshotFiles, NamesAndPanelChoice) {
-  EXPECT_EQ(snapshot_path("runs/T5/enc.h5", 1250), fs::path("runs/T5/enc.snap-1250.h5"));
-  const std::vector<double> times = {0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0};
-  EXPECT_EQ(choose_snapshot_panels(times, 1.6, 20), (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
-  const auto chosen = choose_snapshot_panels(times, 1.6, 4);  // even picks 0, 3, 5, 8; 3 is nearest 1.6
-  EXPECT_EQ(chosen, (std::vector<std::size_t>{0, 3, 5, 8}));
-  const auto with_pericenter = choose_snapshot_panels(times, 1.1, 4);  // nearest is 2
-  EXPECT_EQ(with_pericenter, (std::vector<std::size_t>{0, 2, 5, 8}));
+  EXPECT_EQ(run_cli("compare \"" + encounter.string() + "\"").exit_code, 2);
 }

@@ -1,30 +1,17 @@
-#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <cstdio>
 #include <regex>
 #include <string>
 
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+
 namespace {
 
-struct Result {
-  int exit_code = -1;
-  std::string output;  ///< stdout and stderr
-};
-
-Result run_bench(const std::string& arguments) {
-  const std::string command = fmt::format("'{}' bench {} 2>&1", TIDALCRUST_EXE, arguments);
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  std::size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using tidalcrust::test_support::CliResult;
+using tidalcrust::test_support::quoted;
+using tidalcrust::test_support::run_cli;
+using tidalcrust::test_support::workflow_file;
 
 /// The number after "key": in a JSON text, or -1.
 double json_number(const std::string& json, const std::string& key) {
@@ -33,27 +20,27 @@ double json_number(const std::string& json, const std::string& key) {
   return std::stod(match[1].str());
 }
 
-const std::string quick = std::string("--config '") + TIDALCRUST_SOURCE_DIR + "/workflows/quick.toml'";
+const std::string quick = "--config " + quoted(workflow_file("quick.toml"));
 
 }  // namespace
 
 TEST(CmdBench, JsonReportsTheBodyAndTheTimings) {
-  const Result r = run_bench(quick + " --steps 2 --repeats 1 --textbook-steps 1 --threads 2 --json");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(json_number(r.output, "particles"), 1042) << r.output;  // quick: 400 interior + 642 shell
-  EXPECT_GT(json_number(r.output, "springs"), 1000) << r.output;
-  EXPECT_EQ(json_number(r.output, "hinges"), 1920) << r.output;  // 30 * 4^3 shell edges
-  EXPECT_EQ(json_number(r.output, "threads"), 2) << r.output;
-  EXPECT_GT(json_number(r.output, "ms_per_step"), 0) << r.output;
-  EXPECT_GT(json_number(r.output, "textbook_ms_per_step"), 0) << r.output;
-  EXPECT_GT(json_number(r.output, "speedup"), 0) << r.output;
+  const CliResult r = run_cli("bench " + quick + " --steps 2 --repeats 1 --textbook-steps 1 --threads 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(json_number(r.out, "particles"), 1042) << r.out;  // quick: 400 interior + 642 shell
+  EXPECT_GT(json_number(r.out, "springs"), 1000) << r.out;
+  EXPECT_EQ(json_number(r.out, "hinges"), 1920) << r.out;  // 30 * 4^3 shell edges
+  EXPECT_EQ(json_number(r.out, "threads"), 2) << r.out;
+  EXPECT_GT(json_number(r.out, "ms_per_step"), 0) << r.out;
+  EXPECT_GT(json_number(r.out, "textbook_ms_per_step"), 0) << r.out;
+  EXPECT_GT(json_number(r.out, "speedup"), 0) << r.out;
 }
 
 TEST(CmdBench, BadArgumentsAreInputErrors) {
-  Result r = run_bench(quick + " --steps 0");
+  CliResult r = run_cli("bench " + quick + " --steps 0");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("--steps"), std::string::npos) << r.output;
-  r = run_bench("--config /nonexistent/workflow.toml");
+  EXPECT_NE(r.err.find("--steps"), std::string::npos) << r.err;
+  r = run_cli("bench --config /nonexistent/workflow.toml");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("/nonexistent/workflow.toml"), std::string::npos) << r.output;
+  EXPECT_NE(r.err.find("/nonexistent/workflow.toml"), std::string::npos) << r.err;
 }

@@ -1,15 +1,15 @@
 // `tidalcrust build` as a user runs it: same config and seed give the same state_hash, another
 // seed another; bad input exits 2 with one line naming the file or key and writes nothing.
-#include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "io/checkpoint_file.hpp"
-#include "support/cli_runner.hpp"
 #include "io/state_hash.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -17,19 +17,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  auto dir = fs::temp_directory_path() / ("tidalcrust_build_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string quick() { return fmt::format("{}/workflows/quick.toml", TIDALCRUST_SOURCE_DIR); }
+std::string quick() { return workflow_file("quick.toml").string(); }
 
 }  // namespace
 
 TEST(BuildCli, SameSeedSameHashOtherSeedOtherHash) {
-  const auto dir = fresh_dir("seed");
+  const ScratchFolder scratch("build_seed");
+  const fs::path& dir = scratch.path;
   ASSERT_EQ(run_cli("build --config '" + quick() + "' --out '" + (dir / "a.h5").string() + "'").exit_code, 0);
   ASSERT_EQ(run_cli("build --config '" + quick() + "' --out '" + (dir / "b.h5").string() + "'").exit_code, 0);
   ASSERT_EQ(run_cli("build --config '" + quick() + "' --set workflow.seed=8 --out '" + (dir / "c.h5").string() + "'")
@@ -37,18 +31,18 @@ TEST(BuildCli, SameSeedSameHashOtherSeedOtherHash) {
             0);
   const auto a = read_checkpoint(dir / "a.h5"), b = read_checkpoint(dir / "b.h5"), c = read_checkpoint(dir / "c.h5");
   EXPECT_EQ(state_hash(a.state), state_hash(b.state));
-  EXPECT_EQ(read_text_file(dir / "a.h5"), read_text_file(dir / "b.h5"));  // byte-identical files
+  EXPECT_EQ(read_file(dir / "a.h5"), read_file(dir / "b.h5"));  // byte-identical files
   EXPECT_NE(state_hash(a.state), state_hash(c.state));
   EXPECT_EQ(a.body.count_species(Species::shell), 642u);
   EXPECT_TRUE(fs::exists(dir / "a.xdmf"));
-  fs::remove_all(dir);
 }
 
 TEST(BuildCli, BadInputExitsTwoNamingTheProblemAndKeepsExistingFiles) {
-  const auto dir = fresh_dir("bad");
+  const ScratchFolder scratch("build_bad");
+  const fs::path& dir = scratch.path;
   const auto out = dir / "body.h5";
   ASSERT_EQ(run_cli("build --config '" + quick() + "' --out '" + out.string() + "'").exit_code, 0);
-  const std::string before = read_text_file(out);
+  const std::string before = read_file(out);
 
   const auto unknown_key = dir / "unknown.toml";
   std::ofstream(unknown_key) << "[interior]\ncount = 100\nradious = 0.8\n";
@@ -75,6 +69,5 @@ TEST(BuildCli, BadInputExitsTwoNamingTheProblemAndKeepsExistingFiles) {
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
   }
-  EXPECT_EQ(read_text_file(out), before);  // nothing already written was damaged
-  fs::remove_all(dir);
+  EXPECT_EQ(read_file(out), before);  // nothing already written was damaged
 }

@@ -17,21 +17,15 @@
 #include <thread>
 
 #include "io/checkpoint_file.hpp"
-#include "support/cli_runner.hpp"
 #include "io/state_hash.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path scratch(const std::string& name) {
-  auto dir = fs::temp_directory_path() / ("tidalcrust_run_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 /// The quick body with short stages, frequent mid-stage checkpoints and two encounters.
 fs::path small_workflow(const fs::path& dir) {
@@ -75,8 +69,6 @@ pericenter_speed = 1.7
 )";
   return file;
 }
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 /// Every .h5 below root, by relative path, with its state_hash; fails on an invalid one.
 std::map<std::string, std::string> hashes_below(const fs::path& root) {
@@ -125,9 +117,10 @@ bool run_and_kill(const std::vector<std::string>& args, std::chrono::millisecond
 }  // namespace
 
 TEST(RunWorkflow, KilledAtRandomMomentsEndsBitIdenticalToStraightRun) {
-  const auto dir = scratch("kill");
+  const ScratchFolder scratch("run_kill");
+  const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
-  const auto straight = run_cli("run " + q(workflow) + " --quiet --out " + q(dir / "straight"));
+  const auto straight = run_cli("run " + quoted(workflow) + " --quiet --out " + quoted(dir / "straight"));
   ASSERT_EQ(straight.exit_code, 0) << straight.err;
   const auto expected = hashes_below(dir / "straight");
   for (const char* final_file : {"body/build.h5", "body/stretch.h5", "body/relax.h5", "A/encounter.h5", "B/encounter.h5"})
@@ -149,37 +142,37 @@ TEST(RunWorkflow, KilledAtRandomMomentsEndsBitIdenticalToStraightRun) {
   ASSERT_TRUE(finished);
   EXPECT_GE(kills, 3);
   EXPECT_EQ(hashes_below(dir / "killed"), expected);
-  fs::remove_all(dir);
 }
 
 TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
-  const auto dir = scratch("rerun");
+  const ScratchFolder scratch("run_rerun");
+  const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
   const auto out = dir / "out";
-  ASSERT_EQ(run_cli("run " + q(workflow) + " --quiet --out " + q(out)).exit_code, 0);
-  const std::string relax_bytes = read_text_file(out / "body" / "relax.h5");
-  const std::string a_bytes = read_text_file(out / "A" / "encounter.h5");
+  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --quiet --out " + quoted(out)).exit_code, 0);
+  const std::string relax_bytes = read_file(out / "body" / "relax.h5");
+  const std::string a_bytes = read_file(out / "A" / "encounter.h5");
 
-  const auto again = run_cli("run " + q(workflow) + " --out " + q(out));
+  const auto again = run_cli("run " + quoted(workflow) + " --out " + quoted(out));
   ASSERT_EQ(again.exit_code, 0) << again.err;
   for (const char* stage : {"build: up to date", "stretch: up to date", "relax: up to date", "encounter A: up to date",
                             "encounter B: up to date", "analyze A: up to date"})
     EXPECT_NE(again.out.find(stage), std::string::npos) << again.out;
-  EXPECT_EQ(read_text_file(out / "A" / "encounter.h5"), a_bytes);
-  const std::string status = read_text_file(out / "status.json");
+  EXPECT_EQ(read_file(out / "A" / "encounter.h5"), a_bytes);
+  const std::string status = read_file(out / "status.json");
   EXPECT_NE(status.find("\"stage\": \"workflow small\""), std::string::npos) << status;
   EXPECT_NE(status.find("\"state\": \"done\""), std::string::npos) << status;
 
   // A changed encounter value reruns the encounters only.
-  const auto changed = run_cli("run " + q(workflow) + " --set encounter.damping=0.02 --out " + q(out));
+  const auto changed = run_cli("run " + quoted(workflow) + " --set encounter.damping=0.02 --out " + quoted(out));
   ASSERT_EQ(changed.exit_code, 0) << changed.err;
   EXPECT_NE(changed.out.find("relax: up to date"), std::string::npos) << changed.out;
   EXPECT_EQ(changed.out.find("encounter A: up to date"), std::string::npos) << changed.out;
-  EXPECT_EQ(read_text_file(out / "body" / "relax.h5"), relax_bytes);
-  EXPECT_NE(read_text_file(out / "A" / "encounter.h5"), a_bytes);
+  EXPECT_EQ(read_file(out / "body" / "relax.h5"), relax_bytes);
+  EXPECT_NE(read_file(out / "A" / "encounter.h5"), a_bytes);
 
   // Half dt: encounters into their own folder, branching from the same relaxed body.
-  const auto half = run_cli("run " + q(workflow) + " --quiet --dt-factor 0.5 --only A --out " + q(out));
+  const auto half = run_cli("run " + quoted(workflow) + " --quiet --dt-factor 0.5 --only A --out " + quoted(out));
   ASSERT_EQ(half.exit_code, 0) << half.err;
   const auto half_dt = read_checkpoint(out / "dt0.5" / "A" / "encounter.h5");
   EXPECT_DOUBLE_EQ(half_dt.stage.clock.dt, 0.0025);
@@ -187,15 +180,15 @@ TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
   EXPECT_FALSE(fs::exists(out / "dt0.5" / "B"));
   EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "summary.json"));
   EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "fracture_map.png"));
-  fs::remove_all(dir);
 }
 
 TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
-  const auto dir = scratch("bad");
+  const ScratchFolder scratch("run_bad");
+  const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
   const auto out = dir / "out";
-  ASSERT_EQ(run_cli("run " + q(workflow) + " --quiet --only B --out " + q(out)).exit_code, 0);
-  const std::string build_bytes = read_text_file(out / "body" / "build.h5");
+  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --quiet --only B --out " + quoted(out)).exit_code, 0);
+  const std::string build_bytes = read_file(out / "body" / "build.h5");
 
   const auto unknown = dir / "unknown.toml";
   std::ofstream(unknown) << "[workflow]\nname = \"small\"\n[relax]\ndamping = 50.0\ndampnig = 1.0\n";
@@ -204,12 +197,12 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   struct Case {
     std::string args, expected;
   } cases[] = {
-      {"run " + q(unknown) + " --out " + q(out), "relax.dampnig"},
-      {"run " + q(malformed) + " --out " + q(out), "malformed.toml:1"},
-      {"run " + q(workflow) + " --dt-factor -0.5 --out " + q(out), "--dt-factor"},
-      {"run " + q(workflow) + " --only Z --out " + q(out), "unknown encounter 'Z'"},
-      {"run " + q(workflow) + " --set workflow.seed=4 --out " + q(out), "different body"},
-      {"run " + q(dir / "missing.toml") + " --out " + q(out), "missing.toml"},
+      {"run " + quoted(unknown) + " --out " + quoted(out), "relax.dampnig"},
+      {"run " + quoted(malformed) + " --out " + quoted(out), "malformed.toml:1"},
+      {"run " + quoted(workflow) + " --dt-factor -0.5 --out " + quoted(out), "--dt-factor"},
+      {"run " + quoted(workflow) + " --only Z --out " + quoted(out), "unknown encounter 'Z'"},
+      {"run " + quoted(workflow) + " --set workflow.seed=4 --out " + quoted(out), "different body"},
+      {"run " + quoted(dir / "missing.toml") + " --out " + quoted(out), "missing.toml"},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);
@@ -217,13 +210,13 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
   }
-  EXPECT_EQ(read_text_file(out / "body" / "build.h5"), build_bytes);
+  EXPECT_EQ(read_file(out / "body" / "build.h5"), build_bytes);
   EXPECT_FALSE(fs::exists(out / "A"));
-  fs::remove_all(dir);
 }
 
 TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
-  const auto dir = scratch("sigint");
+  const ScratchFolder scratch("run_sigint");
+  const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
   const auto out = dir / "out";
   // A long relaxation so that Ctrl-C lands inside it.
@@ -241,10 +234,9 @@ TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
   const Checkpoint stopped = read_checkpoint(mid);
   EXPECT_FALSE(stopped.stage.complete);
   // Rerun with a value the relaxation does not read changed: it resumes, it does not restart.
-  const auto resumed = run_cli("run " + q(workflow) + " --out " + q(out) +
+  const auto resumed = run_cli("run " + quoted(workflow) + " --out " + quoted(out) +
                                " --set relax.duration=40.0 --set encounter.damping=0.02 --only A");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("relax: resuming from"), std::string::npos) << resumed.out;
   EXPECT_FALSE(fs::exists(mid));
-  fs::remove_all(dir);
 }

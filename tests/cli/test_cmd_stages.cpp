@@ -1,14 +1,14 @@
 // The single-stage commands chained by hand: wrong stage order is refused with exit 2, an
 // interrupted relax (exit 130) resumes from its mid-stage checkpoint to the same bits.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <string>
 
 #include "io/checkpoint_file.hpp"
-#include "support/cli_runner.hpp"
 #include "io/state_hash.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -16,18 +16,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A scratch folder for one chain of stage commands; at(name) is a file in it, quoted.
 struct Chain {
-  fs::path dir;
-  Chain() {
-    dir = fs::temp_directory_path() / ("tidalcrust_stages_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  ~Chain() { fs::remove_all(dir); }
-  std::string at(const char* name) const { return "'" + (dir / name).string() + "'"; }
+  const ScratchFolder scratch{"stages"};
+  const fs::path& dir = scratch.path;
+  std::string at(const char* name) const { return quoted(dir / name); }
 };
 
-std::string quick() { return "'" + std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml'"; }
+std::string quick() { return quoted(workflow_file("quick.toml")); }
 
 }  // namespace
 

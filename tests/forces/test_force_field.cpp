@@ -10,7 +10,7 @@
 #include "integrate/textbook_step.hpp"
 
 using namespace tidalcrust;
-using namespace tidalcrust::testing;
+using namespace tidalcrust::test_support;
 
 namespace {
 

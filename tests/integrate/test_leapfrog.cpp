@@ -13,7 +13,7 @@
 #include "integrate/leapfrog.hpp"
 
 using namespace tidalcrust;
-using namespace tidalcrust::testing;
+using namespace tidalcrust::test_support;
 
 namespace {
 

@@ -9,7 +9,7 @@
 
 #include "base/errors.hpp"
 #include "io/atomic_file.hpp"
-#include "support/synthetic_checkpoint.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 namespace fs = std::filesystem;

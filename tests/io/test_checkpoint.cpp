@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "support/bad_checkpoints.hpp"
-#include "stages/build_stage.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
 #include "io/checkpoint_file.hpp"
 #include "model/config.hpp"
 #include "base/errors.hpp"
@@ -177,17 +178,17 @@ TEST(Checkpoint, EqualCheckpointsGiveIdenticalBytes) {
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(dir / "a.h5", c);
   write_checkpoint(dir / "b.h5", c);
-  const std::string a = read_bytes(dir / "a.h5");
+  const std::string a = read_file(dir / "a.h5");
   EXPECT_GT(a.size(), 1000u);
-  EXPECT_EQ(a, read_bytes(dir / "b.h5"));
+  EXPECT_EQ(a, read_file(dir / "b.h5"));
   // Reading back and writing again reproduces the same bytes too.
   write_checkpoint(dir / "c.h5", read_checkpoint(dir / "a.h5"));
-  EXPECT_EQ(a, read_bytes(dir / "c.h5"));
+  EXPECT_EQ(a, read_file(dir / "c.h5"));
   // A different state gives a different file.
   Checkpoint d = c;
   d.state.position[4] = std::nextafter(d.state.position[4], 1.0);
   write_checkpoint(dir / "d.h5", d);
-  EXPECT_NE(a, read_bytes(dir / "d.h5"));
+  EXPECT_NE(a, read_file(dir / "d.h5"));
 }
 
 TEST(Checkpoint, RecordWithManyFieldsUsesDenseAttributeStorageReproducibly) {
@@ -204,7 +205,7 @@ TEST(Checkpoint, RecordWithManyFieldsUsesDenseAttributeStorageReproducibly) {
     EXPECT_GT(h5::attribute_names(record.get()).size(), 8u);
   }
   write_checkpoint(dir / "b.h5", c);
-  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  EXPECT_EQ(read_file(dir / "a.h5"), read_file(dir / "b.h5"));
   expect_identical(c, read_checkpoint(dir / "a.h5"));
 }
 
@@ -293,7 +294,7 @@ TEST(Checkpoint, XdmfSidecarReferencesExistingDatasets) {
   const fs::path& dir = scratch.path;
   write_checkpoint(dir / "body.h5", synthetic_checkpoint());
   ASSERT_TRUE(fs::exists(dir / "body.xdmf"));
-  const std::string xml = read_bytes(dir / "body.xdmf");
+  const std::string xml = read_file(dir / "body.xdmf");
   for (const char* expected : {"<Xdmf Version=\"3.0\">", "TopologyType=\"Polyvertex\" NumberOfElements=\"5\"",
                                "TopologyType=\"Polyline\" NumberOfElements=\"10\" NodesPerElement=\"2\"",
                                "TopologyType=\"Triangle\" NumberOfElements=\"4\"", "Name=\"failed\"",
@@ -311,7 +312,7 @@ TEST(Checkpoint, XdmfSidecarReferencesExistingDatasets) {
   EXPECT_GE(references, 11);
   // Equal checkpoints give equal sidecars too.
   write_checkpoint(dir / "again.h5", synthetic_checkpoint());
-  std::string again = read_bytes(dir / "again.xdmf");
+  std::string again = read_file(dir / "again.xdmf");
   EXPECT_EQ(std::regex_replace(again, std::regex("again\\.h5"), "body.h5"), xml);
 }
 
@@ -351,14 +352,14 @@ TEST(Checkpoint, ReplacingAValidFileGoesThroughRenameNeverInPlace) {
   const fs::path& dir = scratch.path;
   const Checkpoint first = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", first);
-  const std::string first_bytes = read_bytes(dir / "c.h5");
+  const std::string first_bytes = read_file(dir / "c.h5");
   // A second name for the old inode: an in-place rewrite would change what it shows.
   fs::create_hard_link(dir / "c.h5", dir / "old_inode.h5");
   Checkpoint second = first;
   second.state.step += 1;
   second.state.time += second.stage.clock.dt;
   write_checkpoint(dir / "c.h5", second);
-  EXPECT_EQ(read_bytes(dir / "old_inode.h5"), first_bytes);
+  EXPECT_EQ(read_file(dir / "old_inode.h5"), first_bytes);
   EXPECT_EQ(read_checkpoint(dir / "c.h5").state.step, second.state.step);
   EXPECT_TRUE(tmp_files_in(dir).empty());
 }
@@ -381,15 +382,15 @@ TEST(Checkpoint, FailedWriteLeavesExistingFileUntouched) {
   const fs::path& dir = scratch.path;
   const Checkpoint first = synthetic_checkpoint();
   write_checkpoint(dir / "c.h5", first);
-  const std::string before = read_bytes(dir / "c.h5");
-  const std::string sidecar_before = read_bytes(dir / "c.xdmf");
+  const std::string before = read_file(dir / "c.h5");
+  const std::string sidecar_before = read_file(dir / "c.xdmf");
   Checkpoint second = first;
   second.state.step += 1;
   // The write runs in a child process whose file-size limit is far below a checkpoint's size:
   // every write(2) past it fails with EFBIG, as on a full disk.
   EXPECT_EXIT(write_with_file_size_limit(dir / "c.h5", second, 4096), ::testing::ExitedWithCode(3), "");
-  EXPECT_EQ(read_bytes(dir / "c.h5"), before);
-  EXPECT_EQ(read_bytes(dir / "c.xdmf"), sidecar_before);
+  EXPECT_EQ(read_file(dir / "c.h5"), before);
+  EXPECT_EQ(read_file(dir / "c.xdmf"), sidecar_before);
   EXPECT_TRUE(tmp_files_in(dir).empty()) << tmp_files_in(dir).front();
   EXPECT_TRUE(is_valid_checkpoint(dir / "c.h5"));
   // Without write permission on the folder (not testable as root, who may write anyway).
@@ -397,7 +398,7 @@ TEST(Checkpoint, FailedWriteLeavesExistingFileUntouched) {
     fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
     EXPECT_THROW(write_checkpoint(dir / "c.h5", second), InputError);
     fs::permissions(dir, fs::perms::owner_all);
-    EXPECT_EQ(read_bytes(dir / "c.h5"), before);
+    EXPECT_EQ(read_file(dir / "c.h5"), before);
     EXPECT_TRUE(tmp_files_in(dir).empty());
   }
 }
@@ -417,12 +418,12 @@ TEST(Checkpoint, InconsistentCheckpointIsNotWritten) {
 TEST(Checkpoint, BuiltQuickBodyRoundTripsAndWritesReproducibly) {
   const ScratchFolder scratch("built_body");
   const fs::path& dir = scratch.path;
-  const Config config = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml");
-  Checkpoint c = build_stage(config);
+  const Config config = quick_config();
+  Checkpoint c = quick_built();
   c.config_toml = to_toml(config);
   write_checkpoint(dir / "a.h5", c);
   write_checkpoint(dir / "b.h5", c);
-  EXPECT_EQ(read_bytes(dir / "a.h5"), read_bytes(dir / "b.h5"));
+  EXPECT_EQ(read_file(dir / "a.h5"), read_file(dir / "b.h5"));
   const Checkpoint back = read_checkpoint(dir / "a.h5");
   expect_identical(c, back);
   EXPECT_EQ(back.body.particle_count(), 1042u);

@@ -4,6 +4,7 @@
 
 #include "model/config.hpp"
 #include "model/stage_fingerprint.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 
@@ -20,7 +21,7 @@ Fingerprints of(const Config& c) {
 
 /// Which fingerprints change when `assignment` is applied to paper-T: "b s r e" letters.
 std::string changed_by(const std::string& assignment) {
-  Config base = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/paper-T.toml");
+  Config base = load_config(test_support::workflow_file("paper-T.toml"));
   Config changed = base;
   apply_override(changed, assignment);
   const Fingerprints a = of(base), b = of(changed);
@@ -53,7 +54,7 @@ TEST(StageFingerprint, EachValueReachesExactlyTheStagesThatReadIt) {
 }
 
 TEST(StageFingerprint, FirstDifferenceNamesTheKey) {
-  Config a = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/paper-T.toml");
+  Config a = load_config(test_support::workflow_file("paper-T.toml"));
   Config b = a;
   apply_override(b, "interior.count=1500");
   EXPECT_EQ(first_difference(build_fingerprint(a), build_fingerprint(b)),

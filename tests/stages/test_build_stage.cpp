@@ -6,6 +6,7 @@
 #include <set>
 
 #include "stages/build_stage.hpp"
+#include "support/files.hpp"
 #include "support/force_test_bodies.hpp"
 #include "model/derived_quantities.hpp"
 #include "base/errors.hpp"
@@ -16,7 +17,7 @@ using namespace tidalcrust;
 namespace {
 
 /// Shell level 2 (162 nodes) and ~200 interior nodes.
-Config small_config() { return tidalcrust::testing::small_body_config(); }
+Config small_config() { return test_support::small_body_config(); }
 
 Vec3 at(const Checkpoint& c, std::int32_t i) { return vec3_at(c.state.position, static_cast<std::size_t>(i)); }
 
@@ -190,9 +191,7 @@ TEST(BuildStage, ImpossibleConfigurationsNameTheKey) {
 }
 
 namespace {
-Config workflow(const char* name) {
-  return load_config(std::filesystem::path(TIDALCRUST_SOURCE_DIR) / "workflows" / name);
-}
+Config workflow(const char* name) { return load_config(test_support::workflow_file(name)); }
 }  // namespace
 
 // paper-T builds in a few hundredths of a second: Table 3, T-series column.

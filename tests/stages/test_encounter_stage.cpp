@@ -24,42 +24,18 @@
 #include "stages/relax_stage.hpp"
 #include "io/state_hash.hpp"
 #include "stages/stretch_stage.hpp"
-#include "support/synthetic_checkpoint.hpp"
 #include "physics/two_body_orbit.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
 
 namespace tidalcrust {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace test_support;
 
-Config quick_config() { return load_config(fs::path(TIDALCRUST_SOURCE_DIR) / "workflows" / "quick.toml"); }
-
-StepLoopOptions quiet() {
-  StepLoopOptions options;
-  options.quiet = true;
-  return options;
-}
-
-/// The quick body built, stretched and relaxed (without the stability probe), once.
-const Checkpoint& quick_parent() {
-  static const Checkpoint parent = [] {
-    Config config = quick_config();
-    config.relax.stability_probe = false;
-    Checkpoint c = begin_relax(stretch_stage(build_stage(config), config), config);
-    EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
-    return c;
-  }();
-  return parent;
-}
-
-/// One scratch folder per test binary process, removed at exit.
-fs::path scratch(const std::string& name) {
-  static const test_support::ScratchFolder root("encounter");
-  const fs::path dir = root.path / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+/// The parent of the encounters: the relaxed quick body (its stability probe is not needed here).
+const Checkpoint& quick_parent() { return quick_relaxed(false); }
 
 /// The quick "strong" encounter (the T5 orbit: M2 = 0.5, q = 1.84, V_q = 1.6) run straight through on 2 threads,
 /// with its snapshot files, once per test binary.
@@ -72,15 +48,16 @@ struct StrongRun {
 };
 
 const StrongRun& strong_run() {
+  static const ScratchFolder straight_folder("encounter_straight");
   static const StrongRun run = [] {
     StrongRun r;
     r.config = quick_config();
     r.spec = r.config.find_encounter("strong");
     r.begun = begin_encounter(quick_parent(), r.config, r.spec);
     r.done = r.begun;
-    r.output = scratch("straight") / "strong.h5";
+    r.output = straight_folder.path / "strong.h5";
     omp_set_num_threads(2);
-    EXPECT_EQ(run_encounter(r.done, r.config, quiet(), r.output), LoopOutcome::finished);
+    EXPECT_EQ(run_encounter(r.done, r.config, quiet_loop(), r.output), LoopOutcome::finished);
     return r;
   }();
   return run;
@@ -322,11 +299,12 @@ TEST(EncounterStage, ResumedRunIsBitIdentical) {
   ASSERT_LT(inside, at_failure);
   ASSERT_LT(at_failure, late);
 
-  const fs::path dir = scratch("resume");
+  const ScratchFolder scratch("encounter_resume");
+  const fs::path& dir = scratch.path;
   const fs::path output = dir / "strong.h5";
   Checkpoint c = begin_encounter(quick_parent(), r.config, r.spec);
   for (std::int64_t stop : {inside, at_failure, late}) {
-    StepLoopOptions options = quiet();
+    StepLoopOptions options = quiet_loop();
     options.stop_after_step = stop;
     options.mid_checkpoint = dir / "strong.mid.h5";
     ASSERT_EQ(run_encounter(c, r.config, options, output), LoopOutcome::interrupted);
@@ -335,7 +313,7 @@ TEST(EncounterStage, ResumedRunIsBitIdentical) {
     EXPECT_EQ(c.state.step, stop);
     EXPECT_FALSE(c.stage.complete);
   }
-  ASSERT_EQ(run_encounter(c, r.config, quiet(), output), LoopOutcome::finished);
+  ASSERT_EQ(run_encounter(c, r.config, quiet_loop(), output), LoopOutcome::finished);
 
   EXPECT_EQ(state_hash(c.state), state_hash(r.done.state));
   expect_same_failures(c.observables.failures, r.done.observables.failures);
@@ -351,7 +329,7 @@ TEST(EncounterStage, SameBitsOnOneAndTwoThreads) {
   const StrongRun& r = strong_run();  // 2 threads
   Checkpoint c = begin_encounter(quick_parent(), r.config, r.spec);
   omp_set_num_threads(1);
-  const LoopOutcome outcome = run_encounter(c, r.config, quiet());
+  const LoopOutcome outcome = run_encounter(c, r.config, quiet_loop());
   omp_set_num_threads(2);
   ASSERT_EQ(outcome, LoopOutcome::finished);
   EXPECT_EQ(state_hash(c.state), state_hash(r.done.state));
@@ -421,7 +399,7 @@ TEST(EncounterStage, BadParametersAreRejected) {
 
   // run_encounter refuses anything but an encounter checkpoint.
   Checkpoint relaxed = parent;
-  EXPECT_THROW(run_encounter(relaxed, config, quiet()), InputError);
+  EXPECT_THROW(run_encounter(relaxed, config, quiet_loop()), InputError);
 }
 
 }  // namespace

@@ -14,14 +14,14 @@
 #include "io/state_hash.hpp"
 #include "io/stop_signal.hpp"
 #include "stages/stretch_stage.hpp"
-#include "support/synthetic_checkpoint.hpp"
 #include "io/checkpoint_file.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
 
 using namespace tidalcrust;
+using namespace tidalcrust::test_support;
 
 namespace {
-
-Config quick_config() { return load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml"); }
 
 /// quick.toml with a short relaxation: 60 steps (creep phase 40, settle 20), rest lengths
 /// every 10 steps, hinges every 25, probe 20 steps.
@@ -34,36 +34,9 @@ Config short_config() {
   return c;
 }
 
-const Checkpoint& quick_built() {
-  static const Checkpoint built = build_stage(quick_config());
-  return built;
-}
-
-const Checkpoint& quick_stretched() {
-  static const Checkpoint stretched = stretch_stage(quick_built(), quick_config());
-  return stretched;
-}
-
-StepLoopOptions quiet() {
-  StepLoopOptions o;
-  o.quiet = true;
-  return o;
-}
-
-/// The quick body relaxed for the full T = 3 with the stability probe: computed once.
-const Checkpoint& quick_relaxed() {
-  static const Checkpoint relaxed = [] {
-    const Config config = quick_config();
-    Checkpoint c = begin_relax(quick_stretched(), config);
-    EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
-    return c;
-  }();
-  return relaxed;
-}
-
 Checkpoint run_straight(const Config& config) {
   Checkpoint c = begin_relax(quick_stretched(), config);
-  EXPECT_EQ(run_relax(c, config, quiet()), LoopOutcome::finished);
+  EXPECT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);
   return c;
 }
 
@@ -71,7 +44,7 @@ std::string relax_error(const Checkpoint& c, const Config& config) {
   try {
     Checkpoint copy = c;
     if (std::holds_alternative<RelaxRecord>(c.stage.record))
-      run_relax(copy, config, quiet());
+      run_relax(copy, config, quiet_loop());
     else
       begin_relax(c, config);
   } catch (const InputError& e) {
@@ -158,7 +131,7 @@ TEST(RelaxStage, CrustIsExactlyStressFreeWhenTheCreepPhaseEnds) {
   Checkpoint c = begin_relax(quick_stretched(), config);
   const std::int64_t creep_end = c.stage.as<RelaxRecord>().creep_end_step;
   EXPECT_EQ(creep_end, c.stage.clock.start_step + 40);
-  StepLoopOptions o = quiet();
+  StepLoopOptions o = quiet_loop();
   o.stop_after_step = creep_end;
   ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted);
   EXPECT_EQ(max_abs_shell_strain(c.body, c.state), 0.0);
@@ -172,7 +145,7 @@ TEST(RelaxStage, CrustIsExactlyStressFreeWhenTheCreepPhaseEnds) {
 TEST(RelaxStage, ShellRestLengthsCreepOnTheirStepSchedule) {
   const Config config = short_config();
   Checkpoint c = begin_relax(quick_stretched(), config);
-  StepLoopOptions o = quiet();
+  StepLoopOptions o = quiet_loop();
   o.stop_after_step = c.stage.clock.start_step + 19;  // just before the second update
   run_relax(c, config, o);
   const std::vector<double> before = c.state.springs.rest_length;
@@ -204,12 +177,12 @@ TEST(RelaxStage, SameBitsWithOneAndTwoThreads) {
 TEST(RelaxStage, ResumedRunEqualsStraightRunBitForBit) {
   const Config config = short_config();
   const Checkpoint straight = run_straight(config);
-  const test_support::ScratchFolder scratch("relax_resume");
+  const ScratchFolder scratch("relax_resume");
   const auto& dir = scratch.path;
   // k = 25: inside a rest-length interval (updates at 20 and 30) and a hinge interval.
   for (std::int64_t k : {25, 45, 65}) {  // creep phase, settle phase, stability probe
     Checkpoint c = begin_relax(quick_stretched(), config);
-    StepLoopOptions o = quiet();
+    StepLoopOptions o = quiet_loop();
     o.mid_checkpoint = dir / "mid.h5";
     o.stop_after_step = c.stage.clock.start_step + k;
     ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted) << k;
@@ -231,7 +204,7 @@ TEST(RelaxStage, ProbeCountsFailuresOfAPrestressedCrustWithoutChangingTheBody) {
   for (std::size_t n = 0; n < c.body.spring_count(); n += 4)
     if (c.body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell)) c.state.springs.rest_length[n] *= 0.99;
   const std::string hash = state_hash(c.state);
-  const ProbeResult p = run_stability_probe(c, config, 0.003, quiet());
+  const ProbeResult p = run_stability_probe(c, config, 0.003, quiet_loop());
   EXPECT_FALSE(p.interrupted);
   EXPECT_EQ(p.failures, 20 / config.encounter.fail_interval);  // one per check: every check fails one
   EXPECT_GT(p.max_shell_tension, 0.009);
@@ -251,7 +224,7 @@ TEST(RelaxStage, RefusesWrongStagesAndChangedConfiguration) {
   Checkpoint stretched = quick_stretched();
   msg = "";
   try {
-    run_relax(stretched, config, quiet());
+    run_relax(stretched, config, quiet_loop());
   } catch (const InputError& e) {
     msg = e.what();
   }

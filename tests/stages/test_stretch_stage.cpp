@@ -13,23 +13,12 @@
 #include "io/state_hash.hpp"
 #include "stages/step_loop.hpp"
 #include "stages/stretch_stage.hpp"
+#include "support/quick_workflow.hpp"
 
 using namespace tidalcrust;
+using namespace tidalcrust::test_support;
 
 namespace {
-
-Config quick_config() { return load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/quick.toml"); }
-
-/// The quick body, built once for all tests of this file.
-const Checkpoint& quick_built() {
-  static const Checkpoint built = build_stage(quick_config());
-  return built;
-}
-
-const Checkpoint& quick_stretched() {
-  static const Checkpoint stretched = stretch_stage(quick_built(), quick_config());
-  return stretched;
-}
 
 /// Mean a . r_hat over the shell nodes, recomputed independently of the stage.
 double mean_radial_shell_acceleration(const Checkpoint& c, const Config& config) {

@@ -1,14 +1,12 @@
 #pragma once
-// Damaged copies of a valid checkpoint, one per failure mode that read_checkpoint must reject,
-// each with the text its error message must contain (besides the file name).
+// Damaged copies of a valid checkpoint that read_checkpoint must reject (make_bad_checkpoints).
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
-#include "io/hdf5_handles.hpp"
 #include "io/checkpoint_file.hpp"
+#include "io/hdf5_handles.hpp"
+#include "support/files.hpp"
 
 namespace tidalcrust::test_support {
 
@@ -17,16 +15,6 @@ struct BadCheckpoint {
   std::filesystem::path file;
   std::string expected_message;  ///< substring of the InputError message (dataset or cause)
 };
-
-inline std::string read_bytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-inline void write_bytes(const std::filesystem::path& file, const std::string& bytes) {
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
 
 /// Opens a copy of `valid` named `name` in `folder` read-write and lets `edit` change it.
 template <typename Edit>
@@ -41,21 +29,22 @@ std::filesystem::path edited_copy(const std::filesystem::path& valid, const std:
   return file;
 }
 
-/// Makes every damaged variant of the valid checkpoint `valid` inside `folder`.
+/// Makes every damaged variant of the valid checkpoint `valid` inside `folder`: one per failure
+/// mode, each with the text its error message must contain (besides the file name).
 inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::path& valid,
                                                        const std::filesystem::path& folder) {
   std::vector<BadCheckpoint> bad;
-  const std::string bytes = read_bytes(valid);
+  const std::string bytes = read_file(valid);
 
   bad.push_back({"missing file", folder / "missing.h5", "no such checkpoint file"});
 
-  write_bytes(folder / "empty.h5", "");
+  write_file(folder / "empty.h5", "");
   bad.push_back({"empty file", folder / "empty.h5", "not an HDF5 file or truncated"});
 
-  write_bytes(folder / "truncated.h5", bytes.substr(0, bytes.size() / 2));
+  write_file(folder / "truncated.h5", bytes.substr(0, bytes.size() / 2));
   bad.push_back({"truncated file", folder / "truncated.h5", "not an HDF5 file or truncated"});
 
-  write_bytes(folder / "text.h5", "this is not HDF5\n");
+  write_file(folder / "text.h5", "this is not HDF5\n");
   bad.push_back({"text file", folder / "text.h5", "not an HDF5 file or truncated"});
 
   haddr_t position_offset;
@@ -65,7 +54,7 @@ inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::pa
   }
   std::string flipped = bytes;
   flipped.at(position_offset + 8 * 4 + 3) ^= 0x10;  // inside position value 4 (particle 1, y)
-  write_bytes(folder / "flipped.h5", flipped);
+  write_file(folder / "flipped.h5", flipped);
   bad.push_back({"flipped byte in positions", folder / "flipped.h5", "state_hash mismatch"});
 
   bad.push_back({"missing dataset",

@@ -1,15 +1,13 @@
 #pragma once
-// Runs the tidalcrust binary as a user would, capturing exit code, stdout and stderr.
+// Runs the tidalcrust binary as a user would (run_cli: exit code, stdout, stderr; quoted paths).
 #include <fmt/format.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include "support/files.hpp"
 
 namespace tidalcrust::test_support {
 
@@ -19,28 +17,21 @@ struct CliResult {
   std::string err;  ///< stderr
 };
 
-inline std::string read_text_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+/// `path` in single quotes, for an argument of run_cli.
+inline std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
-/// Runs `tidalcrust ARGS` through the shell (ARGS may quote paths), from the current folder.
+/// Runs `tidalcrust ARGS` through the shell (ARGS may quote paths), from the current folder,
+/// with stdin from /dev/null.
 inline CliResult run_cli(const std::string& args) {
-  static std::atomic<int> counter{0};
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("tidalcrust_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  std::filesystem::create_directories(dir);
-  const auto out = dir / "out.txt", err = dir / "err.txt";
+  const ScratchFolder capture("cli");
+  const auto out = capture.path / "out.txt", err = capture.path / "err.txt";
   const std::string command =
-      fmt::format("'{}' {} >'{}' 2>'{}' </dev/null", TIDALCRUST_EXE, args, out.string(), err.string());
+      fmt::format("'{}' {} >{} 2>{} </dev/null", TIDALCRUST_EXE, args, quoted(out), quoted(err));
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.out = read_text_file(out);
-  result.err = read_text_file(err);
-  std::filesystem::remove_all(dir);
+  result.out = read_file(out);
+  result.err = read_file(err);
   return result;
 }
 

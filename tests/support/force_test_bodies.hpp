@@ -9,7 +9,7 @@
 #include "model/config.hpp"
 #include "base/random.hpp"
 
-namespace tidalcrust::testing {
+namespace tidalcrust::test_support {
 
 inline Config small_body_config() {
   return parse_config(R"(
@@ -60,4 +60,4 @@ inline ForceOptions damped(double gamma) {
 /// A clock that starts at the state's step and time with time step dt (t_grav).
 inline StepClock clock_at(const State& state, double dt) { return StepClock{state.time, state.step, dt}; }
 
-}  // namespace tidalcrust::testing
+}  // namespace tidalcrust::test_support

@@ -1,18 +1,13 @@
 #pragma once
-// A small hand-made checkpoint that exercises every field of the file layout: a tetrahedron of
-// shell nodes around one interior node, springs of all three kinds (one failed), hinges, faces,
-// a perturber, failure events, timeseries rows, scalars and labels.
+// A small hand-made checkpoint that sets every field of the file layout (synthetic_checkpoint).
 #include <cmath>
-#include <filesystem>
-#include <string>
-#include <system_error>
-
-#include <unistd.h>
 
 #include "model/checkpoint.hpp"
 
 namespace tidalcrust::test_support {
 
+/// A tetrahedron of shell nodes around one interior node, springs of all three kinds (one
+/// failed), hinges, faces, a perturber, failure events, timeseries rows, scalars and labels.
 inline Checkpoint synthetic_checkpoint() {
   Checkpoint c;
   EncounterRecord record;
@@ -70,23 +65,5 @@ inline Checkpoint synthetic_checkpoint() {
                               {2.2, 1, 0.011, {0, -1e-17, 0}, {0, 1e-9, 0.2}, {2.9, -0.7, -3e-17}}};
   return c;
 }
-
-/// A fresh empty folder for one test's files, unique per process (test binaries of several
-/// worktrees may run at once), removed when the test ends.
-struct ScratchFolder {
-  std::filesystem::path path;
-  explicit ScratchFolder(const std::string& name)
-      : path(std::filesystem::temp_directory_path() /
-             ("tidalcrust_test_" + name + "_" + std::to_string(::getpid()))) {
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  ~ScratchFolder() {
-    std::error_code ignored;
-    std::filesystem::remove_all(path, ignored);
-  }
-};
 
 }  // namespace tidalcrust::test_support

@@ -1,6 +1,5 @@
 #pragma once
-// Small in-memory encounter checkpoints for the analysis tests: an icosphere shell around one
-// heavy interior particle at the centre.
+// Small in-memory encounter checkpoints for the analysis tests (synthetic_encounter, spring_between).
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -10,7 +9,7 @@
 #include "bodies/icosphere.hpp"
 #include "base/vec3.hpp"
 
-namespace tidalcrust::testing {
+namespace tidalcrust::test_support {
 
 /// Encounter checkpoint: particle 0 is an interior particle (mass 0.93) at the origin, then the
 /// shell nodes (total mass 0.07); shell springs along every face edge, a cross spring from the
@@ -70,4 +69,4 @@ inline std::int32_t spring_between(const Body& body, std::int32_t a, std::int32_
   return -1;
 }
 
-}  // namespace tidalcrust::testing
+}  // namespace tidalcrust::test_support

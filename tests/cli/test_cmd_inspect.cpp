@@ -1,0 +1,107 @@
+// `tidalcrust inspect` as a user runs it: JSON equal to the report, an aligned table, the counts
+// of a built body, and exit code 2 with one line for every kind of damaged file.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+#include "analysis/inspect_report.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/state_hash.hpp"
+#include "model/config.hpp"
+#include "support/bad_checkpoints.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
+#include "support/synthetic_checkpoint.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(InspectCli, JsonOfAWrittenCheckpoint) {
+  const ScratchFolder scratch("inspect_json");
+  const fs::path& dir = scratch.path;
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(dir / "enc.h5", c);
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
+  for (const char* key : {"\"counts\": {", "\"derived\": {", "\"conservation\": {", "\"perturber\": {",
+                          "\"springs_cross\": 4", "\"time\": 2.25", "\"step\": 1125"})
+    EXPECT_TRUE(contains(r.out, key)) << key;
+}
+
+TEST(InspectCli, TableIsAlignedAndNamesEveryKey) {
+  const ScratchFolder scratch("inspect_table");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "enc.h5", synthetic_checkpoint());
+  const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5"));
+  EXPECT_EQ(r.exit_code, 0);
+  // Every "key value" line has its value in one common column.
+  std::size_t column = 0;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    const auto gap = line.find("  ", line.find_first_not_of(' '));
+    if (gap == std::string::npos) continue;  // a section title
+    const auto value = line.find_first_not_of(' ', gap);
+    if (column == 0) column = value;
+    EXPECT_EQ(value, column) << line;
+  }
+  EXPECT_GT(column, 0u);
+  EXPECT_TRUE(contains(r.out, "state_hash" + std::string(column - 10, ' ') + state_hash(synthetic_checkpoint().state)))
+      << r.out;
+  EXPECT_TRUE(contains(r.out, "\ncounts\n  interior" + std::string(column - 10, ' ') + "1\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\nfailures\n")) << r.out;
+}
+
+TEST(InspectCli, BuiltQuickBodyCountsMatch) {
+  const ScratchFolder scratch("inspect_quick");
+  const fs::path& dir = scratch.path;
+  const Config config = quick_config();
+  Checkpoint c = quick_built();
+  c.config_toml = to_toml(config);
+  write_checkpoint(dir / "body.h5", c);
+  const CliResult r = run_cli("inspect " + quoted(dir / "body.h5") + " --json");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_TRUE(contains(r.out, "\"stage\": \"build\""));
+  EXPECT_TRUE(contains(r.out, fmt::format("\"interior\": {}", config.interior.count)));
+  EXPECT_TRUE(contains(r.out, "\"shell\": 642"));
+  EXPECT_TRUE(contains(r.out, "\"springs_shell\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"faces\": 1280"));
+  EXPECT_TRUE(contains(r.out, "\"hinges\": 1920"));
+  EXPECT_TRUE(contains(r.out, "\"failed\": 0"));
+  EXPECT_FALSE(contains(r.out, "\"E_I\": 0,"));  // a real interior has a modulus
+}
+
+TEST(InspectCli, BadFilesExitWithCode2AndAOneLineMessage) {
+  const ScratchFolder scratch("inspect_bad");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
+  for (const auto& bad : make_bad_checkpoints(dir / "valid.h5", dir)) {
+    const CliResult json = run_cli("inspect " + quoted(bad.file) + " --json");
+    EXPECT_EQ(json.exit_code, 2) << bad.what;
+    EXPECT_EQ(std::count(json.err.begin(), json.err.end(), '\n'), 1) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.file.string() + ": ")) << bad.what << ": " << json.err;
+    EXPECT_TRUE(contains(json.err, bad.expected_message)) << bad.what << ": " << json.err;
+    const CliResult stdout_only = run_cli("inspect " + quoted(bad.file));
+    EXPECT_EQ(stdout_only.exit_code, 2) << bad.what;
+    EXPECT_EQ(stdout_only.out, "") << bad.what;
+  }
+}
+
+TEST(InspectCli, UsageErrorsExitWithCode2) {
+  EXPECT_EQ(run_cli("inspect").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect a.h5 b.h5").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect --bogus x.h5").exit_code, 2);
+  EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
+}

@@ -1,0 +1,58 @@
+#pragma once
+// The quick workflow (workflows/quick.toml): its config, its body built, stretched, relaxed once.
+#include <stdexcept>
+
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+#include "stages/build_stage.hpp"
+#include "stages/relax_stage.hpp"
+#include "stages/step_loop.hpp"
+#include "stages/stretch_stage.hpp"
+#include "support/files.hpp"
+
+namespace tidalcrust::test_support {
+
+inline Config quick_config() { return load_config(workflow_file("quick.toml")); }
+
+/// Step loop options for tests: no progress lines, no checkpoint files.
+inline StepLoopOptions quiet_loop() {
+  StepLoopOptions options;
+  options.quiet = true;
+  return options;
+}
+
+/// The quick body as built (1042 particles).
+inline const Checkpoint& quick_built() {
+  static const Checkpoint built = build_stage(quick_config());
+  return built;
+}
+
+inline const Checkpoint& quick_stretched() {
+  static const Checkpoint stretched = stretch_stage(quick_built(), quick_config());
+  return stretched;
+}
+
+namespace detail {
+inline Checkpoint relax_quick_body(bool stability_probe) {
+  Config config = quick_config();
+  config.relax.stability_probe = stability_probe;
+  Checkpoint c = begin_relax(quick_stretched(), config);
+  if (run_relax(c, config, quiet_loop()) != LoopOutcome::finished)
+    throw std::runtime_error("relaxing the quick body was interrupted");
+  return c;
+}
+}  // namespace detail
+
+/// The quick body relaxed for the full relax.duration, as `run` relaxes it. Without the
+/// stability probe it takes about half the time and has the same state (the probe runs on a
+/// copy); only the probe fields of its RelaxRecord are empty.
+inline const Checkpoint& quick_relaxed(bool stability_probe = true) {
+  if (stability_probe) {
+    static const Checkpoint probed = detail::relax_quick_body(true);
+    return probed;
+  }
+  static const Checkpoint unprobed = detail::relax_quick_body(false);
+  return unprobed;
+}
+
+}  // namespace tidalcrust::test_support
