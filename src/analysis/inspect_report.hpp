@@ -1,5 +1,5 @@
 #pragma once
-// What `tidalcrust inspect` shows about one checkpoint (design.md "inspect --json"), built
+// What `tidalcrust inspect` shows about one checkpoint (README "Command line"), built
 // once from a Checkpoint and rendered either as JSON or as an aligned text table. Other parts
 // of the program extend it by adding sections (see add_failures_section).
 #include <concepts>

@@ -1,5 +1,5 @@
 #pragma once
-// The two kinds of failure a user can see, each with its exit code (design.md).
+// The two kinds of failure a user can see, each with its exit code (README "Command line").
 #include <stdexcept>
 #include <string>
 

@@ -20,7 +20,7 @@ struct CommonOptions {
 void add_common_options(cxxopts::Options& options);
 CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
 
-/// cxxopts 3.1 only accepts long options of two or more letters; the CLI has --q (design.md).
+/// cxxopts 3.1 only accepts long options of two or more letters; the CLI has --q (encounter).
 /// Rewrites "--x" to "-x" and "--x=V" to "-x" "V" for single-letter options (up to a "--").
 std::vector<std::string> spell_single_letter_long_options(int argc, char** argv);
 

@@ -1,5 +1,5 @@
 #pragma once
-// One function per subcommand of the command line (design.md "Command line").
+// One function per subcommand of the command line (README "Command line").
 // Each takes the arguments after the subcommand name (argv[0] is the subcommand) and returns
 // the exit code; bad input is thrown as InputError and turned into exit code 2 by main().
 

@@ -1,6 +1,6 @@
 #pragma once
 // Self-gravity of the body by direct summation over all pairs with Plummer softening
-// (design.md "Gravity"). Units: G = 1, masses M, lengths R, accelerations G M / R^2.
+// (softening = integrator.softening_fraction times the smallest initial spacing). Units: G = 1, masses M, lengths R, accelerations G M / R^2.
 #include <cmath>
 #include <cstddef>
 #include <vector>

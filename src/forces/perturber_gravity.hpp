@@ -1,6 +1,6 @@
 #pragma once
 // The point-mass perturber: it pulls every body particle and every particle pulls it back
-// (design.md). Same Plummer softening as the body's self-gravity (irrelevant at the encounter
+// (Newton's third law, so momentum is conserved). Same Plummer softening as the body's self-gravity (irrelevant at the encounter
 // distances q >= 1.4 R, but it keeps the pair law symmetric). Units: G = 1, masses M,
 // lengths R, accelerations G M / R^2.
 #include <array>

@@ -1,6 +1,6 @@
 #pragma once
 // The integrator: REBOUND's leapfrog, drift-kick-drift, second order and symplectic
-// (design.md). Units: time t_grav, lengths R, velocities sqrt(GM/R).
+// (Rein & Liu 2012, REBOUND; paper section 2). Units: time t_grav, lengths R, velocities sqrt(GM/R).
 #include <cstdint>
 #include <vector>
 

@@ -1,4 +1,4 @@
-// Checkpoint files: the HDF5 layout of design.md "Checkpoints" (H5MD 1.1 compatible), written
+// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (H5MD 1.1 compatible), written
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include "io/checkpoint_file.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The 128-bit fingerprint of a state (design.md "state_hash"): XXH3-128 of the canonical
+// The 128-bit fingerprint of a state (docs/determinism.md): XXH3-128 of the canonical
 // little-endian bytes of time, step, positions, velocities, spring rest lengths, stiffnesses,
 // failed flags, hinge rest angles and perturber state. Equal hashes = bitwise identical runs.
 #include <string>

@@ -2,7 +2,7 @@
 // The Keplerian two-body orbit of the perturber relative to the body, fixed by mu = G (M + M2),
 // the pericenter distance q and the speed at pericenter V_q (code units: mu = 1 + M2).
 //
-// Frame (design.md, maps): the orbital plane is the xy plane (the body's equator), the
+// Frame of the fracture maps: the orbital plane is the xy plane (the body's equator), the
 // pericenter direction is +y (longitude +pi/2, the subsatellite point at pericenter), and at
 // pericenter the perturber moves along -x, so the orbital angular momentum points along +z.
 // The perturber comes in from +x (true anomaly f < 0) and leaves toward -x (f > 0).
