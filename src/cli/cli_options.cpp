@@ -25,7 +25,7 @@ CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
   if (parsed.count("set")) common.overrides = parsed["set"].as<std::vector<std::string>>();
   common.threads = parsed["threads"].as<int>();
   common.dt_factor = parsed["dt-factor"].as<double>();
-  if (common.threads < 0) throw InputError(fmt::format("--threads must be >= 0, got {}", common.threads));
+  common.threads = checked_thread_count(common.threads);
   if (!std::isfinite(common.dt_factor) || common.dt_factor <= 0)
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", common.dt_factor));
   return common;
@@ -72,6 +72,13 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
   if (common.dt_factor != 1.0) scale_time_step(config, common.dt_factor);
   validate(config, "--set/--dt-factor");
   return config;
+}
+
+int checked_thread_count(int threads) {
+  if (threads < 0 || threads > max_threads)
+    throw InputError(fmt::format("--threads must be between 0 (the OpenMP default) and {}, got {}", max_threads,
+                                 threads));
+  return threads;
 }
 
 void apply_thread_count(int threads) {

@@ -34,6 +34,14 @@ cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char**
 Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
                       const CommonOptions& common);
 
+/// Largest --threads accepted: results never depend on the count, more threads than cores only
+/// wait on each other, and an OpenMP runtime asked for tens of thousands crashes.
+inline constexpr int max_threads = 256;
+
+/// `threads` if it is in [0, max_threads] (0: the OpenMP default); InputError naming --threads
+/// otherwise.
+int checked_thread_count(int threads);
+
 /// Sets the OpenMP thread count (0 leaves the default). Results never depend on it.
 void apply_thread_count(int threads);
 

@@ -39,8 +39,7 @@ int command_run(int argc, char** argv) {
   const double dt_factor = parsed["dt-factor"].as<double>();
   if (!std::isfinite(dt_factor) || dt_factor <= 0)
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
-  const int threads = parsed["threads"].as<int>();
-  if (threads < 0) throw InputError(fmt::format("--threads must be >= 0, got {}", threads));
+  const int threads = checked_thread_count(parsed["threads"].as<int>());
   std::vector<Encounter> encounters = config.encounters;
   if (parsed.count("only")) {
     encounters.clear();

@@ -6,12 +6,13 @@
 #include <exception>
 #include <string_view>
 
+#include "build_info.hpp"
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 
 namespace {
 
-void print_usage() {
+void print_usage(std::FILE* to) {
   std::fputs(
       "usage: tidalcrust COMMAND [OPTIONS]\n"
       "  run WORKFLOW.toml [--out DIR] [--threads N] [--dt-factor F] [--only NAME]...\n"
@@ -24,17 +25,27 @@ void print_usage() {
       "  compare A.h5 B.h5 [--json]\n"
       "  estimate [--body NAME | --mass KG --radius KM] [--json]\n"
       "  bench [--config WORKFLOW.toml] [--steps N] [--json]\n"
+      "  --version, --help\n"
       "Each command takes --help.\n",
-      stderr);
+      to);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace tidalcrust;
-  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
-    print_usage();
-    return argc < 2 ? exit_bad_input : exit_ok;
+  if (argc < 2) {
+    print_usage(stderr);
+    return exit_bad_input;
+  }
+  if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
+    print_usage(stdout);
+    return exit_ok;
+  }
+  if (std::strcmp(argv[1], "--version") == 0) {
+    fmt::print("tidalcrust {} (commit {}; {}; {})\n", build_info::version, build_info::git_commit, build_info::compiler,
+               build_info::build_flags);
+    return exit_ok;
   }
   const std::string_view name = argv[1];
   struct Entry {
@@ -62,6 +73,6 @@ int main(int argc, char** argv) {
     }
   }
   fmt::print(stderr, "tidalcrust: unknown command '{}'\n", name);
-  print_usage();
+  print_usage(stderr);
   return exit_bad_input;
 }

@@ -5,6 +5,8 @@
 
 #include "cli/cli_options.hpp"
 #include "base/errors.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
 
 using namespace tidalcrust;
 
@@ -37,4 +39,40 @@ TEST(CliOptions, ParsesDoubleDashSingleLetterOption) {
   argv.clear();
   for (auto& a : bad) argv.push_back(a.data());
   EXPECT_THROW(parse_arguments(options, static_cast<int>(argv.size()), argv.data()), InputError);
+}
+
+TEST(CliOptions, ThreadCountOutsideItsRangeIsABadInput) {
+  EXPECT_EQ(checked_thread_count(0), 0);
+  EXPECT_EQ(checked_thread_count(max_threads), max_threads);
+  EXPECT_THROW(checked_thread_count(-1), InputError);
+  EXPECT_THROW(checked_thread_count(max_threads + 1), InputError);
+}
+
+// Every command that takes --threads refuses 100000 with one line and exit 2 before any work
+// (OpenMP crashed when asked for that many).
+TEST(CliOptions, EveryCommandRefusesAHugeThreadCount) {
+  const test_support::ScratchFolder scratch("huge_threads");
+  const std::string quick = test_support::quoted(test_support::workflow_file("quick.toml"));
+  const std::string out = test_support::quoted(scratch.path / "x.h5");
+  for (const std::string& args :
+       {"run " + quick + " --out " + test_support::quoted(scratch.path / "run"), "build --config " + quick + " --out " + out,
+        "bench --config " + quick + " --steps 1"}) {
+    const auto r = test_support::run_cli(args + " --threads 100000");
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find("--threads must be between 0"), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(std::filesystem::is_empty(scratch.path));
+}
+
+TEST(CliOptions, HelpAndVersionGoToStandardOutput) {
+  const auto help = test_support::run_cli("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("usage: tidalcrust COMMAND"), std::string::npos) << help.out;
+  EXPECT_TRUE(help.err.empty()) << help.err;
+  const auto version = test_support::run_cli("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out.rfind("tidalcrust 0.1.0 (commit ", 0), 0u) << version.out;
+  const auto none = test_support::run_cli("");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("usage:"), std::string::npos);
 }
