@@ -7,7 +7,6 @@
 #include <cstring>
 #include <limits>
 
-#include "model/derived_quantities.hpp"
 #include "base/errors.hpp"
 #include "forces/perturber_gravity.hpp"
 #include "forces/spring_force.hpp"
@@ -237,7 +236,7 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   return alarms;
 }
 
-std::string ForceField::describe(const ForceAlarms& alarms, const double* position, const State& state) const {
+std::string ForceField::describe(const ForceAlarms& alarms, const double* position) const {
   std::string what;
   if (alarms.collapsed_hinge >= 0) {
     const auto h = static_cast<std::size_t>(alarms.collapsed_hinge);
@@ -264,19 +263,7 @@ std::string ForceField::describe(const ForceAlarms& alarms, const double* positi
   } else {
     what = "no force alarm";
   }
-  return what + "; " + likely_blow_up_cause(body_, state);
-}
-
-std::string likely_blow_up_cause(const Body& body, const State& state) {
-  const double bound = derive_quantities(body, state, 1.0).dt_max;
-  if (bound > 0 && state.dt > bound)
-    return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
-                       "(eq. 13: dt_max = {:.4g})",
-                       state.dt, bound);
-  return fmt::format("dt = {:.4g} is within the spring stability bound (eq. 13: dt_max = {:.4g}); likely cause: "
-                     "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
-                     "or dt too close to the bound",
-                     state.dt, bound);
+  return what;
 }
 
 }  // namespace tidalcrust

@@ -79,8 +79,9 @@ class ForceField {
   const std::vector<double>& spring_forces() const { return spring_force_; }  ///< [Ns*3] G M^2/R^2
   const std::vector<double>& hinge_forces() const { return hinge_force_; }    ///< [Nh*4*3] G M^2/R^2
 
-  /// A sentence naming the element that went wrong and a likely cause, for SimulationError.
-  std::string describe(const ForceAlarms& alarms, const double* position, const State& state) const;
+  /// A sentence naming the element that went wrong at positions [N*3], for SimulationError
+  /// (integrate/blow_up.hpp adds the likely cause).
+  std::string describe(const ForceAlarms& alarms, const double* position) const;
 
   const Body& body() const { return body_; }
   const ForceOptions& options() const { return options_; }
@@ -110,9 +111,5 @@ class ForceField {
   std::vector<double> cached_rest_angle_;  ///< rest angles the half-angle table was made from
   std::vector<HalfRestAngle> half_rest_;
 };
-
-/// The likely cause of a blow-up, for error messages: compares state.dt with the stability
-/// bound of the stiffest spring (eq. 13, derive_quantities().dt_max).
-std::string likely_blow_up_cause(const Body& body, const State& state);
 
 }  // namespace tidalcrust

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "base/errors.hpp"
+#include "integrate/blow_up.hpp"
 
 namespace tidalcrust {
 
@@ -40,8 +41,9 @@ void Leapfrog::step(State& state) {
   // Kick with forces at the half-step positions and start-of-step velocities.
   const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, acc_);
   if (alarms.any())
-    throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}", state.step + 1,
-                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw, state)));
+    throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
+                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
+                                      likely_blow_up_cause(forces_.body(), state)));
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {
     vw[k] = v[k] + dt * a[k];
