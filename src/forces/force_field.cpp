@@ -9,7 +9,6 @@
 
 #include "base/errors.hpp"
 #include "forces/perturber_gravity.hpp"
-#include "forces/spring_force.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -47,7 +46,10 @@ ForceOptions force_options(const Config& config) {
 }
 
 ForceField::ForceField(const Body& body, ForceOptions options)
-    : body_(body), options_(options), gravity_(body.mass, body.softening) {
+    : body_(body),
+      options_(options),
+      gravity_(body.mass, body.softening),
+      cross_{options.cross_strain_scale, options.cross_min_force_factor} {
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
   if (body.spring_kind.size() != ns)
     throw InputError(fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
@@ -76,48 +78,59 @@ ForceField::ForceField(const Body& body, ForceOptions options)
   hinge_force_.assign(12 * nh, 0.0);
 }
 
-void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
-                              const SpringState& springs) {
+template <typename Visit>
+void ForceField::for_each_spring(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                                 const SpringState& springs, Visit&& visit) const {
   const auto* ends = body_.springs.data();
   const double* rest = springs.rest_length.data();
   const double* stiffness = springs.stiffness.data();
-  const double* damping = springs.damping.data();
+  const double* damping = springs.damping.data();  // gamma of each spring
   const double* mu = reduced_mass_.data();
   const std::uint8_t* nonlinear = nonlinear_.data();
-  const double strain_scale = options_.cross_strain_scale, min_factor = options_.cross_min_force_factor;
-  double* force = spring_force_.data();
   for (std::size_t s = begin; s < end; ++s) {
     const std::size_t i = 3 * static_cast<std::size_t>(ends[s][0]), j = 3 * static_cast<std::size_t>(ends[s][1]);
-    const double dx = position[i] - position[j], dy = position[i + 1] - position[j + 1],
-                 dz = position[i + 2] - position[j + 2];
-    const double dvx = velocity[i] - velocity[j], dvy = velocity[i + 1] - velocity[j + 1],
-                 dvz = velocity[i + 2] - velocity[j + 2];
-    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double factor =
-        nonlinear[s] ? cross_spring_factor((length - rest[s]) / rest[s], strain_scale, min_factor) : 1.0;
-    const double c = spring_force_coefficient(length, dx * dvx + dy * dvy + dz * dvz, rest[s], stiffness[s],
-                                              damping[s] * mu[s], factor);
-    force[3 * s] = -c * dx;
-    force[3 * s + 1] = -c * dy;
-    force[3 * s + 2] = -c * dz;
+    const double d[3] = {position[i] - position[j], position[i + 1] - position[j + 1],
+                         position[i + 2] - position[j + 2]};
+    const double dv[3] = {velocity[i] - velocity[j], velocity[i + 1] - velocity[j + 1],
+                          velocity[i + 2] - velocity[j + 2]};
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const SpringEvaluator spring(rest[s], stiffness[s], damping[s] * mu[s], nonlinear[s] ? &cross_ : nullptr);
+    visit(s, d, spring.force_and_energy(length, d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2]));
   }
+}
+
+template <typename Visit>
+void ForceField::for_each_hinge(std::size_t begin, std::size_t end, const double* position, const HingeState& hinges,
+                                Visit&& visit) const {
+  const auto* corners = body_.hinges.data();
+  const double* stiffness = hinges.stiffness.data();  // k_e of each hinge
+  const HalfRestAngle* rest = half_rest_.data();
+  for (std::size_t h = begin; h < end; ++h) {
+    const auto& c = corners[h];
+    visit(h, HingeEvaluator(rest[h], stiffness[h])
+                 .force_and_energy(point(position, c[0]), point(position, c[1]), point(position, c[2]),
+                                   point(position, c[3])));
+  }
+}
+
+void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                              const SpringState& springs) {
+  double* force = spring_force_.data();
+  for_each_spring(begin, end, position, velocity, springs,
+                  [force](std::size_t s, const double* d, const SpringForceEnergy& spring) {
+                    for (std::size_t k = 0; k < 3; ++k) force[3 * s + k] = -spring.coefficient * d[k];
+                  });
 }
 
 std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position,
                                      const HingeState& hinges) {
-  const auto* corners = body_.hinges.data();
-  const double* stiffness = hinges.stiffness.data();
-  const HalfRestAngle* rest = half_rest_.data();
   double* force = hinge_force_.data();
   std::int64_t collapsed = -1;
-  for (std::size_t h = begin; h < end; ++h) {
-    const auto& c = corners[h];
-    const HingeForces f = tidalcrust::hinge_forces(point(position, c[0]), point(position, c[1]),
-                                                   point(position, c[2]), point(position, c[3]), rest[h], stiffness[h]);
+  for_each_hinge(begin, end, position, hinges, [force, &collapsed](std::size_t h, const HingeForces& f) {
     if (f.collapsed && collapsed < 0) collapsed = static_cast<std::int64_t>(h);
     for (std::size_t v = 0; v < 4; ++v)
       for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
-  }
+  });
   return collapsed;
 }
 
@@ -176,9 +189,8 @@ std::int64_t ForceField::compute_hinge_forces(const double* position, const Hing
   return collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
 }
 
-ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
-                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
-  const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
+void ForceField::check_sizes(const SpringState& springs, const HingeState& hinges) const {
+  const std::size_t ns = body_.spring_count(), nh = body_.hinge_count();
   if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || springs.damping.size() != ns ||
       hinges.rest_angle.size() != nh || hinges.stiffness.size() != nh)
     throw InputError(fmt::format("state does not match the body: {} springs and {} hinges in the body, "
@@ -186,6 +198,12 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
                                  "{} hinge stiffnesses in the state",
                                  ns, nh, springs.rest_length.size(), springs.stiffness.size(),
                                  springs.damping.size(), hinges.rest_angle.size(), hinges.stiffness.size()));
+}
+
+ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
+                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
+  check_sizes(springs, hinges);
+  const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
   out.body.resize(3 * n);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;

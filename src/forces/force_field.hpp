@@ -3,6 +3,11 @@
 // hinges (eq. 22), self-gravity (direct sum, Plummer softening) and the perturber, which
 // pulls every particle and is pulled back. Units: G = M = R = 1, accelerations G M / R^2.
 //
+// Each law is an evaluator of force AND energy for one element (SpringEvaluator,
+// HingeEvaluator, PlummerPairEvaluator); the loops over springs and hinges are written once
+// here. The textbook step (integrate/textbook_step.hpp) evaluates the same laws in its own
+// plain loops.
+//
 // Determinism: every spring and hinge force is computed into its own slot, then each particle
 // GATHERS its forces over a fixed incidence list (springs in index order, then hinges in
 // index order), divides by its mass and adds gravity, then the perturber's pull. No atomics,
@@ -17,6 +22,7 @@
 #include "model/config.hpp"
 #include "forces/gravity.hpp"
 #include "forces/hinge_force.hpp"
+#include "forces/spring_force.hpp"
 #include "model/state.hpp"
 
 namespace tidalcrust {
@@ -87,7 +93,19 @@ class ForceField {
   const ForceOptions& options() const { return options_; }
 
  private:
+  /// Throws InputError unless the state's per-spring and per-hinge arrays match the body.
+  void check_sizes(const SpringState& springs, const HingeState& hinges) const;
   void refresh_half_rest_angles(const HingeState& hinges);
+  /// THE loop over springs [begin, end): builds each spring's evaluator from the body and the
+  /// state and calls visit(s, d, result) with d = x_i - x_j (double[3]) and its SpringForceEnergy.
+  template <typename Visit>
+  void for_each_spring(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                       const SpringState& springs, Visit&& visit) const;
+  /// THE loop over hinges [begin, end): calls visit(h, HingeForces) with each hinge's forces and
+  /// energy. Needs refresh_half_rest_angles() first.
+  template <typename Visit>
+  void for_each_hinge(std::size_t begin, std::size_t end, const double* position, const HingeState& hinges,
+                      Visit&& visit) const;
   void spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
                     const SpringState& springs);
   /// Returns the lowest collapsed hinge in [begin, end), or -1.
@@ -101,6 +119,7 @@ class ForceField {
   DirectGravity gravity_;
   std::vector<double> reduced_mass_;    ///< [Ns] m_i m_j/(m_i+m_j)
   std::vector<std::uint8_t> nonlinear_; ///< [Ns] 1 where eq. 26 applies
+  CrossSoftening cross_;                ///< eq. 26 parameters
   // Incidence (CSR): for particle p, entries [offset[p], offset[p+1]) list the slots whose
   // forces act on it, in increasing order. Spring entry 2s+0 / 2s+1: +F / -F of spring s.
   // Hinge entry 4h+v: force on vertex v of hinge h.
