@@ -254,6 +254,22 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   return alarms;
 }
 
+Energies ForceField::energies(const double* position, const double* velocity, const SpringState& springs,
+                              const HingeState& hinges, const Perturber& perturber) {
+  check_sizes(springs, hinges);
+  refresh_half_rest_angles(hinges);
+  Energies e;
+  for_each_spring(0, body_.spring_count(), position, velocity, springs,
+                  [&e](std::size_t, const double*, const SpringForceEnergy& spring) {
+                    e.spring += spring.energy;
+                    e.damping_power += spring.dissipated_power;
+                  });
+  for_each_hinge(0, body_.hinge_count(), position, hinges, [&e](std::size_t, const HingeForces& f) { e.hinge += f.energy; });
+  if (options_.self_gravity) e.self_gravity = self_gravity_energy(body_.mass, body_.softening, position);
+  e.perturber = perturber_energy(body_.mass, body_.softening, position, perturber);
+  return e;
+}
+
 std::string ForceField::describe(const ForceAlarms& alarms, const double* position) const {
   std::string what;
   if (alarms.collapsed_hinge >= 0) {

@@ -1,12 +1,13 @@
 #pragma once
 // All accelerations of one step: springs (eqs. 12-14, optional eq. 26 for cross springs),
 // hinges (eq. 22), self-gravity (direct sum, Plummer softening) and the perturber, which
-// pulls every particle and is pulled back. Units: G = M = R = 1, accelerations G M / R^2.
+// pulls every particle and is pulled back; and the potential energy of each of these laws.
+// Units: G = M = R = 1, accelerations G M / R^2, energies G M^2/R.
 //
 // Each law is an evaluator of force AND energy for one element (SpringEvaluator,
 // HingeEvaluator, PlummerPairEvaluator); the loops over springs and hinges are written once
-// here. The textbook step (integrate/textbook_step.hpp) evaluates the same laws in its own
-// plain loops.
+// here and serve both the forces of a step and the energies. The textbook step
+// (integrate/textbook_step.hpp) evaluates the same laws in its own plain loops.
 //
 // Determinism: every spring and hinge force is computed into its own slot, then each particle
 // GATHERS its forces over a fixed incidence list (springs in index order, then hinges in
@@ -56,6 +57,18 @@ struct ForceAlarms {
   bool any() const { return collapsed_hinge >= 0 || nonfinite_particle >= 0; }
 };
 
+/// Potential energy of each force law for one configuration (G M^2/R), and the power the spring
+/// damping removes. Without damping, kinetic + potential() is conserved by the leapfrog up to
+/// its O(dt^2) error and the hinge energy's approximation (HingeEvaluator).
+struct Energies {
+  double spring = 0;        ///< elastic energy of the springs (eq. 12, eq. 26 integrated for softened cross springs)
+  double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)
+  double self_gravity = 0;  ///< sum over pairs of -m_i m_j / sqrt(r^2 + eps^2); 0 with self-gravity off
+  double perturber = 0;     ///< sum over particles of -M2 m_i / sqrt(r^2 + eps^2); 0 without a perturber
+  double damping_power = 0; ///< sum over springs of gamma mu (d.dv)^2/L^2 >= 0, G M^2/R per t_grav
+  double potential() const { return spring + hinge + self_gravity + perturber; }
+};
+
 class ForceField {
  public:
   /// Keeps a reference to `body`, which must outlive the ForceField.
@@ -68,6 +81,15 @@ class ForceField {
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
                    state.perturber, out);
+  }
+
+  /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
+  /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
+  /// O(N^2): for diagnostics, not every step). Throws InputError like compute().
+  Energies energies(const double* position, const double* velocity, const SpringState& springs,
+                    const HingeState& hinges, const Perturber& perturber);
+  Energies energies(const State& state) {
+    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
   }
 
   // The pieces of compute(), public for tests and micro-benchmarks.

@@ -31,4 +31,16 @@ std::array<double, 3> add_perturber_gravity(const std::vector<double>& mass, dou
   return back;
 }
 
+double perturber_energy(const std::vector<double>& mass, double softening, const double* position,
+                        const Perturber& perturber) {
+  if (!perturber.present) return 0;
+  const double eps2 = softening * softening;
+  double energy = 0;
+  for (std::size_t i = 0; i < mass.size(); ++i) {
+    double d[3];
+    energy += pair_with_perturber(mass[i], position + 3 * i, perturber, eps2, d).energy;
+  }
+  return energy;
+}
+
 }  // namespace tidalcrust

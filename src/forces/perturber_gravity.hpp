@@ -18,4 +18,9 @@ std::array<double, 3> add_perturber_gravity(const std::vector<double>& mass, dou
                                             const double* position, const Perturber& perturber,
                                             double* acceleration);
 
+/// Potential energy of the perturber in the body's field, sum_i -M2 m_i / sqrt(|x_i - X|^2 + eps^2)
+/// in particle order (G M^2/R); 0 without a perturber. Arguments as add_perturber_gravity().
+double perturber_energy(const std::vector<double>& mass, double softening, const double* position,
+                        const Perturber& perturber);
+
 }  // namespace tidalcrust

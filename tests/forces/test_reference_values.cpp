@@ -1,7 +1,7 @@
 // The force laws against stored reference values (tests/reference/forces.toml, README there):
-// a small fixed configuration and the forces every law must give on it, generated once from the
-// code before the force laws became evaluators, so a refactor is checked against the old code
-// and not against itself.
+// a small fixed configuration and the forces and energies every law must give on it. The forces
+// were generated once from the code before the force laws became evaluators, the energies from
+// independent formulas, so the code is checked against stored numbers and not against itself.
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "forces/force_field.hpp"
+#include "forces/hinge_force.hpp"
 #include "forces/perturber_gravity.hpp"
+#include "forces/spring_force.hpp"
 
 using namespace tidalcrust;
 
@@ -162,4 +164,57 @@ TEST(ReferenceValues, AllLawsTogether) {
   EXPECT_FALSE(field.compute(c.state, a).any());
   expect_reference(c, "total.acceleration", a.body);
   expect_reference(c, "total.perturber_acceleration", {a.perturber.begin(), a.perturber.end()});
+}
+
+TEST(ReferenceValues, SpringEnergiesAndDampingPower) {
+  const ReferenceCase c = load_reference();
+  const CrossSoftening cross{c.options.cross_strain_scale, c.options.cross_min_force_factor};
+  std::vector<double> energy, power;
+  for (std::size_t s = 0; s < c.body.spring_count(); ++s) {
+    const auto [i, j] = c.body.springs[s];
+    const Vec3 d = vec3_at(c.state.position, static_cast<std::size_t>(i)) -
+                   vec3_at(c.state.position, static_cast<std::size_t>(j));
+    const Vec3 dv = vec3_at(c.state.velocity, static_cast<std::size_t>(i)) -
+                    vec3_at(c.state.velocity, static_cast<std::size_t>(j));
+    const bool softened = c.body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::cross);
+    const double mu = reduced_mass(c.body.mass[static_cast<std::size_t>(i)], c.body.mass[static_cast<std::size_t>(j)]);
+    const SpringEvaluator spring(c.state.springs.rest_length[s], c.state.springs.stiffness[s],
+                                 c.state.springs.damping[s] * mu, softened ? &cross : nullptr);
+    const SpringForceEnergy r = spring.force_and_energy(d.norm(), d.dot(dv));
+    energy.push_back(r.energy);
+    power.push_back(r.dissipated_power);
+  }
+  expect_reference(c, "springs.elastic_energy", energy);
+  expect_reference(c, "springs.dissipated_power", power);
+}
+
+TEST(ReferenceValues, HingeEnergies) {
+  const ReferenceCase c = load_reference();
+  std::vector<double> energy;
+  for (std::size_t h = 0; h < c.body.hinge_count(); ++h) {
+    const auto& v = c.body.hinges[h];
+    auto x = [&](int corner) { return vec3_at(c.state.position, static_cast<std::size_t>(v[corner])); };
+    energy.push_back(HingeEvaluator(c.state.hinges.rest_angle[h], c.state.hinges.stiffness[h])
+                         .force_and_energy(x(0), x(1), x(2), x(3))
+                         .energy);
+  }
+  expect_reference(c, "hinges.energy", energy);
+}
+
+TEST(ReferenceValues, EnergiesOfEveryLaw) {
+  const ReferenceCase c = load_reference();
+  ForceField field(c.body, c.options);
+  const Energies e = field.energies(c.state);
+  expect_reference(c, "self_gravity.energy", {e.self_gravity});
+  expect_reference(c, "perturber.energy", {e.perturber});
+  if (printing()) return;
+  // The totals are the stored per-element values summed.
+  auto sum = [&](std::string_view path) {
+    double total = 0;
+    for (double v : numbers(c.table, path)) total += v;
+    return total;
+  };
+  EXPECT_NEAR(e.spring, sum("springs.elastic_energy"), 1e-12 * e.spring);
+  EXPECT_NEAR(e.damping_power, sum("springs.dissipated_power"), 1e-12 * e.damping_power);
+  EXPECT_NEAR(e.hinge, sum("hinges.energy"), 1e-12 * e.hinge);
 }
