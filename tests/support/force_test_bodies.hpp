@@ -1,13 +1,15 @@
 #pragma once
 // Small bodies for the force and integrator tests: the real builder at shell level 2 and ~200
 // interior nodes, optionally shaken (random displacements and velocities) so every force is
-// non-zero; and a hand-made random cluster of 9 particles with every kind of element.
+// non-zero, or with every force law switched on; and a hand-made random cluster of 9 particles
+// with every kind of element.
 #include <array>
 #include <cstdint>
 
 #include "stages/build_stage.hpp"
 #include "model/config.hpp"
 #include "base/random.hpp"
+#include "forces/force_field.hpp"
 #include "forces/hinge_geometry.hpp"
 
 namespace tidalcrust::testing {
@@ -49,6 +51,25 @@ inline void shake(State& state, double dx, double dv, std::uint64_t seed) {
   Random random(seed);
   for (double& x : state.position) x += random.uniform(-dx, dx);
   for (double& v : state.velocity) v += random.uniform(-dv, dv);
+}
+
+/// The small body with every force law at work: shaken, damping 3 on every spring, hinges bent
+/// away from rest (rest angles times 0.9) and a perturber at (2, 1, -0.5) R. Use it with
+/// every_law_options(), whose small eq. 26 strain scale softens some cross springs.
+inline Checkpoint every_law_body(std::uint64_t seed) {
+  Checkpoint c = small_body();
+  shake(c.state, 5e-3, 0.05, seed);
+  for (double& g : c.state.springs.damping) g = 3.0;
+  for (double& r : c.state.hinges.rest_angle) r *= 0.9;
+  c.state.perturber = {true, 0.5, {2.0, 1.0, -0.5}, {0.0, -1.0, 0.0}};
+  return c;
+}
+
+inline ForceOptions every_law_options() {
+  ForceOptions options;
+  options.cross_nonlinear = true;
+  options.cross_strain_scale = 0.01;
+  return options;
 }
 
 /// A small random configuration with every force law at work: an octahedral shell (6 particles,
