@@ -58,8 +58,9 @@ struct ForceAlarms {
 };
 
 /// Potential energy of each force law for one configuration (G M^2/R), and the power the spring
-/// damping removes. Without damping, kinetic + potential() is conserved by the leapfrog up to
-/// its O(dt^2) error and the hinge energy's approximation (HingeEvaluator).
+/// damping removes. Without damping, kinetic (body and perturber) + potential() is conserved by
+/// the leapfrog up to its O(dt^2) error and the small work of the hinge force's non-conservative
+/// part (HingeEvaluator).
 struct Energies {
   double spring = 0;        ///< elastic energy of the springs (eq. 12, eq. 26 integrated for softened cross springs)
   double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)

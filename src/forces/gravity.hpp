@@ -1,6 +1,6 @@
 #pragma once
 // Self-gravity of the body by direct summation over all pairs with Plummer softening (Plummer
-// 1911; Aarseth, Gravitational N-Body Simulations, 2003, sec. 2). Units: G = M = R = 1, masses M,
+// 1911; Aarseth, Gravitational N-Body Simulations, 2003). Units: G = M = R = 1, masses M,
 // lengths R, accelerations G M/R^2, energies G M^2/R.
 #include <cmath>
 #include <cstddef>
