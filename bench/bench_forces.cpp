@@ -1,4 +1,4 @@
-// Micro-benchmarks of each force kernel and of a full step on the paper-T body.
+// Micro-benchmarks of each force kernel, of the energies and of a full step on the paper-T body.
 // Run: build/tidalcrust_microbench (from the source folder), --benchmark_filter=Gravity etc.
 #include <benchmark/benchmark.h>
 
@@ -51,6 +51,15 @@ static void BM_Gravity(benchmark::State& run) {
   set_counters(run, n * (n - 1) / 2);  // pairs
 }
 BENCHMARK(BM_Gravity)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+static void BM_Energies(benchmark::State& run) {
+  // One thread, O(N^2) for self-gravity: the price of one energy-budget sample.
+  const Checkpoint& c = paper_t_body();
+  ForceField forces(c.body);
+  for (auto _ : run) benchmark::DoNotOptimize(forces.energies(c.state).potential());
+  set_counters(run, c.body.particle_count());
+}
+BENCHMARK(BM_Energies)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 static void BM_FullStep(benchmark::State& run) {
   const Checkpoint& c = paper_t_body();

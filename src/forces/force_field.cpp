@@ -7,10 +7,8 @@
 #include <cstring>
 #include <limits>
 
-#include "model/derived_quantities.hpp"
 #include "base/errors.hpp"
 #include "forces/perturber_gravity.hpp"
-#include "forces/spring_force.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -49,7 +47,10 @@ ForceOptions force_options(const Config& config, double damping) {
 }
 
 ForceField::ForceField(const Body& body, ForceOptions options)
-    : body_(body), options_(options), gravity_(body.mass, body.softening) {
+    : body_(body),
+      options_(options),
+      gravity_(body.mass, body.softening),
+      cross_{options.cross_strain_scale, options.cross_min_force_factor} {
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
   if (body.spring_kind.size() != ns)
     throw InputError(fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
@@ -78,47 +79,57 @@ ForceField::ForceField(const Body& body, ForceOptions options)
   hinge_force_.assign(12 * nh, 0.0);
 }
 
-void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
-                              const SpringState& springs) {
+template <typename Visit>
+void ForceField::for_each_spring(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                                 const SpringState& springs, Visit&& visit) const {
   const auto* ends = body_.springs.data();
   const double* rest = springs.rest_length.data();
   const double* stiffness = springs.stiffness.data();
-  const double damping = options_.damping;
+  const double damping = options_.damping;  // gamma, the same for every spring
   const double* mu = reduced_mass_.data();
   const std::uint8_t* nonlinear = nonlinear_.data();
-  const double strain_scale = options_.cross_strain_scale, min_factor = options_.cross_min_force_factor;
-  double* force = spring_force_.data();
   for (std::size_t s = begin; s < end; ++s) {
     const std::size_t i = 3 * static_cast<std::size_t>(ends[s][0]), j = 3 * static_cast<std::size_t>(ends[s][1]);
-    const double dx = position[i] - position[j], dy = position[i + 1] - position[j + 1],
-                 dz = position[i + 2] - position[j + 2];
-    const double dvx = velocity[i] - velocity[j], dvy = velocity[i + 1] - velocity[j + 1],
-                 dvz = velocity[i + 2] - velocity[j + 2];
-    const double length = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double factor =
-        nonlinear[s] ? cross_spring_factor((length - rest[s]) / rest[s], strain_scale, min_factor) : 1.0;
-    const double c = spring_force_coefficient(length, dx * dvx + dy * dvy + dz * dvz, rest[s], stiffness[s],
-                                              damping * mu[s], factor);
-    force[3 * s] = -c * dx;
-    force[3 * s + 1] = -c * dy;
-    force[3 * s + 2] = -c * dz;
+    const double d[3] = {position[i] - position[j], position[i + 1] - position[j + 1],
+                         position[i + 2] - position[j + 2]};
+    const double dv[3] = {velocity[i] - velocity[j], velocity[i + 1] - velocity[j + 1],
+                          velocity[i + 2] - velocity[j + 2]};
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const SpringEvaluator spring(rest[s], stiffness[s], damping * mu[s], nonlinear[s] ? &cross_ : nullptr);
+    visit(s, d, spring.force_and_energy(length, d[0] * dv[0] + d[1] * dv[1] + d[2] * dv[2]));
   }
 }
 
-std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position) {
+template <typename Visit>
+void ForceField::for_each_hinge(std::size_t begin, std::size_t end, const double* position, Visit&& visit) const {
   const auto* corners = body_.hinges.data();
-  const double* stiffness = body_.hinge_stiffness.data();
+  const double* stiffness = body_.hinge_stiffness.data();  // k_e of each hinge
   const HalfRestAngle* rest = half_rest_.data();
-  double* force = hinge_force_.data();
-  std::int64_t collapsed = -1;
   for (std::size_t h = begin; h < end; ++h) {
     const auto& c = corners[h];
-    const HingeForces f = tidalcrust::hinge_forces(point(position, c[0]), point(position, c[1]),
-                                                   point(position, c[2]), point(position, c[3]), rest[h], stiffness[h]);
+    visit(h, HingeEvaluator(rest[h], stiffness[h])
+                 .force_and_energy(point(position, c[0]), point(position, c[1]), point(position, c[2]),
+                                   point(position, c[3])));
+  }
+}
+
+void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                              const SpringState& springs) {
+  double* force = spring_force_.data();
+  for_each_spring(begin, end, position, velocity, springs,
+                  [force](std::size_t s, const double* d, const SpringForceEnergy& spring) {
+                    for (std::size_t k = 0; k < 3; ++k) force[3 * s + k] = -spring.coefficient * d[k];
+                  });
+}
+
+std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position) {
+  double* force = hinge_force_.data();
+  std::int64_t collapsed = -1;
+  for_each_hinge(begin, end, position, [force, &collapsed](std::size_t h, const HingeForces& f) {
     if (f.collapsed && collapsed < 0) collapsed = static_cast<std::int64_t>(h);
     for (std::size_t v = 0; v < 4; ++v)
       for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
-  }
+  });
   return collapsed;
 }
 
@@ -177,9 +188,8 @@ std::int64_t ForceField::compute_hinge_forces(const double* position, const Hing
   return collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;
 }
 
-ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
-                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
-  const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
+void ForceField::check_sizes(const SpringState& springs, const HingeState& hinges) const {
+  const std::size_t ns = body_.spring_count(), nh = body_.hinge_count();
   if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || hinges.rest_angle.size() != nh ||
       body_.hinge_stiffness.size() != nh)
     throw InputError(fmt::format("state does not match the body: {} springs and {} hinges in the body, "
@@ -187,6 +197,12 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
                                  "{} hinge stiffnesses in the body",
                                  ns, nh, springs.rest_length.size(), springs.stiffness.size(),
                                  hinges.rest_angle.size(), body_.hinge_stiffness.size()));
+}
+
+ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
+                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
+  check_sizes(springs, hinges);
+  const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
   out.body.resize(3 * n);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
@@ -237,8 +253,23 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   return alarms;
 }
 
-std::string ForceField::describe(const ForceAlarms& alarms, const double* position, const State& state,
-                                 double dt) const {
+Energies ForceField::energies(const double* position, const double* velocity, const SpringState& springs,
+                              const HingeState& hinges, const Perturber& perturber) {
+  check_sizes(springs, hinges);
+  refresh_half_rest_angles(hinges);
+  Energies e;
+  for_each_spring(0, body_.spring_count(), position, velocity, springs,
+                  [&e](std::size_t, const double*, const SpringForceEnergy& spring) {
+                    e.spring += spring.energy;
+                    e.damping_power += spring.dissipated_power;
+                  });
+  for_each_hinge(0, body_.hinge_count(), position, [&e](std::size_t, const HingeForces& f) { e.hinge += f.energy; });
+  if (options_.self_gravity) e.self_gravity = self_gravity_energy(body_.mass, body_.softening, position);
+  e.perturber = perturber_energy(body_.mass, body_.softening, position, perturber);
+  return e;
+}
+
+std::string ForceField::describe(const ForceAlarms& alarms, const double* position) const {
   std::string what;
   if (alarms.collapsed_hinge >= 0) {
     const auto h = static_cast<std::size_t>(alarms.collapsed_hinge);
@@ -265,19 +296,7 @@ std::string ForceField::describe(const ForceAlarms& alarms, const double* positi
   } else {
     what = "no force alarm";
   }
-  return what + "; " + likely_blow_up_cause(body_, state, dt);
-}
-
-std::string likely_blow_up_cause(const Body& body, const State& state, double dt) {
-  const double bound = derive_quantities(body, state, 1.0).dt_max;
-  if (bound > 0 && dt > bound)
-    return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
-                       "(eq. 13: dt_max = {:.4g})",
-                       dt, bound);
-  return fmt::format("dt = {:.4g} is within the spring stability bound (eq. 13: dt_max = {:.4g}); likely cause: "
-                     "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
-                     "or dt too close to the bound",
-                     dt, bound);
+  return what;
 }
 
 }  // namespace tidalcrust

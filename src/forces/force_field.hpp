@@ -1,7 +1,13 @@
 #pragma once
 // All accelerations of one step: springs (eqs. 12-14, optional eq. 26 for cross springs),
 // hinges (eq. 22), self-gravity (direct sum, Plummer softening) and the perturber, which
-// pulls every particle and is pulled back. Units: G = M = R = 1, accelerations G M / R^2.
+// pulls every particle and is pulled back; and the potential energy of each of these laws.
+// Units: G = M = R = 1, accelerations G M / R^2, energies G M^2/R.
+//
+// Each law is an evaluator of force AND energy for one element (SpringEvaluator,
+// HingeEvaluator, PlummerPairEvaluator); the loops over springs and hinges are written once
+// here and serve both the forces of a step and the energies. The textbook step
+// (integrate/textbook_step.hpp) evaluates the same laws in its own plain loops.
 //
 // Determinism: every spring and hinge force is computed into its own slot, then each particle
 // GATHERS its forces over a fixed incidence list (springs in index order, then hinges in
@@ -17,6 +23,7 @@
 #include "model/config.hpp"
 #include "forces/gravity.hpp"
 #include "forces/hinge_force.hpp"
+#include "forces/spring_force.hpp"
 #include "model/state.hpp"
 
 namespace tidalcrust {
@@ -52,6 +59,19 @@ struct ForceAlarms {
   bool any() const { return collapsed_hinge >= 0 || nonfinite_particle >= 0; }
 };
 
+/// Potential energy of each force law for one configuration (G M^2/R), and the power the spring
+/// damping removes. Without damping, kinetic (body and perturber) + potential() is conserved by
+/// the leapfrog up to its O(dt^2) error and the small work of the hinge force's non-conservative
+/// part (HingeEvaluator).
+struct Energies {
+  double spring = 0;        ///< elastic energy of the springs (eq. 12, eq. 26 integrated for softened cross springs)
+  double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)
+  double self_gravity = 0;  ///< sum over pairs of -m_i m_j / sqrt(r^2 + eps^2); 0 with self-gravity off
+  double perturber = 0;     ///< sum over particles of -M2 m_i / sqrt(r^2 + eps^2); 0 without a perturber
+  double damping_power = 0; ///< sum over springs of gamma mu (d.dv)^2/L^2 >= 0, G M^2/R per t_grav
+  double potential() const { return spring + hinge + self_gravity + perturber; }
+};
+
 class ForceField {
  public:
   /// Keeps a reference to `body`, which must outlive the ForceField.
@@ -64,6 +84,15 @@ class ForceField {
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
                    state.perturber, out);
+  }
+
+  /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
+  /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
+  /// O(N^2): for diagnostics, not every step). Throws InputError like compute().
+  Energies energies(const double* position, const double* velocity, const SpringState& springs,
+                    const HingeState& hinges, const Perturber& perturber);
+  Energies energies(const State& state) {
+    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
   }
 
   // The pieces of compute(), public for tests and micro-benchmarks.
@@ -81,15 +110,26 @@ class ForceField {
   const std::vector<double>& spring_forces() const { return spring_force_; }  ///< [Ns*3] G M^2/R^2
   const std::vector<double>& hinge_forces() const { return hinge_force_; }    ///< [Nh*4*3] G M^2/R^2
 
-  /// A sentence naming the element that went wrong and a likely cause, for SimulationError.
-  /// `dt` is the time step of the run (t_grav).
-  std::string describe(const ForceAlarms& alarms, const double* position, const State& state, double dt) const;
+  /// A sentence naming the element that went wrong at positions [N*3], for SimulationError
+  /// (integrate/blow_up.hpp adds the likely cause).
+  std::string describe(const ForceAlarms& alarms, const double* position) const;
 
   const Body& body() const { return body_; }
   const ForceOptions& options() const { return options_; }
 
  private:
+  /// Throws InputError unless the state's per-spring and per-hinge arrays match the body.
+  void check_sizes(const SpringState& springs, const HingeState& hinges) const;
   void refresh_half_rest_angles(const HingeState& hinges);
+  /// THE loop over springs [begin, end): builds each spring's evaluator from the body and the
+  /// state and calls visit(s, d, result) with d = x_i - x_j (double[3]) and its SpringForceEnergy.
+  template <typename Visit>
+  void for_each_spring(std::size_t begin, std::size_t end, const double* position, const double* velocity,
+                       const SpringState& springs, Visit&& visit) const;
+  /// THE loop over hinges [begin, end): calls visit(h, HingeForces) with each hinge's forces and
+  /// energy. Needs refresh_half_rest_angles() first.
+  template <typename Visit>
+  void for_each_hinge(std::size_t begin, std::size_t end, const double* position, Visit&& visit) const;
   void spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
                     const SpringState& springs);
   /// Returns the lowest collapsed hinge in [begin, end), or -1 (rest angles: half_rest_).
@@ -103,6 +143,7 @@ class ForceField {
   DirectGravity gravity_;
   std::vector<double> reduced_mass_;    ///< [Ns] m_i m_j/(m_i+m_j)
   std::vector<std::uint8_t> nonlinear_; ///< [Ns] 1 where eq. 26 applies
+  CrossSoftening cross_;                ///< eq. 26 parameters
   // Incidence (CSR): for particle p, entries [offset[p], offset[p+1]) list the slots whose
   // forces act on it, in increasing order. Spring entry 2s+0 / 2s+1: +F / -F of spring s.
   // Hinge entry 4h+v: force on vertex v of hinge h.
@@ -113,9 +154,5 @@ class ForceField {
   std::vector<double> cached_rest_angle_;  ///< rest angles the half-angle table was made from
   std::vector<HalfRestAngle> half_rest_;
 };
-
-/// The likely cause of a blow-up, for error messages: compares the time step dt (t_grav) with
-/// the stability bound of the stiffest spring (eq. 13, derive_quantities().dt_max).
-std::string likely_blow_up_cause(const Body& body, const State& state, double dt);
 
 }  // namespace tidalcrust

@@ -121,6 +121,19 @@ void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const doub
 
 }  // namespace
 
+double self_gravity_energy(const std::vector<double>& mass, double softening, const double* position) {
+  const std::size_t n = mass.size();
+  const double eps2 = softening * softening;
+  double energy = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double dx = position[3 * j] - position[3 * i], dy = position[3 * j + 1] - position[3 * i + 1],
+                   dz = position[3 * j + 2] - position[3 * i + 2];
+      energy += PlummerPairEvaluator{mass[i], mass[j], eps2}.force_and_energy(dx * dx + dy * dy + dz * dz).energy;
+    }
+  return energy;
+}
+
 DirectGravity::DirectGravity(const std::vector<double>& mass, double softening)
     : count_(mass.size()),
       padded_((mass.size() + 1 + lanes - 1) / lanes * lanes),  // room for row i+1 of the last pair

@@ -1,6 +1,7 @@
 #pragma once
-// Self-gravity of the body by direct summation over all pairs with Plummer softening
-// (softening = integrator.softening_fraction times the smallest initial spacing). Units: G = 1, masses M, lengths R, accelerations G M / R^2.
+// Self-gravity of the body by direct summation over all pairs with Plummer softening (Plummer
+// 1911; Aarseth, Gravitational N-Body Simulations, 2003). Units: G = M = R = 1, masses M,
+// lengths R, accelerations G M/R^2, energies G M^2/R.
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -13,6 +14,37 @@ inline double plummer_inverse_cube(double r2, double eps2) {
   const double s = r2 + eps2;
   return 1.0 / (s * std::sqrt(s));
 }
+
+/// What PlummerPairEvaluator::force_and_energy returns for the pair (i, j).
+struct PairForceEnergy {
+  /// f = 1/(r^2 + eps^2)^(3/2) (R^-3): the acceleration of i is m_j f (x_j - x_i), that of j is
+  /// -m_i f (x_j - x_i); kept per unit mass so callers multiply by one mass, not divide.
+  double inverse_cube = 0;
+  /// -m_i m_j / sqrt(r^2 + eps^2) (G M^2/R), the pair's potential energy; its gradient with
+  /// respect to x_i is minus the force m_i m_j f (x_j - x_i).
+  double energy = 0;
+};
+
+/// One pair of point masses under Newtonian gravity with Plummer softening eps: the textbook
+/// pair law, evaluated like HOOMD-blue's pair evaluators (built from one pair's parameters).
+/// The body's self-gravity pairs and the perturber-particle pairs both follow it. DirectGravity
+/// computes the same law for all pairs at once with SIMD (its last bits differ).
+struct PlummerPairEvaluator {
+  double mass_i;      ///< m_i (M)
+  double mass_j;      ///< m_j (M)
+  double softening2;  ///< eps^2 (R^2)
+
+  /// r2 = |x_j - x_i|^2 (R^2).
+  PairForceEnergy force_and_energy(double r2) const {
+    const double s = r2 + softening2;
+    return {plummer_inverse_cube(r2, softening2), -mass_i * mass_j / std::sqrt(s)};
+  }
+};
+
+/// Potential energy of the body's self-gravity, sum over pairs i < j (i outer, in index order) of
+/// -m_i m_j / sqrt(r_ij^2 + eps^2) (G M^2/R): mass [N] in M, softening eps in R, position [N*3]
+/// in R. One thread, O(N^2): for diagnostics such as an energy budget, not for every step.
+double self_gravity_energy(const std::vector<double>& mass, double softening, const double* position);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2) for every particle.
 ///

@@ -8,6 +8,7 @@
 
 #include "base/errors.hpp"
 #include "model/center_of_mass.hpp"
+#include "integrate/blow_up.hpp"
 
 namespace tidalcrust {
 
@@ -39,8 +40,9 @@ void Leapfrog::step(State& state) {
   // Kick with forces at the half-step positions and start-of-step velocities.
   const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, acc_);
   if (alarms.any())
-    throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}", state.step + 1,
-                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw, state, clock_.dt)));
+    throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
+                                      clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
+                                      likely_blow_up_cause(forces_.body(), state, clock_.dt)));
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {
     vw[k] = v[k] + dt * a[k];

@@ -2,9 +2,11 @@
 // The textbook version of one integration step, the speed baseline of `tidalcrust bench` and
 // an independent reference for the tests: one thread, an array of particle structs, gravity
 // as a double loop over half the pairs (Newton's third law), spring and hinge forces added
-// straight into both particles. Same forces as ForceField (springs with damping and eq. 26,
-// hinges, self-gravity, perturber) and the same drift-kick-drift; results agree with
-// ForceField/Leapfrog to rounding, not bit for bit.
+// straight into both particles. Its loops are its own, but the force laws are THE SAME
+// evaluators ForceField uses (SpringEvaluator with damping and eq. 26, HingeEvaluator,
+// PlummerPairEvaluator for self-gravity and the perturber), with the same drift-kick-drift;
+// results agree with ForceField/Leapfrog to rounding, not bit for bit (other summation order,
+// and ForceField's gravity is the SIMD kernel).
 #include <array>
 #include <vector>
 

@@ -19,20 +19,33 @@ Corners hinge(double z1, double z2) {
   return {Vec3(0.45, 0.8, z1), Vec3(0.55, -0.85, z2), Vec3(0, 0, 0), Vec3(1.0, 0.02, 0.01)};
 }
 
-/// Finite-difference gradient of the hinge angle with respect to vertex v.
-Vec3 angle_gradient(Corners x, int v) {
+HingeForces forces(const Corners& x, double rest, double k) {
+  return HingeEvaluator(rest, k).force_and_energy(x[0], x[1], x[2], x[3]);
+}
+
+double energy(const Corners& x, double rest, double k) { return forces(x, rest, k).energy; }
+
+/// C = L^2 / (|N1| + |N2|), the geometric prefactor of eq. 22.
+double prefactor(const Corners& x) {
+  const double n1 = (x[0] - x[2]).cross(x[0] - x[3]).norm(), n2 = (x[1] - x[3]).cross(x[1] - x[2]).norm();
+  return (x[3] - x[2]).squaredNorm() / (n1 + n2);
+}
+
+/// Central finite-difference gradient of f(corners) with respect to vertex v.
+template <typename F>
+Vec3 gradient(F&& f, const Corners& x, int v) {
   const double h = 1e-6;
   Vec3 g;
   for (int c = 0; c < 3; ++c) {
     Corners plus = x, minus = x;
     plus[v][c] += h;
     minus[v][c] -= h;
-    g[c] = (angle(plus) - angle(minus)) / (2 * h);
+    g[c] = (f(plus) - f(minus)) / (2 * h);
   }
   return g;
 }
 
-HingeForces forces(const Corners& x, double rest, double k) { return hinge_forces(x[0], x[1], x[2], x[3], rest, k); }
+Vec3 angle_gradient(const Corners& x, int v) { return gradient(angle, x, v); }
 
 }  // namespace
 
@@ -101,4 +114,58 @@ TEST(HingeForce, FlagsACollapsedFace) {
   Corners flat = hinge(0.0, 0.0);
   flat[0] = 0.4 * flat[3] + Vec3(0.0, 1e-5, 0.0);  // wing 1 almost on the edge line
   EXPECT_TRUE(forces(flat, 0.0, 1.0).collapsed);
+}
+
+TEST(HingeForce, EnergyIsZeroAtRestAndQuadraticNearIt) {
+  const Corners x = hinge(0.2, -0.1);
+  const double k = 0.01, theta = angle(x);
+  EXPECT_LT(energy(x, theta, k), 1e-30);  // sin((theta - theta_rest)/2) ~ 1e-17 from rounding
+  for (double offset : {1e-3, -1e-4, 1e-6}) {
+    // E = 4 k C sin^2(offset/4) = k C offset^2/4 (1 - offset^2/48 + ...).
+    const double expected = k * prefactor(x) * offset * offset / 4;
+    EXPECT_NEAR(energy(x, theta - offset, k), expected, 1e-6 * expected) << offset;
+  }
+}
+
+TEST(HingeForce, EnergyGradientIsMinusTheForcePlusTheFrozenPrefactorTerm) {
+  // The force has no exact potential (hinge_force.hpp): E = 2 k C (1 - cos(delta/2)) has the
+  // gradient -F_i + 2 k (1 - cos(delta/2)) dC/dx_i, delta = theta - theta_rest. Checked exactly
+  // (to finite-difference accuracy), and the mismatch |grad E + F| / |F| measured: it shrinks in
+  // proportion to delta, 0.35 delta to 0.5 delta on these hinges (so 5e-5 relative at
+  // delta = 1e-4, 0.2 at delta = 0.4).
+  const double k = 0.0075;
+  for (const Corners& x : {hinge(0.1, 0.05), hinge(-0.3, 0.2), hinge(0.6, 0.7), hinge(1.5, -0.2)}) {
+    for (double offset : {0.4, -0.1, 0.02}) {
+      const double rest = angle(x) - offset;
+      const HingeForces f = forces(x, rest, k);
+      double force_norm = 0, mismatch = 0, residual = 0;
+      for (int v = 0; v < 4; ++v) {
+        const Vec3 g = gradient([&](const Corners& y) { return energy(y, rest, k); }, x, v);
+        const Vec3 frozen_term =
+            2 * k * (1 - std::cos(0.5 * offset)) * gradient([](const Corners& y) { return prefactor(y); }, x, v);
+        force_norm += f.on[v].squaredNorm();
+        mismatch += (g + f.on[v]).squaredNorm();
+        residual += (g + f.on[v] - frozen_term).squaredNorm();
+      }
+      force_norm = std::sqrt(force_norm);
+      EXPECT_LT(std::sqrt(residual), 1e-7 * force_norm) << "offset " << offset;
+      EXPECT_LT(std::sqrt(mismatch), 0.6 * std::abs(offset) * force_norm) << "offset " << offset;
+      EXPECT_GT(std::sqrt(mismatch), 0.2 * std::abs(offset) * force_norm) << "offset " << offset;
+    }
+  }
+}
+
+TEST(HingeForce, EnergyHasNoCancellationForTinyAngles) {
+  // 1 - cos(delta/2) is evaluated as sin^2/(1 + cos): exact to rounding even at delta = 1e-9.
+  const Corners x = hinge(0.3, 0.1);
+  const double k = 1.0, delta = 1e-9;
+  const double expected = k * prefactor(x) * delta * delta / 4;
+  EXPECT_NEAR(energy(x, angle(x) - delta, k), expected, 1e-6 * expected);
+}
+
+TEST(HingeForce, EnergyOfAStronglyFoldedHingeTakesTheOtherBranch) {
+  // cos((theta - theta_rest)/2) < 0 when the hinge is folded by more than pi from rest.
+  const Corners x = hinge(3.0, 2.5);
+  const double k = 1.0, theta = angle(x), rest = theta > 0 ? theta - 2.5 : theta + 2.5;
+  EXPECT_NEAR(energy(x, rest, k), 2 * k * prefactor(x) * (1 - std::cos(0.5 * (theta - rest))), 1e-14);
 }

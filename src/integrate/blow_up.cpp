@@ -1,0 +1,21 @@
+#include "integrate/blow_up.hpp"
+
+#include <fmt/format.h>
+
+#include "model/derived_quantities.hpp"
+
+namespace tidalcrust {
+
+std::string likely_blow_up_cause(const Body& body, const State& state, double dt) {
+  const double bound = derive_quantities(body, state, 1.0).dt_max;
+  if (bound > 0 && dt > bound)
+    return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
+                       "(eq. 13: dt_max = {:.4g})",
+                       dt, bound);
+  return fmt::format("dt = {:.4g} is within the spring stability bound (eq. 13: dt_max = {:.4g}); likely cause: "
+                     "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
+                     "or dt too close to the bound",
+                     dt, bound);
+}
+
+}  // namespace tidalcrust
