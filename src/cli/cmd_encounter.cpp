@@ -12,8 +12,6 @@
 
 namespace tidalcrust {
 
-namespace fs = std::filesystem;
-
 int command_encounter(int argc, char** argv) {
   cxxopts::Options options("tidalcrust encounter", "Tidal encounter with crust failure (paper sections 2.6, 2.9).");
   add_common_options(options);
@@ -24,13 +22,9 @@ int command_encounter(int argc, char** argv) {
       "m2", "perturber mass M2 (M)", cxxopts::value<double>())("q", "pericenter distance (R)", cxxopts::value<double>())(
       "vq", "speed at pericenter (sqrt(GM/R))", cxxopts::value<double>())(
       "failure-strain", "eps_S for this encounter", cxxopts::value<double>());
-  auto parsed = parse_arguments(options, argc, argv);
-  if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  CommonOptions common = read_common_options(parsed);
-  fs::path from = required_option(parsed, "from"), out = required_option(parsed, "out");
-  check_output_path(out);
-  Checkpoint input = read_checkpoint(from);
-  require_stage(input, from, {"relax", "encounter"}, "encounter");
+  auto in = read_stage_input(options, argc, argv, {"relax", "encounter"}, "encounter");
+  if (!in) return exit_ok;
+  auto& [parsed, common, from, out, input] = *in;
   const bool resuming = std::holds_alternative<EncounterRecord>(input.stage.record) && !input.stage.complete;
   const bool by_name = parsed.count("encounter") > 0;
   const bool by_values = parsed.count("m2") || parsed.count("q") || parsed.count("vq");

@@ -12,20 +12,14 @@
 
 namespace tidalcrust {
 
-namespace fs = std::filesystem;
-
 int command_stretch(int argc, char** argv) {
   cxxopts::Options options("tidalcrust stretch", "Stretch and strengthen a built body (paper section 2.3).");
   add_common_options(options);
   options.add_options()("from", "input build checkpoint", cxxopts::value<std::string>())(
       "out", "output checkpoint", cxxopts::value<std::string>());
-  auto parsed = parse_arguments(options, argc, argv);
-  if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  CommonOptions common = read_common_options(parsed);
-  fs::path from = required_option(parsed, "from"), out = required_option(parsed, "out");
-  check_output_path(out);
-  Checkpoint input = read_checkpoint(from);
-  require_stage(input, from, {"build"}, "stretch");
+  auto in = read_stage_input(options, argc, argv, {"build"}, "stretch");
+  if (!in) return exit_ok;
+  const auto& [parsed, common, from, out, input] = *in;
   Config config = stage_config(input, from, common, false);
   apply_thread_count(common.threads);
   Checkpoint stretched = stretch_stage(input, config);

@@ -76,4 +76,19 @@ void require_stage(const Checkpoint& input, const fs::path& from, std::initializ
                                input.stage.name(), command, names));
 }
 
+std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv,
+                                           std::initializer_list<const char*> allowed, const char* command) {
+  auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) {
+    fmt::print("{}\n", options.help());
+    return std::nullopt;
+  }
+  StageInput in{parsed, read_common_options(parsed), required_option(parsed, "from"), required_option(parsed, "out"),
+                {}};
+  check_output_path(in.out);
+  in.input = read_checkpoint(in.from);
+  require_stage(in.input, in.from, allowed, command);
+  return in;
+}
+
 }  // namespace tidalcrust

@@ -3,6 +3,7 @@
 #include <cxxopts.hpp>
 #include <filesystem>
 #include <initializer_list>
+#include <optional>
 #include <string>
 
 #include "model/checkpoint.hpp"
@@ -26,6 +27,21 @@ int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const std::f
 /// checkpoint resumes with exactly the configuration it started with.
 Config stage_config(const Checkpoint& input, const std::filesystem::path& from, const CommonOptions& common,
                     bool resuming);
+/// What a command that continues a checkpoint (stretch, relax, encounter) starts from.
+struct StageInput {
+  cxxopts::ParseResult parsed;
+  CommonOptions common;
+  std::filesystem::path from;  ///< --from, the input checkpoint
+  std::filesystem::path out;   ///< --out, checked before any work
+  Checkpoint input;            ///< read from `from`, of one of the allowed stages
+};
+
+/// Parses the command line (`options` must declare --from and --out), checks --out and reads the
+/// input checkpoint, which must be of one of the `allowed` stages (InputError otherwise). Nothing
+/// when --help was asked: the help is printed.
+std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv,
+                                           std::initializer_list<const char*> allowed, const char* command);
+
 /// InputError unless the input checkpoint is of one of the allowed stages.
 void require_stage(const Checkpoint& input, const std::filesystem::path& from,
                    std::initializer_list<const char*> allowed, const char* command);
