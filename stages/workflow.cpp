@@ -148,7 +148,10 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
       [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path&) {
         return run_relax(c, run_config, loop);
       });
-  if (!relaxed) return result.interrupted = true, result;
+  if (!relaxed) {
+    result.interrupted = true;
+    return result;
+  }
   result.relaxed = relaxed->stage.as<RelaxRecord>();
 
   // Encounters, each branching from the relaxed body, at dt * dt_factor.
@@ -168,7 +171,10 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
         [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path& out) {
           return run_encounter(c, run_config, loop, out);
         });
-    if (!encounter) return result.interrupted = true, result;
+    if (!encounter) {
+      result.interrupted = true;
+      return result;
+    }
     analyze_if_stale(ctx, file, *encounter, dir / "analysis", spec.name);
     result.encounters.push_back({spec.name, file, dir / "analysis",
                                  fracture_summary_line(spec.name, analyze_fractures(encounter->body, encounter->state))});
