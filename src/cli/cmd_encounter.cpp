@@ -14,15 +14,13 @@ namespace tidalcrust {
 
 int command_encounter(int argc, char** argv) {
   cxxopts::Options options("tidalcrust encounter", "Tidal encounter with crust failure (paper sections 2.6, 2.9).");
-  add_common_options(options);
-  add_loop_options(options);
-  options.add_options()("from", "input relax or encounter checkpoint (or a mid-stage encounter to resume)",
-                        cxxopts::value<std::string>())("out", "output checkpoint", cxxopts::value<std::string>())(
-      "encounter", "name of an encounter of the configuration", cxxopts::value<std::string>())(
+  options.add_options()("encounter", "name of an encounter of the configuration", cxxopts::value<std::string>())(
       "m2", "perturber mass M2 (M)", cxxopts::value<double>())("q", "pericenter distance (R)", cxxopts::value<double>())(
       "vq", "speed at pericenter (sqrt(GM/R))", cxxopts::value<double>())(
       "failure-strain", "eps_S for this encounter", cxxopts::value<double>());
-  auto in = read_stage_input(options, argc, argv, {"relax", "encounter"}, "encounter");
+  auto in = read_stage_input(options, argc, argv,
+                             "input relax or encounter checkpoint (or a mid-stage encounter to resume)", true,
+                             {"relax", "encounter"}, "encounter");
   if (!in) return exit_ok;
   auto& [parsed, common, from, out, input] = *in;
   const bool resuming = std::holds_alternative<EncounterRecord>(input.stage.record) && !input.stage.complete;

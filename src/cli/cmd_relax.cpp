@@ -14,11 +14,9 @@ namespace tidalcrust {
 
 int command_relax(int argc, char** argv) {
   cxxopts::Options options("tidalcrust relax", "Damped relaxation and stability probe (paper section 2.8).");
-  add_common_options(options);
-  add_loop_options(options);
-  options.add_options()("from", "input stretch checkpoint (or a mid-stage relax checkpoint to resume)",
-                        cxxopts::value<std::string>())("out", "output checkpoint", cxxopts::value<std::string>());
-  auto in = read_stage_input(options, argc, argv, {"stretch", "relax"}, "relax");
+  auto in = read_stage_input(options, argc, argv,
+                             "input stretch checkpoint (or a mid-stage relax checkpoint to resume)", true,
+                             {"stretch", "relax"}, "relax");
   if (!in) return exit_ok;
   auto& [parsed, common, from, out, input] = *in;
   const bool resuming = std::holds_alternative<RelaxRecord>(input.stage.record);

@@ -14,10 +14,7 @@ namespace tidalcrust {
 
 int command_stretch(int argc, char** argv) {
   cxxopts::Options options("tidalcrust stretch", "Stretch and strengthen a built body (paper section 2.3).");
-  add_common_options(options);
-  options.add_options()("from", "input build checkpoint", cxxopts::value<std::string>())(
-      "out", "output checkpoint", cxxopts::value<std::string>());
-  auto in = read_stage_input(options, argc, argv, {"build"}, "stretch");
+  auto in = read_stage_input(options, argc, argv, "input build checkpoint", false, {"build"}, "stretch");
   if (!in) return exit_ok;
   const auto& [parsed, common, from, out, input] = *in;
   Config config = stage_config(input, from, common, false);

@@ -76,8 +76,13 @@ void require_stage(const Checkpoint& input, const fs::path& from, std::initializ
                                input.stage.name(), command, names));
 }
 
-std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv,
-                                           std::initializer_list<const char*> allowed, const char* command) {
+std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv, const char* from_help,
+                                           bool time_stepping, std::initializer_list<const char*> allowed,
+                                           const char* command) {
+  add_common_options(options);
+  if (time_stepping) add_loop_options(options);
+  options.add_options()("from", from_help, cxxopts::value<std::string>())("out", "output checkpoint",
+                                                                           cxxopts::value<std::string>());
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) {
     fmt::print("{}\n", options.help());

@@ -36,11 +36,14 @@ struct StageInput {
   Checkpoint input;            ///< read from `from`, of one of the allowed stages
 };
 
-/// Parses the command line (`options` must declare --from and --out), checks --out and reads the
-/// input checkpoint, which must be of one of the `allowed` stages (InputError otherwise). Nothing
-/// when --help was asked: the help is printed.
-std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv,
-                                           std::initializer_list<const char*> allowed, const char* command);
+/// Declares the options every such command has (--config, --set, --threads, --dt-factor, --from
+/// described by `from_help`, --out, and for a time-stepping stage --checkpoint-every,
+/// --stop-after-step, --quiet) beside the command's own, parses the command line, checks --out and
+/// reads the input checkpoint, which must be of one of the `allowed` stages (InputError
+/// otherwise). Nothing when --help was asked: the help is printed.
+std::optional<StageInput> read_stage_input(cxxopts::Options& options, int argc, char** argv, const char* from_help,
+                                           bool time_stepping, std::initializer_list<const char*> allowed,
+                                           const char* command);
 
 /// InputError unless the input checkpoint is of one of the allowed stages.
 void require_stage(const Checkpoint& input, const std::filesystem::path& from,

@@ -401,40 +401,31 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
   x += fmt::format("    <Grid Name=\"{}\" GridType=\"Collection\" CollectionType=\"Spatial\">\n",
                    xml_escape(c.stage.name()));
   x += fmt::format("      <Time Value=\"{}\"/>\n", c.state.time);
+  // One uniform grid: its topology, the shared geometry, then its attributes.
+  auto grid = [&](const char* name, const char* type, std::size_t count, const char* nodes_per_element,
+                  const std::string& connectivity, const std::string& attributes) {
+    return fmt::format("      <Grid Name=\"{}\" GridType=\"Uniform\">\n"
+                       "        <Topology TopologyType=\"{}\" NumberOfElements=\"{}\"{}>\n          {}\n"
+                       "        </Topology>\n{}{}      </Grid>\n",
+                       name, type, count, nodes_per_element, connectivity, geometry, attributes);
+  };
   if (n > 0) {
-    x += "      <Grid Name=\"particles\" GridType=\"Uniform\">\n";
-    x += fmt::format("        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{0}\" NodesPerElement=\"1\">\n"
-                     "          <DataItem Dimensions=\"{0}\" NumberType=\"Int\" Precision=\"4\" Format=\"XML\">",
-                     n);
-    for (std::size_t i = 0; i < n; ++i) x += (i % 20 == 0 ? "\n" : " ") + std::to_string(i);
-    x += "\n          </DataItem>\n        </Topology>\n";
-    x += geometry;
-    x += attribute("species", "Node", n, "UChar", 1, path::species);
-    x += attribute("mass", "Node", n, "Float", 8, path::mass);
-    x += fmt::format("        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n          {}\n"
-                     "        </Attribute>\n",
-                     slice(path::velocity));
-    x += "      </Grid>\n";
+    std::string indices = fmt::format("<DataItem Dimensions=\"{}\" NumberType=\"Int\" Precision=\"4\" Format=\"XML\">", n);
+    for (std::size_t i = 0; i < n; ++i) indices += (i % 20 == 0 ? "\n" : " ") + std::to_string(i);
+    indices += "\n          </DataItem>";
+    x += grid("particles", "Polyvertex", n, " NodesPerElement=\"1\"", indices,
+              attribute("species", "Node", n, "UChar", 1, path::species) +
+                  attribute("mass", "Node", n, "Float", 8, path::mass) +
+                  fmt::format("        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+                              "          {}\n        </Attribute>\n",
+                              slice(path::velocity)));
   }
-  if (ns > 0) {
-    x += "      <Grid Name=\"springs\" GridType=\"Uniform\">\n";
-    x += fmt::format("        <Topology TopologyType=\"Polyline\" NumberOfElements=\"{}\" NodesPerElement=\"2\">\n"
-                     "          {}\n        </Topology>\n",
-                     ns, heavy(fmt::format("{} 2", ns), "Int", 4, path::springs));
-    x += geometry;
-    x += attribute("failed", "Cell", ns, "UChar", 1, path::spring_failed);
-    x += attribute("kind", "Cell", ns, "UChar", 1, path::spring_kind);
-    x += attribute("stiffness", "Cell", ns, "Float", 8, path::spring_stiffness);
-    x += "      </Grid>\n";
-  }
-  if (nf > 0) {
-    x += "      <Grid Name=\"shell\" GridType=\"Uniform\">\n";
-    x += fmt::format("        <Topology TopologyType=\"Triangle\" NumberOfElements=\"{}\">\n"
-                     "          {}\n        </Topology>\n",
-                     nf, heavy(fmt::format("{} 3", nf), "Int", 4, path::faces));
-    x += geometry;
-    x += "      </Grid>\n";
-  }
+  if (ns > 0)
+    x += grid("springs", "Polyline", ns, " NodesPerElement=\"2\"", heavy(fmt::format("{} 2", ns), "Int", 4, path::springs),
+              attribute("failed", "Cell", ns, "UChar", 1, path::spring_failed) +
+                  attribute("kind", "Cell", ns, "UChar", 1, path::spring_kind) +
+                  attribute("stiffness", "Cell", ns, "Float", 8, path::spring_stiffness));
+  if (nf > 0) x += grid("shell", "Triangle", nf, "", heavy(fmt::format("{} 3", nf), "Int", 4, path::faces), "");
   x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return x;
 }
