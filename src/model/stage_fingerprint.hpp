@@ -1,6 +1,7 @@
 #pragma once
 // What each stage's result depends on, as text: a stage is redone exactly when its
-// fingerprint (or its parent's state) changed. Stored in each checkpoint's labels.
+// fingerprint (or its parent's state) changed. Stored as /checkpoint@fingerprint
+// (StageInfo::fingerprint).
 #include <string>
 
 #include "model/config.hpp"

@@ -7,7 +7,8 @@
 namespace tidalcrust::test_support {
 
 /// A tetrahedron of shell nodes around one interior node, springs of all three kinds (one
-/// failed), hinges, faces, a perturber, failure events, timeseries rows, scalars and labels.
+/// failed), hinges, faces, a perturber, failure events, timeseries rows and an encounter record
+/// with every kind of field (numbers, counts, a text, a list).
 inline Checkpoint synthetic_checkpoint() {
   Checkpoint c;
   EncounterRecord record;
