@@ -57,6 +57,28 @@ std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t p
 
 }  // namespace
 
+void check_encounter(const Config& config, const Encounter& spec) {
+  {
+    // validate() checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0).
+    Config checked = config;
+    checked.encounters = {spec};
+    validate(checked, "encounter parameters");
+  }
+  const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
+  const double duration = encounter_start(orbit, config.encounter.start_distance).time_to_pericenter +
+                          orbit.time_to_pericenter(config.encounter.end_distance);
+  const double dt = config.integrator.dt;
+  const double passage = spec.pericenter / spec.pericenter_speed;
+  const double per_passage = passage / dt, in_encounter = duration / dt;
+  if (!(per_passage >= min_steps_per_pericenter_passage) || !(in_encounter >= min_steps_per_pericenter_passage))
+    throw InputError(fmt::format(
+        "encounter '{}' (M2 = {:g}, q = {:g}, V_q = {:g}) is not resolved by dt = {:g}: the pericenter passage "
+        "q/V_q = {:.3g} t_grav spans {:.3g} steps and the whole encounter {:.3g} steps, at least {:g} needed "
+        "(lower integrator.dt or V_q)",
+        spec.name, spec.perturber_mass, spec.pericenter, spec.pericenter_speed, dt, passage, per_passage,
+        in_encounter, min_steps_per_pericenter_passage));
+}
+
 Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const Encounter& spec) {
   const bool usable_stage = std::holds_alternative<RelaxRecord>(parent.stage.record) ||
                             std::holds_alternative<EncounterRecord>(parent.stage.record);
@@ -64,12 +86,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
     throw InputError(fmt::format(
         "an encounter starts from a complete 'relax' or 'encounter' checkpoint, got {} '{}' checkpoint",
         parent.stage.complete ? "a complete" : "an unfinished (mid-stage)", parent.stage.name()));
-  {
-    // validate() checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0).
-    Config checked = config;
-    checked.encounters = {spec};
-    validate(checked, "encounter parameters");
-  }
+  check_encounter(config, spec);
 
   const double start_distance = config.encounter.start_distance;
   const double end_distance = config.encounter.end_distance;
@@ -81,7 +98,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   // to this stage: a fresh failure log and timeseries (the parent's stay in the parent's file).
   Checkpoint c = child_checkpoint(parent, EncounterRecord{}, config);
   State& state = c.state;
-  const double dt = c.stage.clock.dt;
+  const double dt = c.stage.clock.dt;  // config.integrator.dt, as check_encounter used
 
   // The two-body orbit is relative to the body's centre of mass (a second pass replaces the
   // earlier perturber).

@@ -55,8 +55,16 @@ FractureComparison compare_fractures(const Body& body, const State& a, const Sta
   result.jaccard = result.either_failed
                        ? static_cast<double>(result.common_failed) / static_cast<double>(result.either_failed)
                        : 1.0;
-  result.ks_distance = kolmogorov_smirnov_distance(result.a.angles_from_subsatellite_deg(),
-                                                   result.b.angles_from_subsatellite_deg());
+  // The two states may be at different times (a snapshot and the end, two dt): the same spring
+  // then sits at slightly different angles. The distributions are compared on ONE geometry, the
+  // mean of both states' positions, so that only the failure sets differ: identical sets give 0.
+  State shared = a;
+  for (std::size_t k = 0; k < shared.position.size(); ++k) shared.position[k] = 0.5 * (a.position[k] + b.position[k]);
+  const FractureSummary on_shared_a = analyze_fractures(body, shared);
+  shared.springs.failed = b.springs.failed;
+  const FractureSummary on_shared_b = analyze_fractures(body, shared);
+  result.ks_distance = kolmogorov_smirnov_distance(on_shared_a.angles_from_subsatellite_deg(),
+                                                   on_shared_b.angles_from_subsatellite_deg());
   return result;
 }
 

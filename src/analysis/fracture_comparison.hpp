@@ -15,7 +15,9 @@ struct FractureComparison {
   std::size_t either_failed = 0;  ///< springs failed in at least one
   double jaccard = 0;             ///< common / either; 1 when neither has failures
   double ks_distance = 0;         ///< Kolmogorov-Smirnov distance of the angle-from-subsatellite
-                                  ///< distributions; 0 when both are empty, NaN when one is
+                                  ///< distributions, both measured on one geometry (the mean of
+                                  ///< the two states' positions): 0 for identical failure sets and
+                                  ///< when both are empty, NaN when one is
 };
 
 /// Throws InputError (naming `name_a` and `name_b`) unless both bodies have the same particles,

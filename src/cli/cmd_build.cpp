@@ -24,9 +24,9 @@ int command_build(int argc, char** argv) {
   if (!common.config_file) throw InputError("missing required option --config WORKFLOW.toml");
   fs::path out = required_option(parsed, "out");
   check_output_path(out);
-  Config config = load_config(*common.config_file);
-  for (const auto& assignment : common.overrides) apply_override(config, assignment);
-  validate(config, "--set");
+  // --config, each --set, then --dt-factor: the time step is stored in the build checkpoint and
+  // every later stage continues with it (no common option is ignored).
+  const Config config = resolve_config("", "", common);
   apply_thread_count(common.threads);
   Checkpoint body = build_stage(config);
   write_checkpoint(out, body);

@@ -73,6 +73,8 @@ int command_compare(int argc, char** argv) {
   }
   fmt::print("{:<34} {:>16} {:>16}\n", "", "A", "B");
   auto row = [](const char* name, const std::string& x, const std::string& y) { fmt::print("{:<34} {:>16} {:>16}\n", name, x, y); };
+  row("time [t_grav]", number(a.state.time, "{:.6g}"), number(b.state.time, "{:.6g}"));
+  row("step", fmt::format("{}", a.state.step), fmt::format("{}", b.state.step));
   row("failed shell springs", fmt::format("{}", r.a.count()), fmt::format("{}", r.b.count()));
   row("fraction of shell springs", number(r.a.fraction_shell), number(r.b.fraction_shell));
   row("subsatellite hemisphere fraction", number(r.a.hemisphere_fraction), number(r.b.hemisphere_fraction));

@@ -71,7 +71,8 @@ Json body_json(const BodyReport& r) {
           {"strain", e.strain},
           {"t_enc_s", e.encounter_time * r.scales.t_grav_s},
           {"t_elas_s", e.elastic_time * r.scales.t_grav_s},
-          {"t_enc_over_t_elas", e.time_ratio},
+          {"t_enc_over_t_elas", e.encounter_time / e.elastic_time},
+          {"eq11_time_ratio", e.time_ratio},
           {"strain_rate_per_s", e.strain_rate / r.scales.t_grav_s}};
 }
 
@@ -97,7 +98,11 @@ void print_body(const BodyReport& r, const Encounter& g, double youngs_GPa) {
   fmt::print("  strain           = {:.3g}   (eq. 5)\n", e.strain);
   fmt::print("  t_enc            = {:.4g} s,  t_elas = {:.4g} s\n", e.encounter_time * s.t_grav_s,
              e.elastic_time * s.t_grav_s);
-  fmt::print("  t_enc/t_elas     = {:.3g}   (eq. 11 as printed, which takes t_enc ~ q/V_q)\n", e.time_ratio);
+  // The ratio of the two times printed above, then eq. 11 as the paper prints it, which takes
+  // t_enc ~ q/V_q (half of eq. 2's 2q/V_q), labelled separately so the lines agree.
+  fmt::print("  t_enc/t_elas     = {:.3g}\n", e.encounter_time / e.elastic_time);
+  fmt::print("  eq. 11 as printed = {:.3g}   ((q/R)(v_c/V_q)(E/e_g)^(1/2), i.e. t_enc ~ q/V_q: half of t_enc/t_elas)\n",
+             e.time_ratio);
   fmt::print("  strain rate      = {:.3g} /s   (eq. 10)\n", e.strain_rate / s.t_grav_s);
 }
 
@@ -109,7 +114,7 @@ void print_table(const std::vector<BodyReport>& reports, const Encounter& g, dou
     fmt::print("{:<8} {:>10.3g} {:>8g} {:>9.3g} {:>9.4g} {:>7.3g} {:>7.3g} {:>7.3g} {:>7.3g} {:>12.3g} {:>10.3g}\n",
                r.body.name, r.body.mass_kg, r.body.radius_km, r.scales.e_g_GPa, r.scales.t_grav_s,
                r.scales.density_g_cm3, r.scales.v_c_km_s, r.e_g_over_E, r.estimates.strain,
-               r.estimates.time_ratio, r.estimates.strain_rate / r.scales.t_grav_s);
+               r.estimates.encounter_time / r.estimates.elastic_time, r.estimates.strain_rate / r.scales.t_grav_s);
   }
 }
 

@@ -8,6 +8,7 @@
 #include "base/errors.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
+#include "stages/encounter_stage.hpp"
 #include "stages/workflow.hpp"
 
 namespace tidalcrust {
@@ -46,6 +47,11 @@ int command_run(int argc, char** argv) {
     for (const auto& name : parsed["only"].as<std::vector<std::string>>())
       encounters.push_back(config.find_encounter(name));
   }
+  // Every encounter to run must be resolved by its time step (dt times --dt-factor), checked
+  // here too so that an unresolvable one is refused before the body is built.
+  Config encounter_config = config;
+  if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
+  for (const auto& spec : encounters) check_encounter(encounter_config, spec);
   WorkflowOptions workflow_options;
   workflow_options.root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
                                               : fs::path("checkpoints") / config.workflow.name;

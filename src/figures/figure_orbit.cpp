@@ -18,6 +18,9 @@ namespace {
 constexpr double figure_width_pt = 480, figure_height_pt = 540;
 constexpr PageRect plot_area{64, 44, 396, 380};
 constexpr double tick_interval = 0.1;  ///< t_grav between red diamonds (as in the paper)
+/// At most this many diamonds: over a longer track (extreme or corrupt records) the interval
+/// grows to a whole multiple of tick_interval, so the drawing time never depends on the values.
+constexpr double max_ticks = 400;
 
 constexpr Rgb analytic_track_color{0.55, 0.55, 0.55};  ///< thin grey dashed reference line
 constexpr double analytic_dash[] = {4.0, 3.0};          ///< points on, off
@@ -30,7 +33,8 @@ struct OrbitPlotContent {
   std::vector<Vec3> track;                      ///< drawn solid
   std::vector<Vec3> analytic_track;             ///< drawn thin grey dashed when simulated
   double max_deviation = 0;                     ///< max |simulated - analytic| over the samples
-  std::vector<Vec3> tick_positions;             ///< every tick_interval from the stage start
+  std::vector<Vec3> tick_positions;             ///< every tick_every from the stage start
+  double tick_every = tick_interval;            ///< t_grav between diamonds (>= tick_interval)
   std::vector<Vec3> snapshot_positions;
   Vec3 pericenter = Vec3::Zero();               ///< closest point of the track
   Vec3 direction = Vec3::UnitX();               ///< direction of motion there
@@ -56,9 +60,14 @@ OrbitPlotContent orbit_plot_content(const Checkpoint& checkpoint, const Encounte
     content.analytic_track.push_back(analytic(t_start + (t_end - t_start) * static_cast<double>(i) / track_points));
   // Where the figure puts the perturber at time t: on the simulated track where it was sampled.
   auto position = [&](double t) { return recorded.covers(t) ? recorded.position_at(t) : analytic(t); };
-  const auto ticks = static_cast<long>(std::floor((t_end - t_start) / tick_interval + 1e-9));
+  const double span = t_end - t_start;
+  const double interval =
+      span / tick_interval > max_ticks ? tick_interval * std::ceil(span / (tick_interval * max_ticks)) : tick_interval;
+  const double tick_count = std::isfinite(span / interval) ? std::floor(span / interval + 1e-9) : 0;
+  const auto ticks = static_cast<long>(std::clamp(tick_count, 0.0, max_ticks));
+  content.tick_every = interval;
   for (long k = 0; k <= ticks; ++k) {
-    const double t = t_start + static_cast<double>(k) * tick_interval;
+    const double t = t_start + static_cast<double>(k) * interval;
     if (!content.simulated || recorded.covers(t)) content.tick_positions.push_back(position(t));
   }
   for (const double t : snapshot_times) content.snapshot_positions.push_back(position(t));
@@ -232,7 +241,7 @@ FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord
     diamond(cr, col1, row0, 3.2);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, fmt::format("every {} t_grav from the stage start", tick_interval), col1 + 12, row0, 0, 0.5,
+    draw_text(cr, fmt::format("every {:g} t_grav from the stage start", content.tick_every), col1 + 12, row0, 0, 0.5,
               tick_font_size);
     const double snapshot_row = content.simulated ? row2 : row1;
     cairo_set_line_width(cr, 0.9);

@@ -21,6 +21,21 @@ TEST(FractureComparison, SelfComparisonIsIdentical) {
   EXPECT_EQ(r.either_failed, r.b.count());
 }
 
+// The same failure set in two states whose positions differ slightly (a snapshot and the end, or
+// two time steps) is the same distribution of fractures: KS distance 0, not 1/n.
+TEST(FractureComparison, SameFailuresAtDifferentPositionsHaveDistanceZero) {
+  Checkpoint a = synthetic_encounter(2);
+  for (std::size_t s = 0; s < 480; s += 7) a.state.springs.failed[s] = 1;
+  Checkpoint b = a;
+  for (std::size_t k = 0; k < b.state.position.size(); ++k)
+    b.state.position[k] += 1e-4 * std::sin(static_cast<double>(k) * 1.7);
+  b.state.time += 0.5;
+  const FractureComparison r = compare_fractures(a.body, a.state, b.state);
+  ASSERT_GT(r.a.count(), 10u);
+  EXPECT_EQ(r.jaccard, 1.0);
+  EXPECT_EQ(r.ks_distance, 0.0);
+}
+
 TEST(FractureComparison, OverlapAndDistance) {
   Checkpoint a = synthetic_encounter(1), b = synthetic_encounter(1);
   for (std::size_t s : {0, 1, 2, 3}) a.state.springs.failed[s] = 1;

@@ -117,6 +117,20 @@ TEST_F(AnalyzeCompareCli, CompareCountsOverlap) {
   EXPECT_NE(text.out.find("Jaccard index 0.3333"), std::string::npos) << text.out;
 }
 
+// The table shows which times (and steps) are compared: here a snapshot at t = 1.2, step 600,
+// against the final state.
+TEST_F(AnalyzeCompareCli, CompareShowsBothTimes) {
+  const Checkpoint final_state = read_checkpoint(encounter);
+  const auto r = run_cli("compare \"" + snapshot_path(encounter, 600).string() + "\" \"" + encounter.string() + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto row = r.out.find("time [t_grav]");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+  EXPECT_NE(line.find(" 1.2 "), std::string::npos) << line;
+  EXPECT_NE(line.find(fmt::format("{:.6g}", final_state.state.time)), std::string::npos) << line;
+  EXPECT_NE(r.out.find("600"), std::string::npos) << r.out;
+}
+
 TEST_F(AnalyzeCompareCli, CompareRefusesDifferentBodiesAndStages) {
   auto r = run_cli("compare \"" + encounter.string() + "\" \"" + (dir / "coarse.h5").string() + "\"");
   EXPECT_EQ(r.exit_code, 2);

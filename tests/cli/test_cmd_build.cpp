@@ -8,6 +8,7 @@
 
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
+#include "model/config.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -70,4 +71,19 @@ TEST(BuildCli, BadInputExitsTwoNamingTheProblemAndKeepsExistingFiles) {
     EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
   }
   EXPECT_EQ(read_file(out), before);  // nothing already written was damaged
+}
+
+// An option a command accepts is applied: --dt-factor scales the time step the build checkpoint
+// records (clock and stored configuration), which stretch, relax and encounters continue with.
+TEST(BuildCli, DtFactorScalesTheRecordedTimeStep) {
+  const ScratchFolder scratch("build_dt_factor");
+  const fs::path& dir = scratch.path;
+  ASSERT_EQ(run_cli("build --config '" + quick() + "' --out '" + (dir / "a.h5").string() + "'").exit_code, 0);
+  const CliResult half =
+      run_cli("build --config '" + quick() + "' --dt-factor 0.5 --out '" + (dir / "b.h5").string() + "'");
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  const auto a = read_checkpoint(dir / "a.h5"), b = read_checkpoint(dir / "b.h5");
+  EXPECT_DOUBLE_EQ(b.stage.clock.dt, 0.5 * a.stage.clock.dt);
+  EXPECT_DOUBLE_EQ(parse_config(b.config_toml, "b.h5").integrator.dt, 0.5 * a.stage.clock.dt);
+  EXPECT_EQ(state_hash(a.state), state_hash(b.state));  // the built body itself does not depend on dt
 }

@@ -54,7 +54,9 @@ TEST(CommandEstimate, EncounterOptionsChangeTheEstimates) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const double e_g = json_number(r.out, "e_g_GPa");
   EXPECT_NEAR(json_number(r.out, "strain"), std::sqrt(e_g / 2.7) * 0.5 / (1.84 * 1.84 * 1.6), 1e-12);
-  EXPECT_NEAR(json_number(r.out, "t_enc_over_t_elas"), 1.84 / 1.6 * std::sqrt(2.7 / e_g), 1e-12);
+  // t_enc = 2q/V_q (eq. 2) over t_elas; eq. 11 as printed takes t_enc ~ q/V_q: half of it.
+  EXPECT_NEAR(json_number(r.out, "t_enc_over_t_elas"), 2 * 1.84 / 1.6 * std::sqrt(2.7 / e_g), 1e-12);
+  EXPECT_NEAR(json_number(r.out, "eq11_time_ratio"), 1.84 / 1.6 * std::sqrt(2.7 / e_g), 1e-12);
   EXPECT_NEAR(json_number(r.out, "delta_v"), 2 * 0.5 / (1.84 * 1.84 * 1.6), 1e-12);
 }
 
@@ -90,4 +92,25 @@ TEST(CommandEstimate, BadInputNamesTheOption) {
     EXPECT_EQ(r.exit_code, 2) << args;
     EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
   }
+}
+
+/// The number after `label` in a text (first occurrence), NAN if absent.
+static double number_after(const std::string& text, const std::string& label) {
+  const auto at = text.find(label);
+  if (at == std::string::npos) return NAN;
+  return std::stod(text.substr(at + label.size()));
+}
+
+// The printed ratio t_enc/t_elas is the ratio of the two printed times (to their printed
+// precision); eq. 11's value, which takes t_enc ~ q/V_q, has its own label and is half of it.
+TEST(CommandEstimate, PrintedRatioIsTheRatioOfThePrintedTimes) {
+  const auto r = run_cli("estimate --body Dione");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double t_enc = number_after(r.out, "t_enc            = ");
+  const double t_elas = number_after(r.out, "t_elas = ");
+  const double ratio = number_after(r.out, "t_enc/t_elas     = ");
+  const double eq11 = number_after(r.out, "eq. 11 as printed = ");
+  ASSERT_TRUE(std::isfinite(t_enc) && std::isfinite(t_elas) && std::isfinite(ratio) && std::isfinite(eq11)) << r.out;
+  EXPECT_NEAR(ratio, t_enc / t_elas, 0.005 * ratio) << r.out;
+  EXPECT_NEAR(eq11, 0.5 * ratio, 0.005 * ratio) << r.out;
 }

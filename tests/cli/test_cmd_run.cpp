@@ -203,6 +203,12 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
       {"run " + quoted(workflow) + " --only Z --out " + quoted(out), "unknown encounter 'Z'"},
       {"run " + quoted(workflow) + " --set workflow.seed=4 --out " + quoted(out), "different body"},
       {"run " + quoted(dir / "missing.toml") + " --out " + quoted(out), "missing.toml"},
+      // An encounter the time step cannot resolve (issue 10, item 6), refused before the body
+      // is built (in a fresh folder: nothing created), naming the encounter and dt.
+      {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
+           " --out " + quoted(dir / "fresh"), "encounter 'B'"},
+      {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
+           " --out " + quoted(dir / "fresh"), "is not resolved by dt = "},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);
@@ -212,6 +218,7 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   }
   EXPECT_EQ(read_file(out / "body" / "build.h5"), build_bytes);
   EXPECT_FALSE(fs::exists(out / "A"));
+  EXPECT_FALSE(fs::exists(dir / "fresh"));
 }
 
 TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {

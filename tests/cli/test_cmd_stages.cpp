@@ -75,7 +75,7 @@ TEST(StageCli, BlowUpExitsOneNamingStepAndCauseAndWritesDiagnosticCheckpoint) {
   ASSERT_EQ(run_cli("relax --quiet --from " + c.at("stretched.h5") + " --out " + c.at("relaxed.h5")).exit_code, 0);
   // dt far beyond the stability bound of the stiffest spring (eq. 13).
   auto r = run_cli("encounter --quiet --from " + c.at("relaxed.h5") + " --out " + c.at("enc.h5") +
-                   " --m2 1 --q 1.6 --vq 1.6 --set integrator.dt=0.08");
+                   " --m2 1 --q 1.6 --vq 1.6 --set integrator.dt=0.05");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("blow-up at step"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("stability bound"), std::string::npos) << r.err;
@@ -84,4 +84,17 @@ TEST(StageCli, BlowUpExitsOneNamingStepAndCauseAndWritesDiagnosticCheckpoint) {
   const Checkpoint diagnostic = read_checkpoint(c.dir / "enc.diagnostic.h5");  // valid, inspectable
   EXPECT_FALSE(diagnostic.stage.complete);
   EXPECT_NE(diagnostic.stage.diagnostic.find("stability bound"), std::string::npos) << diagnostic.stage.diagnostic;
+
+  // Encounters the time step cannot resolve (issue 10, item 6): exit 2, one line naming dt and
+  // the encounter, nothing written. Quick's dt = 0.004; the pericenter passage q/V_q spans 0.01,
+  // 0.4 and ~1e-150 steps.
+  for (const char* orbit : {"--m2 1e9 --q 1.84 --vq 33100", "--m2 1e6 --q 1.84 --vq 1042.6",
+                            "--m2 1e300 --q 1.84 --vq 1.0425e150"}) {
+    r = run_cli("encounter --quiet --from " + c.at("relaxed.h5") + " --out " + c.at("unresolved.h5") + " " + orbit);
+    EXPECT_EQ(r.exit_code, 2) << orbit << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("dt = 0.004"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("encounter '"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(c.dir / "unresolved.h5"));
+  }
 }

@@ -402,5 +402,46 @@ TEST(EncounterStage, BadParametersAreRejected) {
   EXPECT_THROW(run_encounter(relaxed, config, quiet_loop()), InputError);
 }
 
+// Encounters the time step cannot resolve (issue 10, item 6) are refused by begin_encounter,
+// which `run`, `encounter` and the workflow all go through, naming the encounter and dt: at
+// dt = 0.004, M2 = 1e9 at V_q = 33100 passes pericenter in 0.01 steps, M2 = 1e6 at the parabolic
+// speed in 0.4 steps, and M2 = 1e300 at its parabolic speed in far less.
+TEST(EncounterStage, UnresolvableEncountersAreRefusedNamingDtAndTheEncounter) {
+  const Config config = quick_config();
+  ASSERT_EQ(config.integrator.dt, 0.004);
+  const Checkpoint& parent = quick_parent();
+  const auto parabolic = [](double m2, double q) { return std::sqrt(2.0 * (1.0 + m2) / q); };
+  const Encounter cases[] = {{"fast", 1e9, 1.84, 33100, {}},
+                             {"heavy", 1e6, 1.84, parabolic(1e6, 1.84), {}},
+                             {"extreme", 1e300, 1.84, parabolic(1e300, 1.84), {}}};
+  for (const Encounter& spec : cases) {
+    const std::string message = rejection(parent, config, spec);
+    EXPECT_NE(message.find("encounter '" + spec.name + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("dt = 0.004"), std::string::npos) << message;
+    EXPECT_NE(message.find("not resolved"), std::string::npos) << message;
+  }
+}
+
+// The paper's encounters (paper-T.toml at its dt) and quick's "strong" span hundreds of steps
+// per pericenter passage q/V_q and about a thousand or more in all: all accepted.
+TEST(EncounterStage, PaperAndQuickEncountersAreResolved) {
+  const Checkpoint& parent = quick_parent();
+  const Config paper = load_config(workflow_file("paper-T.toml"));
+  Config config = quick_config();
+  config.integrator.dt = paper.integrator.dt;
+  config.encounter.start_distance = paper.encounter.start_distance;
+  config.encounter.end_distance = paper.encounter.end_distance;
+  ASSERT_EQ(paper.encounters.size(), 4u);
+  for (const Encounter& spec : paper.encounters) {
+    EXPECT_EQ(rejection(parent, config, spec), "") << spec.name;
+    EXPECT_GT(spec.pericenter / spec.pericenter_speed / config.integrator.dt, 100) << spec.name;
+  }
+  const Config quick = quick_config();
+  const Encounter strong = quick.find_encounter("strong");
+  EXPECT_EQ(rejection(parent, quick, strong), "");
+  const Checkpoint begun = begin_encounter(parent, quick, strong);
+  EXPECT_GT(begun.stage.end_step - begun.stage.clock.start_step, 500);  // 918
+}
+
 }  // namespace
 }  // namespace tidalcrust
