@@ -649,8 +649,8 @@ Checkpoint read_checkpoint(const fs::path& file) {
   h5::File f;
   try {
     f = h5::open_file_readonly(file);
-  } catch (const h5::Error&) {
-    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it)", name));
+  } catch (const h5::Error& err) {
+    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, err.what()));
   }
   Checkpoint c;
   std::string stored_hash;

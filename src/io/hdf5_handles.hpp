@@ -212,11 +212,31 @@ inline std::string file_image(hid_t file) {
   return bytes;
 }
 
+/// The cause HDF5 recorded for the call that just failed: the description of an entry that
+/// carries an errno text if there is one, else the innermost (most specific) description.
+inline std::string error_stack_text() {
+  struct Found {
+    std::string innermost, with_errno;
+  } found;
+  auto visit = [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+    auto* f = static_cast<Found*>(data);
+    const std::string desc = e->desc ? e->desc : "";
+    if (n == 0) f->innermost = desc;
+    if (f->with_errno.empty() && desc.find("errno") != std::string::npos) f->with_errno = desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &found);
+  const std::string& text = found.with_errno.empty() ? found.innermost : found.with_errno;
+  return text.empty() ? "unknown HDF5 error" : text;
+}
+
 /// Opens a finished file for reading, without file locking (file_access_plist).
 inline File open_file_readonly(const std::filesystem::path& path) {
   silence_errors();
   PropList fapl = file_access_plist();
-  return File(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), "cannot open file"));
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (id < 0) throw Error(error_stack_text());
+  return File(id);
 }
 
 inline Group create_group(hid_t loc, std::string_view name) {
