@@ -81,6 +81,20 @@ TEST(IoFailures, DiskFullEndsEveryWritingCommandWithExit2AndKeepsTheExistingChec
                                    quoted(tiny.path / "wf")),
                            (tiny.path / "wf").string());
 
+  // relax, encounter (which write mid-stage checkpoints) and analyze, from a finished workflow.
+  const fs::path wf = scratch.path / "wf";
+  const auto ran = run_cli("run " + quoted(test_support::workflow_file("quick.toml")) + " --out " + quoted(wf));
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  expect_disk_full_failure(run_cli("relax --from " + quoted(wf / "body/stretch.h5") + " --out " +
+                                   quoted(tiny.path / "r.h5")),
+                           (tiny.path / "r.").string());  // r.mid.h5 or r.h5
+  expect_disk_full_failure(run_cli("encounter --from " + quoted(wf / "body/relax.h5") + " --out " +
+                                   quoted(tiny.path / "e.h5") + " --encounter strong"),
+                           (tiny.path / "e.").string());  // a snapshot, e.mid.h5 or e.h5
+  expect_disk_full_failure(run_cli("analyze --from " + quoted(wf / "strong/encounter.h5") + " --out " +
+                                   quoted(tiny.path / "analysis")),
+                           (tiny.path / "analysis").string());
+
   EXPECT_EQ(temporaries_in(tiny.path), "");
   EXPECT_TRUE(test_support::read_file(existing) == body_bytes) << "existing checkpoint changed";
   EXPECT_TRUE(test_support::read_file(tiny.path / "b.xdmf") == sidecar_bytes) << "existing sidecar changed";
