@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace tidalcrust {
 
@@ -35,6 +37,13 @@ void check(cairo_status_t status, const std::filesystem::path& file) {
   if (status != CAIRO_STATUS_SUCCESS)
     throw InputError(fmt::format("{}: cannot write figure: {}", file.string(), cairo_status_to_string(status)));
 }
+/// Cairo write callback appending to a std::string (figures are rendered in memory and then
+/// written with write_file_atomically, so a failed write names its errno text and never leaves
+/// half a figure).
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
 }  // namespace
 
 std::vector<std::filesystem::path> write_figure(const std::filesystem::path& stem, double width, double height,
@@ -48,14 +57,20 @@ std::vector<std::filesystem::path> write_figure(const std::filesystem::path& ste
                                                      static_cast<int>(std::lround(height * png_pixels_per_point))));
     check(cairo_surface_status(surface.get()), png);
     render(surface.get(), png_pixels_per_point, draw);
-    check(cairo_surface_write_to_png(surface.get(), png.c_str()), png);
+    std::string bytes;
+    check(cairo_surface_write_to_png_stream(surface.get(), append_bytes, &bytes), png);
+    write_file_atomically(png, bytes);
   }
   {
-    SurfaceHandle surface(cairo_svg_surface_create(svg.c_str(), width, height));
-    check(cairo_surface_status(surface.get()), svg);
-    render(surface.get(), 1.0, draw);
-    cairo_surface_finish(surface.get());
-    check(cairo_surface_status(surface.get()), svg);
+    std::string bytes;
+    {
+      SurfaceHandle surface(cairo_svg_surface_create_for_stream(append_bytes, &bytes, width, height));
+      check(cairo_surface_status(surface.get()), svg);
+      render(surface.get(), 1.0, draw);
+      cairo_surface_finish(surface.get());
+      check(cairo_surface_status(surface.get()), svg);
+    }
+    write_file_atomically(svg, bytes);
   }
   return {png, svg};
 }

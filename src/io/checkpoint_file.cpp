@@ -2,7 +2,12 @@
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include "io/checkpoint_file.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <cstring>
@@ -341,16 +346,19 @@ void write_observables(hid_t root, const Observables& o) {
   });
 }
 
-void write_hdf5(const fs::path& file, const Checkpoint& c) {
-  h5::File f = h5::create_file(file);
+/// The bytes of the checkpoint file of `c`, built in memory (h5::create_memory_file); `file`
+/// only names it.
+std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
+  h5::File f = h5::create_memory_file(file.string());
   const hid_t root = f.get();
   write_h5md_header(root);
   write_body_and_state(root, c);
   write_checkpoint_group(root, c, state_hash(c.state));
   write_parameters(root, c);
   write_observables(root, c.observables);
-  h5::check(H5Fflush(root, H5F_SCOPE_LOCAL), "cannot flush");
-  f.close("cannot close (disk full?)");
+  std::string bytes = h5::file_image(root);
+  f.close("cannot close");
+  return bytes;
 }
 
 // ---- XDMF sidecar ---------------------------------------------------------------------------
@@ -568,34 +576,72 @@ void read_observables(hid_t root, Observables& o) {
   });
 }
 
+/// InputError "<file>: <what>: <strerror(err)>".
+InputError os_error(const fs::path& file, const std::string& what, int err) {
+  return InputError(fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
+}
+
+/// Opens `file` with plain POSIX calls before HDF5 sees it, so that a missing file, a denied
+/// permission, a folder, a FIFO or an I/O error is reported with its real cause (the errno
+/// text) instead of as "not an HDF5 file"; then checks the HDF5 signature at offset 0 (where
+/// every file written here has it).
+void check_readable_hdf5(const fs::path& file) {
+  const std::string name = file.string();
+  // O_NONBLOCK: opening a FIFO must not wait for a writer.
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    const int err = errno;
+    if (err == ENOENT) throw os_error(file, "no such checkpoint file", err);
+    throw os_error(file, "cannot open checkpoint", err);
+  }
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    throw os_error(file, "cannot open checkpoint", err);
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw InputError(fmt::format("{}: not a regular file ({})", name,
+                                 S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "a FIFO, socket or device"));
+  }
+  static constexpr char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+  char head[8] = {0};
+  ssize_t n;
+  do n = ::pread(fd, head, sizeof head, 0);
+  while (n < 0 && errno == EINTR);
+  const int err = errno;
+  ::close(fd);
+  if (n < 0) throw os_error(file, "cannot read checkpoint", err);
+  if (n < static_cast<ssize_t>(sizeof head) || std::memcmp(head, signature, sizeof head) != 0)
+    throw InputError(fmt::format("{}: not an HDF5 file or truncated (no HDF5 signature at its start)", name));
+}
+
 }  // namespace
 
 void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
   if (auto problem = consistency_problem(checkpoint); !problem.empty())
     throw std::logic_error(fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
-  replace_file_atomically(file, [&](const fs::path& tmp) {
-    try {
-      write_hdf5(tmp, checkpoint);
-    } catch (const h5::Error& err) {
-      throw InputError(fmt::format("{}: cannot write checkpoint ({} {}): folder missing or not writable, or disk full",
-                                   file.string(), err.what(), tmp.string()));
-    }
-  });
+  std::string bytes;
+  try {
+    bytes = hdf5_bytes(file, checkpoint);
+  } catch (const h5::Error& err) {
+    throw InputError(fmt::format("{}: cannot build the checkpoint in memory: {}", file.string(), err.what()));
+  }
+  // The bytes reach the disk through plain writes, so a failure (disk full, quota, folder not
+  // writable) is reported with its errno text and HDF5 never holds a half-written file.
+  write_file_atomically(file, bytes);
   write_file_atomically(sidecar_path(file), xdmf_text(checkpoint, file.filename().string()));
 }
 
 Checkpoint read_checkpoint(const fs::path& file) {
   const std::string name = file.string();
-  std::error_code ec;
-  if (!fs::exists(file, ec)) throw InputError(fmt::format("{}: no such checkpoint file", name));
-  if (!fs::is_regular_file(file, ec)) throw InputError(fmt::format("{}: not a regular file", name));
-  h5::silence_errors();
-  if (H5Fis_hdf5(file.c_str()) <= 0) throw InputError(fmt::format("{}: not an HDF5 file or truncated", name));
+  check_readable_hdf5(file);
   h5::File f;
   try {
     f = h5::open_file_readonly(file);
-  } catch (const h5::Error&) {
-    throw InputError(fmt::format("{}: not an HDF5 file or truncated", name));
+  } catch (const h5::Error& err) {
+    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, err.what()));
   }
   Checkpoint c;
   std::string stored_hash;

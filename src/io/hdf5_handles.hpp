@@ -6,6 +6,7 @@
 // content written in the same order gives byte-identical files.
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <stdexcept>
@@ -127,20 +128,115 @@ inline PropList untimed_plist(hid_t cls) {
   return plist;
 }
 
-/// Creates (truncates) a file for reproducible writing.
-inline File create_file(const std::filesystem::path& path) {
+/// File access properties shared by every open: no HDF5 file locking. Writes go to a
+/// temporary renamed into place and readers open finished files only, so the lock protects
+/// nothing, and on file systems without locks (ENOLCK, e.g. some NFS mounts) it would make
+/// every open fail.
+inline PropList file_access_plist() {
+  PropList fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"));
+  check(H5Pset_file_locking(fapl.get(), false, true), "H5Pset_file_locking");
+  return fapl;
+}
+
+/// Creates a file for reproducible writing, held in memory (HDF5's core driver without a
+/// backing store): HDF5 never writes to disk, so a full disk cannot leave the library with a
+/// half-flushed open file; the caller writes file_image() itself, with the errno of any failure.
+inline File create_memory_file(const std::string& name) {
   silence_errors();
   PropList fcpl = untimed_plist(H5P_FILE_CREATE);  // also covers the root group
-  PropList fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"));
+  PropList fapl = file_access_plist();
+  check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
   // Fixed bounds: the format does not drift with the library version.
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V18), "H5Pset_libver_bounds");
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), "H5Pset_fclose_degree");
-  return File(check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), "cannot create file"));
+  return File(check(H5Fcreate(name.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), "cannot create file"));
 }
 
+/// Bob Jenkins' lookup3 hashlittle with initial value 0: HDF5's metadata checksum.
+inline std::uint32_t lookup3(const unsigned char* k, std::size_t length) {
+  auto rot = [](std::uint32_t x, int r) { return (x << r) | (x >> (32 - r)); };
+  std::uint32_t a, b, c;
+  a = b = c = 0xdeadbeefu + static_cast<std::uint32_t>(length);
+  auto word = [&](std::size_t i) {
+    return static_cast<std::uint32_t>(k[i]) | static_cast<std::uint32_t>(k[i + 1]) << 8 |
+           static_cast<std::uint32_t>(k[i + 2]) << 16 | static_cast<std::uint32_t>(k[i + 3]) << 24;
+  };
+  while (length > 12) {
+    a += word(0);
+    b += word(4);
+    c += word(8);
+    a -= c; a ^= rot(c, 4); c += b;
+    b -= a; b ^= rot(a, 6); a += c;
+    c -= b; c ^= rot(b, 8); b += a;
+    a -= c; a ^= rot(c, 16); c += b;
+    b -= a; b ^= rot(a, 19); a += c;
+    c -= b; c ^= rot(b, 4); b += a;
+    length -= 12;
+    k += 12;
+  }
+  if (length == 0) return c;
+  unsigned char tail[12] = {0};
+  std::copy(k, k + length, tail);
+  k = tail;
+  a += word(0);
+  b += word(4);
+  c += word(8);
+  c ^= b; c -= rot(b, 14);
+  a ^= c; a -= rot(c, 11);
+  b ^= a; b -= rot(a, 25);
+  c ^= b; c -= rot(b, 16);
+  a ^= c; a -= rot(c, 4);
+  b ^= a; b -= rot(a, 14);
+  c ^= b; c -= rot(b, 24);
+  return c;
+}
+
+/// The bytes of an open file (flushed first), as they would be on disk. HDF5 1.10's
+/// H5Fget_file_image rewrites the end-of-file address in the image's superblock without
+/// updating the superblock checksum (versions 2 and 3); the checksum is recomputed here, so
+/// the image opens like a file the library wrote itself.
+inline std::string file_image(hid_t file) {
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "cannot flush");
+  const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+  if (size < 0) throw Error("cannot get the file image");
+  std::string bytes(static_cast<std::size_t>(size), '\0');
+  if (size > 0 && H5Fget_file_image(file, bytes.data(), bytes.size()) != size) throw Error("cannot get the file image");
+  auto* image = reinterpret_cast<unsigned char*>(bytes.data());
+  if (bytes.size() >= 12 && (image[8] == 2 || image[8] == 3)) {
+    // Signature 8, version, sizes of offsets and lengths, flags, 4 addresses, checksum.
+    const std::size_t covered = 12 + 4 * static_cast<std::size_t>(image[9]);
+    if (bytes.size() < covered + 4) throw Error("file image too short for its superblock");
+    const std::uint32_t sum = lookup3(image, covered);
+    for (int i = 0; i < 4; ++i) image[covered + i] = static_cast<unsigned char>(sum >> (8 * i));
+  }
+  return bytes;
+}
+
+/// The cause HDF5 recorded for the call that just failed: the description of an entry that
+/// carries an errno text if there is one, else the innermost (most specific) description.
+inline std::string error_stack_text() {
+  struct Found {
+    std::string innermost, with_errno;
+  } found;
+  auto visit = [](unsigned n, const H5E_error2_t* e, void* data) -> herr_t {
+    auto* f = static_cast<Found*>(data);
+    const std::string desc = e->desc ? e->desc : "";
+    if (n == 0) f->innermost = desc;
+    if (f->with_errno.empty() && desc.find("errno") != std::string::npos) f->with_errno = desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &found);
+  const std::string& text = found.with_errno.empty() ? found.innermost : found.with_errno;
+  return text.empty() ? "unknown HDF5 error" : text;
+}
+
+/// Opens a finished file for reading, without file locking (file_access_plist).
 inline File open_file_readonly(const std::filesystem::path& path) {
   silence_errors();
-  return File(check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open file"));
+  PropList fapl = file_access_plist();
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (id < 0) throw Error(error_stack_text());
+  return File(id);
 }
 
 inline Group create_group(hid_t loc, std::string_view name) {
