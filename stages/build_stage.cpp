@@ -6,6 +6,7 @@
 
 #include "base/errors.hpp"
 #include "forces/hinge_geometry.hpp"
+#include "bodies/cross_support.hpp"
 #include "bodies/icosphere.hpp"
 #include "bodies/interior_builder.hpp"
 #include "bodies/neighbor_grid.hpp"
@@ -82,10 +83,15 @@ Checkpoint build_stage(const Config& config) {
   if (config.shell.enabled) {
     NeighborGrid shell_grid(Vec3(-1, -1, -1), Vec3(1, 1, 1), config.cross.distance);
     for (const auto& p : shell.nodes) shell_grid.insert(p);
+    std::vector<std::array<std::int32_t, 2>> cross;  // (interior, shell) pairs
     for (std::size_t i = 0; i < n_interior; ++i)
       for (std::int32_t s : shell_grid.closer_than(interior.nodes[i], config.cross.distance))
-        add_spring(body, state, static_cast<std::int32_t>(i), shell_offset + s, SpringKind::cross,
-                   config.cross.spring_constant);
+        cross.push_back({static_cast<std::int32_t>(i), s});
+    const auto extra = supplementary_cross_springs(interior.nodes, shell.nodes, cross,
+                                                   static_cast<int>(config.cross.min_per_shell_node));
+    cross.insert(cross.end(), extra.begin(), extra.end());
+    for (const auto& [i, s] : cross)
+      add_spring(body, state, i, shell_offset + s, SpringKind::cross, config.cross.spring_constant);
     if (body.count_springs(SpringKind::cross) == 0)
       throw InputError(fmt::format(
           "cross.distance = {}: no interior node lies that close to the shell, so the shell is unsupported",

@@ -120,6 +120,12 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.failed_stiffness_factor = config.shell.failed_stiffness_factor;
   record.damping = config.encounter.damping;
   record.fail_interval = config.encounter.fail_interval;
+  const FailureRule rule = make_failure_rule(config, record.failure_strain, c.body, state, dt);
+  record.failure_rule = failure_rule_name(rule.kind);
+  if (rule.kind == FailureRule::Kind::local) {
+    record.relaxation_steps = rule.interval;
+    record.exclusion_distance = rule.exclusion_distance;
+  }
   record.sample_interval = config.encounter.sample_interval;
   record.start_distance = start_distance;
   record.end_distance = end_distance;
@@ -148,9 +154,16 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
       throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@{} = {} must be >= 1", name, steps));
   const std::int64_t start_step = checkpoint.stage.clock.start_step;
   const std::int64_t end_step = checkpoint.stage.end_step;
-  const double failure_strain = schedule.failure_strain;
-  const double failed_stiffness_factor = schedule.failed_stiffness_factor;
-  const std::int64_t fail_interval = schedule.fail_interval;
+  FailureRule rule;
+  rule.kind = failure_rule_kind(schedule.failure_rule, "encounter checkpoint: /checkpoint/record@failure_rule");
+  rule.failure_strain = schedule.failure_strain;
+  rule.failed_stiffness_factor = schedule.failed_stiffness_factor;
+  rule.interval = rule.kind == FailureRule::Kind::local ? schedule.relaxation_steps : schedule.fail_interval;
+  rule.exclusion_distance = schedule.exclusion_distance;
+  if (rule.interval < 1)
+    throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@relaxation_steps = {} must be >= 1 for "
+                                 "the local failure rule",
+                                 rule.interval));
   const std::int64_t sample_interval = schedule.sample_interval;
   const std::vector<std::int64_t> snapshots = schedule.snapshot_steps;
 
@@ -161,10 +174,7 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
   auto after_step = [&](Checkpoint& c) {
     State& state = c.state;
     const std::int64_t done = state.step - start_step;
-    if (done % fail_interval == 0) {
-      if (auto event = fail_most_strained_shell_spring(c.body, state, failure_strain, failed_stiffness_factor))
-        c.observables.failures.push_back(*event);
-    }
+    apply_failure_rule(rule, c.body, state, start_step, c.observables.failures);
     if (done % sample_interval == 0 || state.step == end_step) c.observables.timeseries.push_back(sample_timeseries(c.body, state));
 
     // Closest approach, sampled every step (the error of a step-sampled minimum is ~(V dt)^2/(8 q)).

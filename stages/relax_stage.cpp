@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <set>
+#include <vector>
 
 #include "physics/conservation.hpp"
 #include "physics/crust_relaxation.hpp"
@@ -31,6 +32,15 @@ void zero_crust_stress(const Body& body, State& state) {
   reset_hinge_rest_angles(body, state);
 }
 
+/// The "balanced" support: the crust stress removed exactly, then the cross springs' rest
+/// lengths chosen so that they alone carry every shell node's weight (balance_cross_springs).
+void support_crust_by_cross_springs(ForceField& forces, const Body& body, State& state) {
+  zero_crust_stress(body, state);
+  std::vector<double> gravity(state.position.size());
+  forces.compute_gravity(state.position.data(), gravity.data());
+  balance_cross_springs(body, state, gravity);
+}
+
 /// The relaxation proper: leapfrog at damping relax.damping, all schedules counted in steps
 /// from start_step. Creep phase: every rest_length_interval steps the shell rest lengths creep
 /// toward the current lengths, every hinge_reset_interval steps the hinge rest angles are
@@ -54,9 +64,13 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
   const RelaxConfig& relax = config.relax;
   const std::int64_t start = checkpoint.stage.clock.start_step;
   const std::int64_t creep_end = record.creep_end_step;
+  const bool balanced = relax.crust_support == "balanced";
   auto after_step = [&](Checkpoint& c) {
     const std::int64_t done = c.state.step - start;
-    if (c.state.step < creep_end) {
+    if (balanced) {
+      if (c.state.step <= creep_end && (done % relax.rest_length_interval == 0 || c.state.step == creep_end))
+        support_crust_by_cross_springs(forces, c.body, c.state);
+    } else if (c.state.step < creep_end) {
       if (done % relax.rest_length_interval == 0) creep_shell_rest_lengths(c.body, c.state, relax.rest_length_rate);
       if (done % relax.hinge_reset_interval == 0) reset_hinge_rest_angles(c.body, c.state);
     } else if (c.state.step == creep_end) {
@@ -133,7 +147,14 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   record.damping = config.relax.damping;
   record.creep_end_step =
       std::max(clock.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, clock.dt));
-  if (record.creep_end_step == clock.start_step) zero_crust_stress(c.body, c.state);  // settle only
+  if (record.creep_end_step == clock.start_step) {  // settle only
+    if (config.relax.crust_support == "balanced") {
+      ForceField forces(c.body, force_options(config, record.damping));
+      support_crust_by_cross_springs(forces, c.body, c.state);
+    } else {
+      zero_crust_stress(c.body, c.state);
+    }
+  }
   c.observables.timeseries.push_back(sample_timeseries(c.body, c.state));
   return c;
 }

@@ -21,11 +21,10 @@ ProbeResult run_stability_probe(const Checkpoint& relaxed, const Config& config,
   Leapfrog leapfrog(forces, probe.stage.clock);
   ProbeResult result;
   result.max_shell_tension = max_shell_tension(probe.body, probe.state);
+  const FailureRule rule = make_failure_rule(config, failure_strain, probe.body, probe.state, probe.stage.clock.dt);
   auto after_step = [&](Checkpoint& c) {
     result.max_shell_tension = std::max(result.max_shell_tension, max_shell_tension(c.body, c.state));
-    if ((c.state.step - first) % config.encounter.fail_interval == 0 &&
-        fail_most_strained_shell_spring(c.body, c.state, failure_strain, config.shell.failed_stiffness_factor))
-      ++result.failures;
+    result.failures += static_cast<std::int64_t>(apply_failure_rule(rule, c.body, c.state, first, c.observables.failures));
   };
   StepLoopOptions probe_options = options;
   probe_options.label = options.label.empty() ? "stability probe" : options.label + " stability probe";

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <concepts>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -89,6 +90,10 @@ void visit_keys(C& c, V&& visit) {
   key(c.cross.nonlinear, {"cross", "nonlinear", "-", "apply the softening law f(eps) of eq. 26 to cross springs"});
   key(c.cross.strain_scale, {"cross", "strain_scale", "-", "eps_C of eq. 26", 1e-9, 10});
   key(c.cross.min_force_factor, {"cross", "min_force_factor", "-", "F_Ck of eq. 26", 1e-9, 1});
+  key(c.cross.min_per_shell_node,
+      {"cross", "min_per_shell_node", "-",
+       "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
+       12});
 
   key(c.integrator.dt, {"integrator", "dt", "t_grav", "leapfrog time step", 1e-7, 1.0});
   key(c.integrator.softening_fraction,
@@ -124,6 +129,9 @@ void visit_keys(C& c, V&& visit) {
        "run the stability probe (encounter damping, failures on, no perturber) after relaxing"});
   key(c.relax.probe_damping, {"relax", "probe_damping", "1/t_grav", "gamma of the stability probe", 0, 1e4});
   key(c.relax.probe_duration, {"relax", "probe_duration", "t_grav", "length of the stability probe", 0, 1e4});
+  key(c.relax.crust_support,
+      {"relax", "crust_support", "-",
+       "\"paper\" (crust carries the cross springs' sideways push) or \"balanced\" (no crust pre-stress)"});
 
   key(c.encounter.damping, {"encounter", "damping", "1/t_grav", "gamma during encounters", 0, 1e4});
   key(c.encounter.fail_interval,
@@ -139,6 +147,15 @@ void visit_keys(C& c, V&& visit) {
        "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
   key(c.encounter.sample_interval,
       {"encounter", "sample_interval", "steps", "steps between timeseries samples", 1, 1'000'000'000});
+  key(c.encounter.failure_rule,
+      {"encounter", "failure_rule", "-",
+       "\"paper\" (one spring per fail_interval) or \"local\" (one per neighbourhood per relaxation interval)"});
+  key(c.encounter.exclusion_radius,
+      {"encounter", "exclusion_radius", "L_S", "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3,
+       true});
+  key(c.encounter.relaxation_crossings,
+      {"encounter", "relaxation_crossings", "L_S/V_SP",
+       "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4).
@@ -265,6 +282,13 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
   }
 }
 
+void check_choice(const std::string& value, std::initializer_list<std::string_view> choices,
+                  const std::string& what) {
+  for (std::string_view choice : choices)
+    if (value == choice) return;
+  throw InputError(fmt::format("{} = \"{}\" is not one of: {}", what, value, fmt::join(choices, ", ")));
+}
+
 void check_encounter_name(const std::string& name, const std::string& origin) {
   if (name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", origin));
   for (char ch : name)
@@ -334,6 +358,12 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.settle_duration > config.relax.duration)
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
+  check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
+  check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
+  if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
+    throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
+                                 "(cross.nonlinear = false): the balance solves for linear spring tensions",
+                                 origin));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
     check_encounter_name(e.name, origin);

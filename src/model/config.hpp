@@ -49,6 +49,9 @@ struct CrossConfig {
   bool nonlinear = false;         ///< apply f(eps) of eq. 26
   double strain_scale = 0.03;     ///< eps_C
   double min_force_factor = 0.1;  ///< F_Ck
+  /// Every shell node gets at least this many cross springs (to its nearest interior nodes,
+  /// spanning three directions when >= 3) although d_C gives fewer; 0 keeps the paper's d_C rule.
+  std::int64_t min_per_shell_node = 0;
 };
 
 struct IntegratorConfig {
@@ -76,6 +79,10 @@ struct RelaxConfig {
   bool stability_probe = true;
   double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
   double probe_duration = 3.0;            ///< t_grav
+  /// How the relaxed crust is supported: "paper" (section 2.8: the crust carries the cross
+  /// springs' tangential push) or "balanced" (cross-spring rest lengths chosen so that they alone
+  /// carry each shell node's weight: no pre-stress; docs/crust-support.md).
+  std::string crust_support = "paper";
 };
 
 /// Defaults shared by all encounters (sections 2.6, 2.9).
@@ -86,6 +93,12 @@ struct EncounterDefaults {
   double end_distance = 3.0;               ///< perturber distance at end, R
   std::int64_t checkpoint_interval = 250;  ///< steps between mid-stage checkpoints (0: none)
   std::int64_t sample_interval = 10;       ///< steps between timeseries samples
+  /// "paper": the single most strained spring fails every fail_interval steps (section 2.6);
+  /// "local": every over-strained spring may fail, most strained first, at most one per crack
+  /// neighbourhood per relaxation interval (docs/failure-rule.md).
+  std::string failure_rule = "paper";
+  double exclusion_radius = 2.0;           ///< "local": neighbourhood radius, in mean shell spacings L_S
+  double relaxation_crossings = 2.0;       ///< "local": relaxation interval, in shell crossing times L_S/V_SP
 };
 
 struct Config {

@@ -44,7 +44,7 @@ std::string build_fingerprint(const Config& config) {
                      config.integrator.softening_fraction) +
          keys_of(config, "interior", Keys::all_but, {}) +
          keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
-         keys_of(config, "cross", Keys::only, {"distance", "spring_constant"});
+         keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"});
 }
 
 std::string stretch_fingerprint(const Config& config) {
@@ -54,7 +54,9 @@ std::string stretch_fingerprint(const Config& config) {
 std::string relax_fingerprint(const Config& config) {
   // The stability probe uses the encounter failure interval and every eps_S an encounter asks for.
   std::string text = keys_of(config, "relax", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
-                     keys_of(config, "encounter", Keys::only, {"fail_interval", "sample_interval"}) +
+                     keys_of(config, "encounter", Keys::only,
+                             {"fail_interval", "sample_interval", "failure_rule", "exclusion_radius",
+                              "relaxation_crossings"}) +
                      fmt::format("integrator.dt = {}\n", config.integrator.dt);
   for (const auto& e : config.encounters)
     if (e.failure_strain) text += fmt::format("encounters.{}.failure_strain = {}\n", e.name, *e.failure_strain);

@@ -1,9 +1,14 @@
 #include "physics/crust_relaxation.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cstdint>
 
 #include "forces/hinge_geometry.hpp"
 #include "model/center_of_mass.hpp"
+#include "base/errors.hpp"
 #include "base/vec3.hpp"
 
 namespace tidalcrust {
@@ -25,6 +30,67 @@ void reset_hinge_rest_angles(const Body& body, State& state) {
     auto at = [&](int k) { return vec3_at(state.position, static_cast<std::size_t>(v[k])); };
     state.hinges.rest_angle[h] = hinge_angle(at(0), at(1), at(2), at(3));
   }
+}
+
+CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity) {
+  // The cross springs of each shell node, in spring index order.
+  std::vector<std::vector<std::size_t>> cross_of(body.particle_count());
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::cross)) continue;
+    for (int end : {0, 1}) {
+      const auto p = static_cast<std::size_t>(body.springs[n][end]);
+      if (body.species[p] == static_cast<std::uint8_t>(Species::shell)) cross_of[p].push_back(n);
+    }
+  }
+  CrossBalance result;
+  for (std::size_t s = 0; s < body.particle_count(); ++s) {
+    if (body.species[s] != static_cast<std::uint8_t>(Species::shell)) continue;
+    const Vec3 weight = body.mass[s] * vec3_at(gravity, s);
+    const auto& springs = cross_of[s];
+    const std::size_t m = springs.size();
+    std::vector<Vec3> direction(m);
+    std::vector<double> tension(m), length(m);
+    Eigen::Matrix3d gram = Eigen::Matrix3d::Zero();
+    Vec3 pushed = Vec3::Zero();  // A t: what the springs now do
+    for (std::size_t c = 0; c < m; ++c) {
+      const std::size_t n = springs[c];
+      const auto other = static_cast<std::size_t>(body.springs[n][body.springs[n][0] == static_cast<std::int32_t>(s) ? 1 : 0]);
+      const Vec3 d = vec3_at(state.position, s) - vec3_at(state.position, other);
+      length[c] = d.norm();
+      direction[c] = d / length[c];
+      tension[c] = state.springs.stiffness[n] * (length[c] - state.springs.rest_length[n]);
+      gram += direction[c] * direction[c].transpose();
+      pushed += tension[c] * direction[c];
+    }
+    // y = (A A^T)^+ (m g - A t0): the pseudo-inverse from the eigen-decomposition of the 3x3
+    // Gram matrix, dropping directions no spring can push along.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(gram);
+    const Eigen::Vector3d lambda = eigen.eigenvalues();
+    const Eigen::Vector3d projected = eigen.eigenvectors().transpose() * (weight - pushed);
+    Eigen::Vector3d scaled = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k)
+      if (lambda(k) > 1e-12 * lambda(2)) scaled(k) = projected(k) / lambda(k);
+    const Vec3 y = eigen.eigenvectors() * scaled;
+    Vec3 carried = Vec3::Zero();
+    for (std::size_t c = 0; c < m; ++c) {
+      tension[c] += direction[c].dot(y);
+      carried += tension[c] * direction[c];
+    }
+    const double relative = (carried - weight).norm() / weight.norm();
+    result.max_residual = std::max(result.max_residual, relative);
+    if (relative > 1e-9) ++result.unbalanced_nodes;
+    for (std::size_t c = 0; c < m; ++c) {
+      const std::size_t n = springs[c];
+      const double rest = length[c] - tension[c] / state.springs.stiffness[n];
+      if (!(rest > 0.5 * length[c]) || !(rest < 2 * length[c]))
+        throw InputError(fmt::format(
+            "balanced crust support: cross spring {} would need rest length {} for length {} (strain beyond "
+            "+-50%); the cross springs are too weak for the shell's weight (raise cross.spring_constant)",
+            n, rest, length[c]));
+      state.springs.rest_length[n] = rest;
+    }
+  }
+  return result;
 }
 
 double mean_shell_radius(const Body& body, const State& state) {

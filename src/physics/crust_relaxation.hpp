@@ -5,6 +5,9 @@
 #include "model/body.hpp"
 #include "model/state.hpp"
 
+#include <cstdint>
+#include <vector>
+
 namespace tidalcrust {
 
 /// Shell springs only: L0 += rate (L - L0), rate in [0, 1] (1: exactly stress-free).
@@ -13,6 +16,25 @@ void creep_shell_rest_lengths(const Body& body, State& state, double rate);
 /// Every hinge's rest angle becomes its current angle (hinge_angle of hinge_geometry.hpp):
 /// no flexural stress left.
 void reset_hinge_rest_angles(const Body& body, State& state);
+
+/// What balance_cross_springs() achieved.
+struct CrossBalance {
+  /// Largest |sum of cross-spring forces + weight| over the shell nodes, relative to the node's
+  /// weight m g: 0 (to rounding) when every node has cross springs spanning three directions.
+  double max_residual = 0;
+  std::int64_t unbalanced_nodes = 0;  ///< shell nodes whose residual exceeds 1e-9 of their weight
+};
+
+/// Chooses the rest lengths of the cross springs so that at the current positions the
+/// cross springs of each shell node s exactly carry its weight: sum_n t_n u_n = m_s g_s, with
+/// t_n = k_n (L_n - L0_n) the tension of spring n and u_n the unit vector from its interior end
+/// to s (so the crust, at rest lengths, carries nothing). Of all tensions that do so, the one
+/// closest to the present ones (least squares) is taken: t = t0 + A^T (A A^T)^+ (m g - A t0),
+/// A = [u_1 .. u_m]; a node whose springs do not span three directions gets the best it can
+/// (residual reported). Linear cross springs only (eq. 12; the damping term vanishes at rest).
+/// gravity: self-gravity accelerations [N*3] (G M/R^2) at the current positions.
+/// Throws InputError if a rest length would not stay positive. docs/crust-support.md.
+CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity);
 
 /// Mean distance of the shell nodes from the body's centre of mass (R); 0 without shell.
 double mean_shell_radius(const Body& body, const State& state);

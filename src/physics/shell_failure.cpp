@@ -4,7 +4,13 @@
 #include <cmath>
 #include <cstdint>
 
+#include <fmt/format.h>
+
+#include <utility>
+
+#include "base/errors.hpp"
 #include "base/vec3.hpp"
+#include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -37,6 +43,98 @@ double max_shell_tension(const Body& body, const State& state) {
   return largest;
 }
 
+namespace {
+
+Vec3 spring_midpoint(const Body& body, const State& state, std::size_t n) {
+  const auto i = static_cast<std::size_t>(body.springs[n][0]);
+  const auto j = static_cast<std::size_t>(body.springs[n][1]);
+  return 0.5 * (vec3_at(state.position, i) + vec3_at(state.position, j));
+}
+
+/// Spring n fails now: stiffness *= F_Sk, failed = 1; the event to log.
+FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double strain, double failed_stiffness_factor) {
+  state.springs.stiffness[n] *= failed_stiffness_factor;
+  state.springs.failed[n] = 1;
+  const Vec3 mid = spring_midpoint(body, state, n);
+  FailureEvent event;
+  event.time = state.time;
+  event.step = state.step;
+  event.spring = static_cast<std::int32_t>(n);
+  event.strain = strain;
+  event.position = {mid.x(), mid.y(), mid.z()};
+  return event;
+}
+
+/// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
+/// fails unless a failure of the last `interval` steps (or of this check) lies within
+/// exclusion_distance of it (midpoints, current positions).
+std::size_t fail_local(const FailureRule& rule, const Body& body, State& state, std::vector<FailureEvent>& log) {
+  std::vector<std::pair<double, std::size_t>> candidates;
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (!is_unfailed_shell(body, state, n)) continue;
+    const double strain = spring_strain(body, state, n);
+    if (strain > rule.failure_strain) candidates.emplace_back(strain, n);
+  }
+  if (candidates.empty()) return 0;
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  // Midpoints of the failures still relaxing (the log is in step order: scan from its end).
+  std::vector<Vec3> relaxing;
+  for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.interval; ++e)
+    relaxing.push_back(spring_midpoint(body, state, static_cast<std::size_t>(e->spring)));
+  const double r2 = rule.exclusion_distance * rule.exclusion_distance;
+  std::size_t failed = 0;
+  for (const auto& [strain, n] : candidates) {
+    const Vec3 mid = spring_midpoint(body, state, n);
+    const bool excluded =
+        std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
+    if (excluded) continue;
+    log.push_back(fail_spring(body, state, n, strain, rule.failed_stiffness_factor));
+    relaxing.push_back(mid);
+    ++failed;
+  }
+  return failed;
+}
+
+}  // namespace
+
+const char* failure_rule_name(FailureRule::Kind kind) { return kind == FailureRule::Kind::local ? "local" : "paper"; }
+
+FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& origin) {
+  if (name == "paper") return FailureRule::Kind::paper;
+  if (name == "local") return FailureRule::Kind::local;
+  throw InputError(fmt::format("{}: failure rule \"{}\" is not one of: paper, local", origin, name));
+}
+
+FailureRule make_failure_rule(const Config& config, double failure_strain, const Body& body, const State& state,
+                              double dt) {
+  FailureRule rule;
+  rule.kind = failure_rule_kind(config.encounter.failure_rule, "encounter.failure_rule");
+  rule.failure_strain = failure_strain;
+  rule.failed_stiffness_factor = config.shell.failed_stiffness_factor;
+  if (rule.kind == FailureRule::Kind::paper) {
+    rule.interval = config.encounter.fail_interval;
+    return rule;
+  }
+  const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
+  if (!(q.L_S > 0) || !(q.V_SP > 0))
+    throw InputError("encounter.failure_rule = \"local\" needs a shell (no shell springs in this body)");
+  const double crossing_time = q.L_S / q.V_SP;
+  rule.interval = std::max<std::int64_t>(1, std::llround(config.encounter.relaxation_crossings * crossing_time / dt));
+  rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
+  return rule;
+}
+
+std::size_t apply_failure_rule(const FailureRule& rule, const Body& body, State& state, std::int64_t start_step,
+                               std::vector<FailureEvent>& log) {
+  if (rule.kind == FailureRule::Kind::local) return fail_local(rule, body, state, log);
+  if ((state.step - start_step) % rule.interval != 0) return 0;
+  auto event = fail_most_strained_shell_spring(body, state, rule.failure_strain, rule.failed_stiffness_factor);
+  if (!event) return 0;
+  log.push_back(*event);
+  return 1;
+}
+
 std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, State& state, double failure_strain,
                                                             double failed_stiffness_factor) {
   std::optional<std::size_t> worst;
@@ -50,19 +148,7 @@ std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, St
     }
   }
   if (!worst) return std::nullopt;
-  const std::size_t n = *worst;
-  state.springs.stiffness[n] *= failed_stiffness_factor;
-  state.springs.failed[n] = 1;
-  const auto i = static_cast<std::size_t>(body.springs[n][0]);
-  const auto j = static_cast<std::size_t>(body.springs[n][1]);
-  const Vec3 mid = 0.5 * (vec3_at(state.position, i) + vec3_at(state.position, j));
-  FailureEvent event;
-  event.time = state.time;
-  event.step = state.step;
-  event.spring = static_cast<std::int32_t>(n);
-  event.strain = worst_strain;
-  event.position = {mid.x(), mid.y(), mid.z()};
-  return event;
+  return fail_spring(body, state, *worst, worst_strain, failed_stiffness_factor);
 }
 
 }  // namespace tidalcrust

@@ -1,8 +1,16 @@
 #pragma once
-// The crust failure rule (paper section 2.6): only shell springs fail, only in tension, and in
-// one check only the single most strained unfailed shell spring beyond eps_S fails, keeping
-// the fraction F_Sk of its stiffness. Used by the encounter stage and the stability probe.
+// The crust failure rules. Only shell springs fail, only in tension beyond eps_S, keeping the
+// fraction F_Sk of their stiffness. "paper" (section 2.6): in one check only the single most
+// strained one fails, one check every t_fail steps. "local" (docs/failure-rule.md): every
+// over-strained spring may fail, most strained first, but at most one per crack neighbourhood
+// (radius r_ex) per relaxation interval (set in time from the shell's elastic crossing time).
+// Used by the encounter stage and the stability probe.
+#include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
+
+#include "model/config.hpp"
 
 #include "model/body.hpp"
 #include "model/checkpoint.hpp"
@@ -27,5 +35,36 @@ double max_shell_tension(const Body& body, const State& state);
 /// spring exceeds eps_S. The caller decides when to check (every t_fail steps).
 std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, State& state, double failure_strain,
                                                             double failed_stiffness_factor);
+
+/// A failure rule with its schedule in steps (converted from physical times once, by
+/// make_failure_rule).
+struct FailureRule {
+  enum class Kind { paper, local };
+  Kind kind = Kind::paper;
+  double failure_strain = 0;           ///< eps_S
+  double failed_stiffness_factor = 0;  ///< F_Sk
+  /// paper: t_fail, steps between checks. local: the relaxation interval, steps during which a
+  /// neighbourhood that had a failure cannot have another (checks every step).
+  std::int64_t interval = 1;
+  double exclusion_distance = 0;  ///< local: neighbourhood radius r_ex L_S (R); spring midpoints
+};
+
+/// "paper" or "local".
+const char* failure_rule_name(FailureRule::Kind kind);
+/// The kind named `name`; throws InputError naming `origin` otherwise.
+FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& origin);
+
+/// The rule of config.encounter for a body: paper: interval = encounter.fail_interval. local:
+/// interval = max(1, round(relaxation_crossings * L_S / V_SP / dt)) and exclusion_distance =
+/// exclusion_radius * L_S, with L_S the mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S)
+/// the shell P-wave speed (eq. 19) of this body. The one place where these times become steps.
+FailureRule make_failure_rule(const Config& config, double failure_strain, const Body& body, const State& state,
+                              double dt);
+
+/// Applies `rule` after a step: whether this step checks (paper: (step - start_step) % interval
+/// == 0; local: every step), and which springs fail. `log` is the stage's failure log so far
+/// (step order); the new events are appended to it. Returns the number of new failures.
+std::size_t apply_failure_rule(const FailureRule& rule, const Body& body, State& state, std::int64_t start_step,
+                               std::vector<FailureEvent>& log);
 
 }  // namespace tidalcrust
