@@ -120,7 +120,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.failed_stiffness_factor = config.shell.failed_stiffness_factor;
   record.damping = config.encounter.damping;
   record.fail_interval = config.encounter.fail_interval;
-  const FailureRule rule = make_failure_rule(config, record.failure_strain, c.body, state, dt);
+  const FailureRule rule = make_failure_rule(config, record.failure_strain, spec.relaxation_crossings, c.body, state, dt);
   record.failure_rule = failure_rule_name(rule.kind);
   if (rule.kind == FailureRule::Kind::local) {
     record.relaxation_steps = rule.interval;

@@ -168,6 +168,8 @@ void visit_keys(E& e, V&& visit) {
   key(e.pericenter, {"encounters", "pericenter", "R", "q", 1, inf, true});  // outside the body
   key(e.pericenter_speed, {"encounters", "pericenter_speed", "sqrt(GM/R)", "V_q", 0, inf, true});
   key(e.failure_strain, {"encounters", "failure_strain", "-", "eps_S override", 0, inf, true});
+  key(e.relaxation_crossings,
+      {"encounters", "relaxation_crossings", "L_S/V_SP", "local failure rule: relaxation interval override", 0, 1e6, true});
 }
 
 /// The sections of Config in to_toml order (without "encounters").
@@ -421,9 +423,15 @@ void apply_override(Config& config, const std::string& assignment) {
     throw InputError(where + ": expected section.key=value");
   const std::string section = assignment.substr(0, dot);
   std::string key = assignment.substr(dot + 1, eq - dot - 1);
+  std::string value = assignment.substr(eq + 1);
+  // A bare word is a string (--set relax.crust_support=balanced): shells eat the TOML quotes.
+  const bool bare_word = !value.empty() && std::all_of(value.begin(), value.end(), [](unsigned char ch) {
+    return std::isalpha(ch) || ch == '_' || ch == '-' || (std::isdigit(ch) != 0);
+  }) && std::isalpha(static_cast<unsigned char>(value[0])) && value != "true" && value != "false" && value != "inf" && value != "nan";
+  if (bare_word) value = "\"" + value + "\"";
   toml::table parsed;
   try {
-    parsed = toml::parse(std::string_view("v = " + assignment.substr(eq + 1)), std::string_view("--set"));
+    parsed = toml::parse(std::string_view("v = " + value), std::string_view("--set"));
   } catch (const toml::parse_error& err) {
     throw InputError(fmt::format("{}: value is not valid TOML: {}", where, err.description()));
   }

@@ -13,6 +13,9 @@ struct Encounter {
   double pericenter = 1.84;              ///< q, R (distance of closest approach on the two-body orbit)
   double pericenter_speed = 1.60;        ///< V_q, sqrt(GM/R) (relative speed at pericenter)
   std::optional<double> failure_strain;  ///< eps_S for this encounter (T1 uses 0.002); none: shell.failure_strain
+  /// Relaxation interval of the local failure rule for this encounter (L_S/V_SP); none:
+  /// encounter.relaxation_crossings.
+  std::optional<double> relaxation_crossings;
   bool operator==(const Encounter&) const = default;
 };
 

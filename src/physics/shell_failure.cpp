@@ -106,8 +106,8 @@ FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& 
   throw InputError(fmt::format("{}: failure rule \"{}\" is not one of: paper, local", origin, name));
 }
 
-FailureRule make_failure_rule(const Config& config, double failure_strain, const Body& body, const State& state,
-                              double dt) {
+FailureRule make_failure_rule(const Config& config, double failure_strain, std::optional<double> relaxation_crossings,
+                              const Body& body, const State& state, double dt) {
   FailureRule rule;
   rule.kind = failure_rule_kind(config.encounter.failure_rule, "encounter.failure_rule");
   rule.failure_strain = failure_strain;
@@ -120,7 +120,7 @@ FailureRule make_failure_rule(const Config& config, double failure_strain, const
   if (!(q.L_S > 0) || !(q.V_SP > 0))
     throw InputError("encounter.failure_rule = \"local\" needs a shell (no shell springs in this body)");
   const double crossing_time = q.L_S / q.V_SP;
-  rule.interval = std::max<std::int64_t>(1, std::llround(config.encounter.relaxation_crossings * crossing_time / dt));
+  rule.interval = std::max<std::int64_t>(1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
   rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
   return rule;
 }

@@ -55,11 +55,12 @@ const char* failure_rule_name(FailureRule::Kind kind);
 FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& origin);
 
 /// The rule of config.encounter for a body: paper: interval = encounter.fail_interval. local:
-/// interval = max(1, round(relaxation_crossings * L_S / V_SP / dt)) and exclusion_distance =
+/// interval = max(1, round(relaxation_crossings * L_S / V_SP / dt)) (relaxation_crossings: the
+/// encounter's override, else encounter.relaxation_crossings) and exclusion_distance =
 /// exclusion_radius * L_S, with L_S the mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S)
 /// the shell P-wave speed (eq. 19) of this body. The one place where these times become steps.
-FailureRule make_failure_rule(const Config& config, double failure_strain, const Body& body, const State& state,
-                              double dt);
+FailureRule make_failure_rule(const Config& config, double failure_strain, std::optional<double> relaxation_crossings,
+                              const Body& body, const State& state, double dt);
 
 /// Applies `rule` after a step: whether this step checks (paper: (step - start_step) % interval
 /// == 0; local: every step), and which springs fail. `log` is the stage's failure log so far

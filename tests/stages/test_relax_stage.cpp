@@ -244,3 +244,39 @@ TEST(RelaxStage, RefusesWrongStagesAndChangedConfiguration) {
   }
   EXPECT_NE(msg.find("'build'"), std::string::npos) << msg;
 }
+
+// Issue "a crust you can trust": with the balanced support the relaxed crust carries no load.
+// Measured on the quick body: largest |shell strain| 4.3e-6 (paper support: 1.7e-3), internal
+// kinetic energy 3e-14, mean shell radius 0.9995, probe strain 2.7e-6.
+TEST(RelaxStage, BalancedSupportLeavesTheCrustWithoutPreStress) {
+  Config config = quick_config();
+  config.cross.min_per_shell_node = 3;
+  config.relax.crust_support = "balanced";
+  config.shell.failure_strain = 5e-4;  // the probe fails nothing even at a realistic eps_S
+  config.encounter.failure_rule = "local";
+  const Checkpoint built = build_stage(config);
+  Checkpoint c = begin_relax(stretch_stage(built, config), config);
+  ASSERT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);
+  const auto& r = c.stage.as<RelaxRecord>();
+  EXPECT_LE(r.max_shell_strain, 1e-4);
+  EXPECT_LT(r.internal_kinetic_energy, 1e-6);
+  EXPECT_NEAR(r.mean_shell_radius, 1.0, 0.01);
+  EXPECT_EQ(r.probe_failure_strain, 5e-4);
+  EXPECT_EQ(r.probe_failures, 0);
+  EXPECT_LE(r.probe_max_shell_strain, 1e-4);
+  // The paper's support on the same body keeps a pre-stress of order eps_S.
+  EXPECT_GT(quick_relaxed(false).stage.as<RelaxRecord>().max_shell_strain, 1e-3);
+}
+
+TEST(RelaxStage, UnknownCrustSupportOrFailureRuleIsAClearError) {
+  for (const char* line : {"relax.crust_support=\"glued\"", "encounter.failure_rule=\"fast\""}) {
+    Config config = quick_config();
+    try {
+      apply_override(config, line);
+      validate(config, "--set");
+      ADD_FAILURE() << line << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("is not one of"), std::string::npos) << e.what();
+    }
+  }
+}
