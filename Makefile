@@ -35,14 +35,15 @@ build: configure
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-# The demo: the quick body end to end, the same encounter at half the time step, and how alike
-# their fractures are. Figures land in checkpoints/quick/*/analysis/.
+# The demo: the quick body with a crust free of pre-stress and the local failure rule, end to end;
+# the same encounter at half the time step and how alike their fractures are. Figures land in
+# checkpoints/quick-balanced/*/analysis/. (workflows/quick.toml keeps the paper's support and rule.)
 run: build
-	$(EXE) run workflows/quick.toml
-	$(EXE) run workflows/quick.toml --dt-factor 0.5 --quiet
+	$(EXE) run workflows/quick-balanced.toml
+	$(EXE) run workflows/quick-balanced.toml --dt-factor 0.5 --quiet
 	@echo; echo "half-dt check (A: dt, B: dt/2):"
-	$(EXE) compare checkpoints/quick/strong/encounter.h5 checkpoints/quick/dt0.5/strong/encounter.h5
-	@echo; echo "figures: $$(ls checkpoints/quick/strong/analysis/*.png | tr '\n' ' ')"
+	$(EXE) compare checkpoints/quick-balanced/strong/encounter.h5 checkpoints/quick-balanced/dt0.5/strong/encounter.h5
+	@echo; echo "figures: $$(ls checkpoints/quick-balanced/strong/analysis/*.png | tr '\n' ' ')"
 
 bench: build
 	$(EXE) bench --config workflows/quick.toml --steps 50
