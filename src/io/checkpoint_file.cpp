@@ -16,6 +16,7 @@
 #include "build_info.hpp"
 #include "base/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
 
@@ -356,6 +357,15 @@ std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
   write_checkpoint_group(root, c, state_hash(c.state));
   write_parameters(root, c);
   write_observables(root, c.observables);
+  // The digests come from the file image itself, opened as a reader opens the file, so they
+  // cover exactly the bytes that reach the disk; then the record is added to that image.
+  std::vector<ObjectDigest> digests;
+  {
+    // Another name: HDF5 would take the same name for the open file being written.
+    h5::File image = h5::open_memory_image(h5::file_image(root), file.string() + " (image)");
+    digests = object_digests(image.get());
+  }
+  write_integrity_record(root, digests);
   std::string bytes = h5::file_image(root);
   f.close("cannot close");
   return bytes;
@@ -499,12 +509,17 @@ void read_element_arrays(hid_t root, Checkpoint& c) {
   });
 }
 
-void read_stage_info(hid_t root, Checkpoint& c) {
+/// Checked first: a file of another version may lay out anything else, the integrity record too.
+void check_format_version(hid_t root) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::int64_t version = h5::read_attribute<std::int64_t>(g.get(), "format_version");
   if (version != checkpoint_format_version)
     throw h5::Error(fmt::format("attribute /checkpoint@format_version is {}, this tidalcrust reads version {}",
                                 version, checkpoint_format_version));
+}
+
+void read_stage_info(hid_t root, Checkpoint& c) {
+  h5::Group g = h5::open_group(root, "/checkpoint");
   const std::string stage = h5::read_string_attribute(g.get(), "stage");
   if (!make_stage_record(stage, c.stage.record))
     throw h5::Error(
@@ -647,6 +662,9 @@ Checkpoint read_checkpoint(const fs::path& file) {
   std::string stored_hash;
   try {
     const hid_t root = f.get();
+    check_format_version(root);
+    // Every byte the reads below use is verified before any of it is interpreted.
+    verify_integrity(root);
     read_stage_info(root, c);
     h5::Group g = h5::open_group(root, "/checkpoint");
     stored_hash = h5::read_string_attribute(g.get(), "state_hash");

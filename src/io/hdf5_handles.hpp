@@ -239,6 +239,18 @@ inline File open_file_readonly(const std::filesystem::path& path) {
   return File(id);
 }
 
+/// Opens the file image `bytes` (as file_image returns it) read-only in memory; `name` only
+/// names it in HDF5's messages.
+inline File open_memory_image(const std::string& bytes, const std::string& name) {
+  silence_errors();
+  PropList fapl = file_access_plist();
+  check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
+  check(H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()), "H5Pset_file_image");
+  const hid_t id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (id < 0) throw Error("cannot open the file image: " + error_stack_text());
+  return File(id);
+}
+
 inline Group create_group(hid_t loc, std::string_view name) {
   PropList gcpl = untimed_plist(H5P_GROUP_CREATE);
   std::string n(name);
@@ -402,18 +414,6 @@ inline void write_string_dataset(hid_t loc, std::string_view name, const std::st
   check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()), "cannot write dataset " + what);
 }
 
-inline std::string read_string_dataset(hid_t loc, std::string_view name) {
-  const std::string what = "dataset " + object_path(loc, name);
-  std::string n(name);
-  if (!exists(loc, n)) throw Error(what + " is missing");
-  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
-  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
-  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
-  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw Error(what + ": expected a single string");
-  return read_strings(type.get(), 1, what, [&](hid_t memory, void* buffer) {
-    return H5Dread(set.get(), memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
-  })[0];
-}
 
 // ---- attributes -----------------------------------------------------------------------------
 
@@ -445,13 +445,67 @@ inline void write_string_attribute(hid_t loc, std::string_view name, const std::
   write_attribute_raw(loc, name, type.get(), type.get(), text.c_str(), {});
 }
 
-inline void write_string_array_attribute(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+/// Strings packed for a fixed-length string type: the element size (the longest, at least 1)
+/// and the NUL-padded bytes.
+inline std::pair<std::size_t, std::vector<char>> packed_strings(const std::vector<std::string>& texts) {
   std::size_t size = 1;
   for (const auto& t : texts) size = std::max(size, t.size());
   std::vector<char> buffer(size * texts.size(), '\0');
   for (std::size_t i = 0; i < texts.size(); ++i) std::copy(texts[i].begin(), texts[i].end(), buffer.begin() + i * size);
+  return {size, std::move(buffer)};
+}
+
+inline void write_string_array_attribute(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+  const auto [size, buffer] = packed_strings(texts);
   Type type = fixed_string_type(size);
   write_attribute_raw(loc, name, type.get(), type.get(), buffer.data(), {texts.size()});
+}
+
+/// A 1-D fixed-length string dataset [n] (n may be 0).
+inline void write_string_array_dataset(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+  const std::string what = object_path(loc, name);
+  const auto [size, buffer] = packed_strings(texts);
+  Type type = fixed_string_type(size);
+  const hsize_t n = texts.size();
+  Dataspace space(check(H5Screate_simple(1, &n, nullptr), "cannot create dataspace for " + what));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  std::string nm(name);
+  Dataset set(check(H5Dcreate2(loc, nm.c_str(), type.get(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  if (n > 0)
+    check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), "cannot write dataset " + what);
+}
+
+/// All strings of a string dataset (any string type, any shape) in row-major order, and its
+/// rank; Error if missing or not strings.
+inline std::pair<std::vector<std::string>, int> read_string_values(hid_t loc, std::string_view name) {
+  const std::string what = "dataset " + object_path(loc, name);
+  std::string n(name);
+  if (!exists(loc, n)) throw Error(what + " is missing");
+  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (rank < 0 || count < 0) throw Error("cannot read the shape of " + what);
+  auto values = read_strings(type.get(), static_cast<std::size_t>(count), what, [&](hid_t memory, void* buffer) {
+    return H5Dread(set.get(), memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+  });
+  return {std::move(values), rank};
+}
+
+/// A dataset holding a single string (scalar or one element).
+inline std::string read_string_dataset(hid_t loc, std::string_view name) {
+  auto [values, rank] = read_string_values(loc, name);
+  if (values.size() != 1) throw Error("dataset " + object_path(loc, name) + ": expected a single string");
+  return values[0];
+}
+
+/// A 1-D string dataset [n].
+inline std::vector<std::string> read_string_array_dataset(hid_t loc, std::string_view name) {
+  auto [values, rank] = read_string_values(loc, name);
+  if (rank != 1) throw Error("dataset " + object_path(loc, name) + ": expected a 1-D array of strings");
+  return values;
 }
 
 /// Opens attribute `name` of `loc`; Error naming it if missing.
