@@ -73,7 +73,7 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
     cairo_restore(cr);
     axes.draw_frame(cr, time_axis_label(), "failed shell springs");
     draw_title(cr, area, title);
-    draw_text(cr, from_events ? "cumulative failure events (/observables/failures)" : "sampled counts (/observables/timeseries)",
+    draw_text(cr, from_events ? "cumulative failure events (/checkpoint/failures)" : "sampled counts (/checkpoint/timeseries)",
               area.left, 370 - 10, 0, 1, tick_font_size);
   });
 }

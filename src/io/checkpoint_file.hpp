@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (H5MD 1.1 compatible), written
+// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (valid H5MD 1.1), written
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include <cstdint>
 #include <filesystem>
@@ -10,7 +10,9 @@ namespace tidalcrust {
 
 /// 2: /observables/timeseries/perturber_offset. 3: typed stage records (/checkpoint/record), the
 /// stage clock (@dt, @start_time), hinge stiffness as a body property, no per-spring damping.
-inline constexpr std::int64_t checkpoint_format_version = 3;
+/// 4: valid H5MD 1.1 (units, particles_group references, extensible time dimension, labels);
+/// the failure log and the timeseries moved from /observables to /checkpoint.
+inline constexpr std::int64_t checkpoint_format_version = 4;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
 /// The file carries its integrity record (/integrity: a digest of every object).

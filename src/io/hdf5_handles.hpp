@@ -348,11 +348,42 @@ Array<T> read_dataset(hid_t loc, std::string_view name) {
   return out;
 }
 
-/// Address of a contiguous dataset's raw data in the file (tests use it to corrupt bytes).
+/// Writes a dataset whose first dimension is time (an H5MD `value`, `step` or `time`): chunked,
+/// one sample per chunk, maxshape unlimited in the first dimension so that a reader or a later
+/// tool can append samples (H5MD 1.1, time-dependent data). dims must be non-empty.
+template <typename T>
+void write_extensible_dataset(hid_t loc, std::string_view name, const T* data, const std::vector<hsize_t>& dims) {
+  const std::string what = object_path(loc, name);
+  std::vector<hsize_t> max = dims, chunk = dims;
+  max.at(0) = H5S_UNLIMITED;
+  chunk[0] = 1;
+  for (auto& c : chunk) c = std::max<hsize_t>(c, 1);  // a chunk cannot have a zero dimension
+  Dataspace space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max.data()),
+                        "cannot create dataspace for " + what));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "cannot chunk " + what);
+  std::string n(name);
+  Dataset set(check(H5Dcreate2(loc, n.c_str(), type_of<T>().file, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  if (H5Sget_simple_extent_npoints(space.get()) > 0)
+    check(H5Dwrite(set.get(), type_of<T>().memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + what);
+}
+
+/// Address of a dataset's raw data in the file (tests use it to corrupt bytes): of the data of
+/// a contiguous dataset, of the first chunk of a chunked one.
 inline haddr_t dataset_offset(hid_t loc, std::string_view name) {
   std::string n(name);
   Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open dataset " + object_path(loc, name)));
-  return H5Dget_offset(set.get());
+  const haddr_t contiguous = H5Dget_offset(set.get());
+  if (contiguous != HADDR_UNDEF) return contiguous;
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + object_path(loc, name)));
+  const std::vector<hsize_t> first(static_cast<std::size_t>(std::max(H5Sget_simple_extent_ndims(space.get()), 0)), 0);
+  haddr_t address = HADDR_UNDEF;
+  hsize_t size = 0;
+  unsigned filters = 0;
+  check(H5Dget_chunk_info_by_coord(set.get(), first.data(), &filters, &address, &size),
+        "cannot locate the data of " + object_path(loc, name));
+  return address;
 }
 
 // ---- strings --------------------------------------------------------------------------------
@@ -506,6 +537,38 @@ inline std::vector<std::string> read_string_array_dataset(hid_t loc, std::string
   auto [values, rank] = read_string_values(loc, name);
   if (rank != 1) throw Error("dataset " + object_path(loc, name) + ": expected a 1-D array of strings");
   return values;
+}
+
+/// A scalar variable-length ASCII string attribute: the type H5MD prescribes for its metadata
+/// (h5md/author@name, ...) and for `unit` (h5py reads it as str, a fixed-length one as bytes).
+inline void write_vl_string_attribute(hid_t loc, std::string_view name, const std::string& text) {
+  Type type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.get(), H5T_CSET_ASCII), "H5Tset_cset");
+  const char* pointer = text.c_str();
+  write_attribute_raw(loc, name, type.get(), type.get(), &pointer, {});
+}
+
+/// An attribute holding an HDF5 object reference to the object at `target` (absolute path).
+inline void write_object_reference_attribute(hid_t loc, std::string_view name, const std::string& target) {
+  hobj_ref_t reference{};
+  check(H5Rcreate(&reference, loc, target.c_str(), H5R_OBJECT, -1), "cannot reference " + target);
+  write_attribute_raw(loc, name, H5T_STD_REF_OBJ, H5T_STD_REF_OBJ, &reference, {});
+}
+
+/// The path of the object an object-reference attribute points to; Error if it is missing,
+/// not a reference or dangling.
+inline std::string read_object_reference_attribute(hid_t loc, std::string_view name) {
+  const std::string what = "attribute " + object_path(loc, "") + "@" + std::string(name);
+  std::string n(name);
+  if (H5Aexists(loc, n.c_str()) <= 0) throw Error(what + " is missing");
+  Attribute attr(check(H5Aopen(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
+  if (H5Tequal(type.get(), H5T_STD_REF_OBJ) <= 0) throw Error(what + ": stored type is not an object reference");
+  hobj_ref_t reference{};
+  check(H5Aread(attr.get(), H5T_STD_REF_OBJ, &reference), "cannot read " + what);
+  Object target(check(H5Rdereference2(loc, H5P_DEFAULT, H5R_OBJECT, &reference), what + ": dangling reference"));
+  return object_path(target.get(), "");
 }
 
 /// Opens attribute `name` of `loc`; Error naming it if missing.

@@ -1,5 +1,5 @@
 #pragma once
-// One row of /observables/timeseries: the conserved totals (conservation.hpp), the number of
+// One row of /checkpoint/timeseries: the conserved totals (conservation.hpp), the number of
 // failed springs and the perturber's offset from the body's centre of mass at the current step.
 // Shared by the time-stepping stages.
 #include <cstdint>

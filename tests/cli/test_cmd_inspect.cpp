@@ -105,3 +105,22 @@ TEST(InspectCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run_cli("inspect --bogus x.h5").exit_code, 2);
   EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
 }
+
+TEST(InspectCli, CheckpointOfTheFormerLayoutIsRefusedNamingItsVersion) {
+  // Format 3 kept the failure log and timeseries in /observables; such a file gets one line
+  // naming the version, exit 2, and stays as it was.
+  const ScratchFolder scratch("inspect_old_version");
+  write_checkpoint(scratch.path / "valid.h5", synthetic_checkpoint());
+  const fs::path file = edited_copy(scratch.path / "valid.h5", scratch.path, "old.h5", [](hid_t f) {
+    h5::Group g = h5::open_group(f, "/checkpoint");
+    H5Adelete(g.get(), "format_version");
+    h5::write_attribute<std::int64_t>(g.get(), "format_version", 3);
+  });
+  const std::string before = read_file(file);
+  const CliResult r = run_cli("inspect " + quoted(file));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_TRUE(contains(r.err, file.string() + ": ")) << r.err;
+  EXPECT_TRUE(contains(r.err, "format_version is 3, this tidalcrust reads version 4")) << r.err;
+  EXPECT_EQ(read_file(file), before);
+}

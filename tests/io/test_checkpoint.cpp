@@ -168,7 +168,7 @@ TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
   EXPECT_FALSE(back.state.perturber.present);
   h5::File f = h5::open_file_readonly(dir / "c.h5");
   EXPECT_FALSE(h5::exists(f.get(), "/checkpoint/perturber"));
-  EXPECT_EQ(h5::read_dataset<double>(f.get(), "/observables/failures/position").dims,
+  EXPECT_EQ(h5::read_dataset<double>(f.get(), "/checkpoint/failures/position").dims,
             (std::vector<hsize_t>{0, 3}));
 }
 
@@ -280,8 +280,8 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
     for (const char* key : {"version", "git_commit", "compiler", "build_flags"})
       EXPECT_FALSE(h5::read_string_attribute(p.get(), key).empty()) << key;
   }
-  for (const char* d : {"/observables/timeseries/momentum", "/observables/timeseries/angular_momentum",
-                        "/observables/timeseries/perturber_offset"})
+  for (const char* d : {"/checkpoint/timeseries/momentum", "/checkpoint/timeseries/angular_momentum",
+                        "/checkpoint/timeseries/perturber_offset"})
     EXPECT_EQ(h5::read_dataset<double>(root, d).dims, (std::vector<hsize_t>{2, 3})) << d;
   // Stored as little-endian IEEE float64 whatever the reader.
   h5::Dataset set(H5Dopen2(root, "/checkpoint/springs/rest_length", H5P_DEFAULT));
