@@ -499,6 +499,15 @@ void read_element_arrays(hid_t root, Checkpoint& c) {
   });
 }
 
+/// Which program wrote the file (/parameters/provenance), for inspect.
+void read_provenance(hid_t root, Provenance& p) {
+  h5::Group g = h5::open_group(root, "/parameters/provenance");
+  p.version = h5::read_string_attribute(g.get(), "version");
+  p.git_commit = h5::read_string_attribute(g.get(), "git_commit");
+  p.compiler = h5::read_string_attribute(g.get(), "compiler");
+  p.build_flags = h5::read_string_attribute(g.get(), "build_flags");
+}
+
 void read_stage_info(hid_t root, Checkpoint& c) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::int64_t version = h5::read_attribute<std::int64_t>(g.get(), "format_version");
@@ -652,6 +661,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
     stored_hash = h5::read_string_attribute(g.get(), "state_hash");
     read_body_and_state(root, c);
     c.config_toml = h5::read_string_dataset(root, path::config);
+    read_provenance(root, c.provenance);
     read_observables(root, c.observables);
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: {}", name, err.what()));
