@@ -125,8 +125,8 @@ FigureFiles write_fracture_map(const FractureSummary& fractures, const std::file
     axes.draw_frame(cr, "longitude [deg]", "latitude [deg]", lon_ticks, lat_ticks);
     draw_title(cr, map_area, title);
     draw_text(cr,
-              "cylindrical projection about the body's centre of mass; equator = orbital plane; "
-              "ring: subsatellite point (lon 90\u00b0)",
+              "cylindrical projection about the centre of mass, longitude stretched by 1/cos(lat); "
+              "equator = orbital plane; ring: subsatellite point (90\u00b0)",
               map_area.left, map_height_pt - 12, 0, 1, tick_font_size);
   });
 }
