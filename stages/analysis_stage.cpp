@@ -13,6 +13,7 @@
 
 #include "analysis/conservation_drift.hpp"
 #include "base/errors.hpp"
+#include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
@@ -84,21 +85,22 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   for (const std::size_t i : panel_indices) panels.push_back(candidates[i]), panel_times.push_back(candidate_times[i]);
 
   const std::string name = record.encounter.name.empty() ? from.stem().string() : record.encounter.name;
-  const std::string parameters = fmt::format("M\u2082 = {:g}, q = {:g} R, V_q = {:g}", record.encounter.perturber_mass,
-                                             record.encounter.pericenter, record.encounter.pericenter_speed);
   const double t_after = checkpoint.state.time - record.pericenter_time;
+  auto title = [&](const std::string& headline) {
+    return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock);
+  };
   std::vector<fs::path> figures;
   auto add = [&](const FigureFiles& files) { figures.insert(figures.end(), files.begin(), files.end()); };
   add(write_fracture_map(fractures, out / "fracture_map",
-                         fmt::format("{}: {} failed shell springs ({}), t \u2212 t_peri = {:+.2f}", name, fractures.count(),
-                                     percent(fractures.fraction_shell), t_after)));
+                         title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
+                                           percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))));
   add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
-                             fmt::format("{} ({}): hemisphere facing pericenter", name, parameters)));
-  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", fmt::format("{}: perturber orbit ({})", name, parameters)));
+                             title(name + ": hemisphere facing pericenter")));
+  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", title(name + ": perturber orbit")));
   add(write_failure_history(checkpoint, record.pericenter_time, out / "failures",
-                            fmt::format("{}: shell spring failures", name)));
+                            title(name + ": shell spring failures")));
   add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
-                              fmt::format("{}: conservation diagnostics", name)));
+                              title(name + ": conservation diagnostics")));
 
   Json failed_springs = {{"spring", Json::array()},
                          {"longitude_deg", Json::array()},

@@ -572,6 +572,16 @@ void read_element_arrays(hid_t root, Checkpoint& c) {
   });
 }
 
+/// Which program wrote the file (/parameters/provenance), for inspect.
+void read_provenance(hid_t root, Provenance& p) {
+  h5::Group g = h5::open_group(root, "/parameters/provenance");
+  p.version = h5::read_string_attribute(g.get(), "version");
+  p.git_commit = h5::read_string_attribute(g.get(), "git_commit");
+  p.compiler = h5::read_string_attribute(g.get(), "compiler");
+  p.build_flags = h5::read_string_attribute(g.get(), "build_flags");
+}
+
+
 /// Checked first: a file of another version may lay out anything else, the integrity record too.
 void check_format_version(hid_t root) {
   h5::Group g = h5::open_group(root, "/checkpoint");
@@ -733,6 +743,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
     stored_hash = h5::read_string_attribute(g.get(), "state_hash");
     read_body_and_state(root, c);
     c.config_toml = h5::read_string_dataset(root, path::config);
+    read_provenance(root, c.provenance);
     read_observables(root, c.observables);
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: {}", name, err.what()));

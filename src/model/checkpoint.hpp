@@ -68,8 +68,18 @@ struct StageInfo {
   }
 };
 
+/// Which program wrote a checkpoint (/parameters/provenance). Filled by read_checkpoint;
+/// write_checkpoint always stores the running program's own build information instead.
+struct Provenance {
+  std::string version;      ///< tidalcrust version
+  std::string git_commit;   ///< commit it was built from
+  std::string compiler;     ///< compiler name and version
+  std::string build_flags;  ///< compiler flags of the build
+};
+
 struct Checkpoint {
   StageInfo stage;
+  Provenance provenance;    ///< of the file read; empty for a checkpoint made in memory
   std::string config_toml;  ///< resolved configuration (to_toml)
   Body body;
   State state;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "analysis/inspect_report.hpp"
+#include "build_info.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
 #include "model/config.hpp"
@@ -35,7 +36,8 @@ TEST(InspectCli, JsonOfAWrittenCheckpoint) {
   write_checkpoint(dir / "enc.h5", c);
   const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
+  // The report of the file as read back: with the provenance its writer stored.
+  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(read_checkpoint(dir / "enc.h5"), (dir / "enc.h5").string())));
   for (const char* key : {"\"counts\": {", "\"derived\": {", "\"conservation\": {", "\"perturber\": {",
                           "\"springs_cross\": 4", "\"time\": 2.25", "\"step\": 1125"})
     EXPECT_TRUE(contains(r.out, key)) << key;
@@ -123,4 +125,27 @@ TEST(InspectCli, CheckpointOfTheFormerLayoutIsRefusedNamingItsVersion) {
   EXPECT_TRUE(contains(r.err, file.string() + ": ")) << r.err;
   EXPECT_TRUE(contains(r.err, "format_version is 3, this tidalcrust reads version 4")) << r.err;
   EXPECT_EQ(read_file(file), before);
+}
+
+TEST(InspectCli, ShowsTheWritersProvenanceAndTheFingerprintOnRequest) {
+  const ScratchFolder scratch("inspect_provenance");
+  const fs::path file = scratch.path / "enc.h5";
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(file, c);
+  const CliResult table = run_cli("inspect " + quoted(file));
+  EXPECT_EQ(table.exit_code, 0);
+  for (const std::string& part : {std::string("  version "), std::string(build_info::version) + "\n",
+                                 std::string("  git_commit "), std::string(build_info::git_commit) + "\n",
+                                 std::string(build_info::compiler) + "\n", fingerprint_hash(c.stage.fingerprint) + "\n",
+                                 std::string(" t_grav\n")})
+    EXPECT_TRUE(contains(table.out, part)) << part << "\n" << table.out;
+  EXPECT_FALSE(contains(table.out, "integrator.dt = 0.002")) << table.out;
+  const CliResult json = run_cli("inspect " + quoted(file) + " --json");
+  EXPECT_TRUE(contains(json.out, "\"git_commit\": \"" + std::string(build_info::git_commit) + "\"")) << json.out;
+  const CliResult text = run_cli("inspect " + quoted(file) + " --fingerprint");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_EQ(text.out, c.stage.fingerprint);
+  const CliResult both = run_cli("inspect " + quoted(file) + " --json --fingerprint");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_EQ(std::count(both.err.begin(), both.err.end(), '\n'), 1) << both.err;
 }
