@@ -173,6 +173,36 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
+/// Encounter folders below `root` (also in dt<factor>/) whose encounter branched from another
+/// relaxed body (the body chain changed) are superseded: their checkpoints, snapshots and
+/// analysis are removed, unless another process holds the encounter's lock. Unreadable ones are
+/// left alone (run reports them when it reaches them).
+void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const std::string& relaxed_hash) {
+  std::vector<fs::path> folders;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(root, ec)) {
+    if (!entry.is_directory(ec)) continue;
+    folders.push_back(entry.path());
+    if (entry.path().filename().string().starts_with("dt"))
+      for (const auto& inner : fs::directory_iterator(entry.path(), ec))
+        if (inner.is_directory(ec)) folders.push_back(inner.path());
+  }
+  for (const auto& dir : folders) {
+    const fs::path file = dir / "encounter.h5";
+    const fs::path found = fs::exists(file) ? file : sibling_checkpoint(file, "mid");
+    if (!fs::exists(found)) continue;
+    try {
+      const LockAttempt attempt = try_lock_stage(file, "");
+      if (!attempt.lock || read_checkpoint(found).stage.parent_hash == relaxed_hash) continue;
+      remove_stage_outputs(file, false);
+      fs::remove_all(dir / "analysis", ec);
+      say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
+    } catch (const InputError&) {
+      continue;
+    }
+  }
+}
+
 WorkflowResult interrupted(WorkflowResult& result) {
   result.interrupted = true;
   return std::move(result);
@@ -214,6 +244,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   const fs::path encounter_root =
       options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);
   const std::string relaxed_hash = state_hash(relaxed->state);
+  remove_superseded_encounters(ctx, options.root, relaxed_hash);
   for (const auto& spec : options.encounters) {
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);

@@ -18,6 +18,7 @@
 #include "io/state_hash.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
+#include "support/processes.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -68,21 +69,6 @@ void expect_consistent_encounter(const fs::path& dir) {
   }
   EXPECT_FALSE(fs::exists(dir / "encounter.mid.h5"));
   EXPECT_FALSE(fs::exists(lock_path(file)));
-}
-
-/// The pid of a process that has already exited.
-long dead_pid() {
-  const pid_t pid = fork();
-  if (pid == 0) _exit(0);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return pid;
-}
-
-std::string this_host() {
-  char name[256] = {};
-  gethostname(name, sizeof name - 1);
-  return name;
 }
 
 }  // namespace
@@ -189,7 +175,7 @@ TEST(RunLocking, StaleLocksAreTakenOverAndHeldOnesRefused) {
   EXPECT_FALSE(fs::exists(lock_path(built)));
 }
 
-TEST(RunLocking, ChangedEncounterValueOrTimeStepLeavesNoStaleOutputs) {
+TEST(RunLocking, ChangedEncounterValueLeavesNoStaleOutputs) {
   const ScratchFolder scratch("lock_rerun");
   const fs::path out = scratch.path / "out";
   ASSERT_EQ(run_cli(quick_run(out) + " --quiet").exit_code, 0);
@@ -202,12 +188,6 @@ TEST(RunLocking, ChangedEncounterValueOrTimeStepLeavesNoStaleOutputs) {
   ASSERT_EQ(changed.exit_code, 0) << changed.err;
   expect_consistent_encounter(out / "strong");  // every old snapshot is gone or overwritten
 
-  // The same at half the time step, into dt0.5/, with a changed value between the two runs.
-  ASSERT_EQ(run_cli(quick_run(out) + " --quiet --dt-factor 0.5").exit_code, 0);
-  const CliResult half = run_cli(quick_run(out) + " --quiet --dt-factor 0.5 --set encounter.fail_interval=2");
-  ASSERT_EQ(half.exit_code, 0) << half.err;
-  expect_consistent_encounter(out / "dt0.5" / "strong");
-
   // A snapshot of the superseded encounter put back beside the new one is not used by analyze.
   const fs::path intruder = snapshot_path(out / "strong" / "encounter.h5", 1);
   write_file(intruder, old_snapshot_bytes);
@@ -218,6 +198,17 @@ TEST(RunLocking, ChangedEncounterValueOrTimeStepLeavesNoStaleOutputs) {
   EXPECT_NE(analyze.err.find("belongs to another run of the encounter"), std::string::npos) << analyze.err;
   const Json summary = Json::parse(read_file(again / "summary.json"));
   for (const auto& listed : summary["snapshots"]) EXPECT_NE(listed["file"].get<std::string>(), intruder.string());
+
+}
+
+TEST(RunLocking, RerunAtHalfTimeStepAndSingleStageEncounterLeaveNoStaleSnapshots) {
+  const ScratchFolder scratch("lock_rerun_dt");
+  const fs::path out = scratch.path / "out";
+  // At half the time step, into dt0.5/, with a changed value between the two runs.
+  ASSERT_EQ(run_cli(quick_run(out) + " --quiet --dt-factor 0.5").exit_code, 0);
+  const CliResult half = run_cli(quick_run(out) + " --quiet --dt-factor 0.5 --set encounter.fail_interval=2");
+  ASSERT_EQ(half.exit_code, 0) << half.err;
+  expect_consistent_encounter(out / "dt0.5" / "strong");
 
   // The single-stage encounter command begun anew removes the snapshots of its output's earlier run.
   const fs::path single = scratch.path / "e.h5";
@@ -232,4 +223,27 @@ TEST(RunLocking, ChangedEncounterValueOrTimeStepLeavesNoStaleOutputs) {
   for (const auto& s : find_snapshots(single))
     EXPECT_EQ(read_checkpoint(s.file).stage.as<EncounterRecord>().encounter.pericenter_speed, 2.2) << s.file;
   EXPECT_EQ(fresh.stage.as<EncounterRecord>().encounter.pericenter_speed, 2.2);
+}
+
+// A changed body chain supersedes every encounter branched from the old relaxed body, also those
+// this run does not compute: their files are removed, not left beside the new body.
+TEST(RunLocking, ChangedBodyChainRemovesEncountersOfTheOldBody) {
+  const ScratchFolder scratch("lock_body");
+  const fs::path workflow = two_encounter_workflow(scratch.path);
+  const fs::path out = scratch.path / "out";
+  ASSERT_EQ(run_cli(quick_run(out, workflow) + " --quiet").exit_code, 0);
+  ASSERT_TRUE(fs::exists(out / "weak" / "analysis" / "summary.json"));
+  ASSERT_FALSE(find_snapshots(out / "weak" / "encounter.h5").empty());
+
+  const CliResult changed = run_cli(quick_run(out, workflow) + " --only strong --set relax.damping=40");
+  ASSERT_EQ(changed.exit_code, 0) << changed.err;
+  EXPECT_NE(changed.out.find("weak: removed the encounter, which branched from another relaxed body"),
+            std::string::npos)
+      << changed.out;
+  EXPECT_FALSE(fs::exists(out / "weak" / "encounter.h5"));
+  EXPECT_FALSE(fs::exists(out / "weak" / "analysis"));
+  EXPECT_TRUE(find_snapshots(out / "weak" / "encounter.h5").empty());
+  expect_consistent_encounter(out / "strong");
+  EXPECT_EQ(read_checkpoint(out / "strong" / "encounter.h5").stage.parent_hash,
+            state_hash(read_checkpoint(out / "body" / "relax.h5").state));
 }

@@ -12,27 +12,13 @@
 #include "base/errors.hpp"
 #include "io/stage_lock.hpp"
 #include "support/files.hpp"
+#include "support/processes.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
 namespace fs = std::filesystem;
 
 namespace {
-
-/// The pid of a child process that has already exited (and been reaped): no process has it.
-long dead_pid() {
-  const pid_t pid = fork();
-  if (pid == 0) _exit(0);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return pid;
-}
-
-std::string this_host() {
-  char name[256] = {};
-  gethostname(name, sizeof name - 1);
-  return name;
-}
 
 std::string lock_text(long pid, const std::string& host, const std::string& identity) {
   return "pid=" + std::to_string(pid) + "\nhost=" + host + "\nsince=2026-01-01T00:00:00Z\nidentity=" + identity + "\n";
