@@ -37,8 +37,8 @@ struct Snapshot {
   fs::path file;
 };
 
-/// Mid-stage snapshots beside `from` that belong to the same encounter (same body, earlier
-/// step); unreadable or foreign files are reported and skipped.
+/// Mid-stage snapshots beside `from` that belong to the same encounter (same body, fingerprint
+/// and parent, earlier step); unreadable or foreign files are reported and skipped.
 std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& final_checkpoint) {
   std::vector<Snapshot> snapshots;
   for (const auto& found : find_snapshots(from)) {
@@ -48,6 +48,11 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
       if (!std::holds_alternative<EncounterRecord>(c->stage.record))
         throw InputError(fmt::format("{}: stage '{}' is not an encounter", found.file.string(), c->stage.name()));
       require_same_body(final_checkpoint.body, c->body, from.string(), found.file.string());
+      // A snapshot left by a superseded run of this encounter (other values, dt or parent).
+      if (c->stage.fingerprint != final_checkpoint.stage.fingerprint ||
+          c->stage.parent_hash != final_checkpoint.stage.parent_hash)
+        throw InputError(fmt::format("{}: belongs to another run of the encounter (its fingerprint or parent differs "
+                                     "from {})", found.file.string(), from.string()));
       snapshots.push_back({std::move(c), found.file});
     } catch (const InputError& err) {
       fmt::print(stderr, "tidalcrust analyze: skipping snapshot: {}\n", err.what());
