@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -93,7 +94,8 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   for (std::size_t i = 0; i < a.observables.failures.size(); ++i) {
     const auto &x = a.observables.failures[i], &y = b.observables.failures[i];
     EXPECT_TRUE(same_bits(x.time, y.time) && x.step == y.step && x.spring == y.spring &&
-                same_bits(x.strain, y.strain) && same_bits(x.position, y.position))
+                same_bits(x.strain, y.strain) && same_bits(x.position, y.position) &&
+                same_bits(x.released_energy, y.released_energy))
         << "failure row " << i;
   }
   ASSERT_EQ(a.observables.timeseries.size(), b.observables.timeseries.size());
@@ -103,6 +105,12 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
                 same_bits(x.momentum, y.momentum) && same_bits(x.angular_momentum, y.angular_momentum) &&
                 same_bits(x.perturber_offset, y.perturber_offset))
         << "timeseries row " << i;
+    for (double TimeseriesSample::*term :
+         {&TimeseriesSample::internal_kinetic_energy, &TimeseriesSample::spring_energy, &TimeseriesSample::hinge_energy,
+          &TimeseriesSample::self_gravity_energy, &TimeseriesSample::perturber_energy,
+          &TimeseriesSample::damping_dissipated, &TimeseriesSample::failure_released,
+          &TimeseriesSample::hinge_residual_work})
+      EXPECT_TRUE(same_bits(x.*term, y.*term)) << "timeseries row " << i;
   }
 }
 
@@ -148,6 +156,28 @@ TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
   EXPECT_EQ(state_hash(back.state), state_hash(original.state));
   EXPECT_TRUE(is_valid_checkpoint(dir / "c.h5"));
   EXPECT_TRUE(tmp_files_in(dir).empty());
+}
+
+TEST(Checkpoint, FileWithoutTheEnergyBudgetColumnsReadsThemAsNotMeasured) {
+  // A relaxed body written before the energy budget existed has none of its columns: they read
+  // as NaN (not measured); every other column is still required and read as stored.
+  const ScratchFolder scratch("no_energy_columns");
+  const Checkpoint original = synthetic_checkpoint();
+  write_checkpoint(scratch.path / "full.h5", original);
+  const fs::path old = edited_copy(scratch.path / "full.h5", scratch.path, "old.h5", [](hid_t f) {
+    for (const char* column : {"internal_kinetic_energy", "spring_energy", "hinge_energy", "self_gravity_energy",
+                               "perturber_energy", "damping_dissipated", "failure_released", "hinge_residual_work"})
+      H5Ldelete(f, fmt::format("/observables/timeseries/{}", column).c_str(), H5P_DEFAULT);
+    H5Ldelete(f, "/observables/failures/released_energy", H5P_DEFAULT);
+  });
+  const Checkpoint back = read_checkpoint(old);
+  ASSERT_EQ(back.observables.timeseries.size(), original.observables.timeseries.size());
+  EXPECT_TRUE(std::isnan(back.observables.failures[0].released_energy));
+  EXPECT_EQ(back.observables.failures[0].strain, original.observables.failures[0].strain);
+  const TimeseriesSample& s = back.observables.timeseries[1];
+  EXPECT_TRUE(std::isnan(s.spring_energy) && std::isnan(s.damping_dissipated) && std::isnan(s.conserved_energy()));
+  EXPECT_EQ(s.kinetic_energy, original.observables.timeseries[1].kinetic_energy);
+  EXPECT_EQ(s.momentum, original.observables.timeseries[1].momentum);
 }
 
 TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
