@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "analysis/conservation_drift.hpp"
+#include "analysis/energy_budget.hpp"
 #include "base/errors.hpp"
 #include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
@@ -73,6 +74,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
 
   const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
+  const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
   const std::vector<Snapshot> snapshots = load_snapshots(from, checkpoint);
 
   // Snapshot row: mid-stage snapshots and the final state, at most a handful of panels.
@@ -156,7 +158,18 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"max_angular_momentum_change", drift.max_angular_momentum_change},
         {"max_relative_angular_momentum_change", drift.max_relative_angular_momentum_change},
         {"final_kinetic_energy_change", drift.final_kinetic_energy_change},
-        {"max_kinetic_energy_change", drift.max_kinetic_energy_change}}},
+        {"max_kinetic_energy_change", drift.max_kinetic_energy_change},
+        {"max_energy_error", budget.max_error},
+        {"final_energy_error", budget.final_error}}},
+      {"energy",
+       {{"units", "G M^2/R; errors relative to the binding energy 3/5 G M^2/R (docs/energy-budget.md)"},
+        {"deposited_in_body", budget.internal_change},
+        {"internal_kinetic_change", budget.internal_kinetic_change},
+        {"elastic_change", budget.elastic_change},
+        {"self_gravity_change", budget.self_gravity_change},
+        {"dissipated", budget.dissipated},
+        {"impulse_estimate_eq4", budget.impulse_estimate},
+        {"impulse_estimate_uniform_sphere", budget.impulse_estimate_uniform_sphere}}},
       {"snapshots", snapshot_list},
       {"figures", figure_names}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis

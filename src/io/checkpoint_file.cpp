@@ -13,7 +13,10 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
+#include <type_traits>
+#include <string_view>
 
 #include "build_info.hpp"
 #include "base/errors.hpp"
@@ -124,6 +127,7 @@ void visit_columns(std::type_identity<FailureEvent>, Visit&& visit) {
   visit("spring", &FailureEvent::spring);
   visit("strain", &FailureEvent::strain);
   visit("position", &FailureEvent::position);
+  visit("released_energy", &FailureEvent::released_energy);
 }
 template <typename Visit>
 void visit_columns(std::type_identity<TimeseriesSample>, Visit&& visit) {
@@ -133,6 +137,14 @@ void visit_columns(std::type_identity<TimeseriesSample>, Visit&& visit) {
   visit("momentum", &TimeseriesSample::momentum);
   visit("angular_momentum", &TimeseriesSample::angular_momentum);
   visit("perturber_offset", &TimeseriesSample::perturber_offset);
+  visit("internal_kinetic_energy", &TimeseriesSample::internal_kinetic_energy);
+  visit("spring_energy", &TimeseriesSample::spring_energy);
+  visit("hinge_energy", &TimeseriesSample::hinge_energy);
+  visit("self_gravity_energy", &TimeseriesSample::self_gravity_energy);
+  visit("perturber_energy", &TimeseriesSample::perturber_energy);
+  visit("damping_dissipated", &TimeseriesSample::damping_dissipated);
+  visit("failure_released", &TimeseriesSample::failure_released);
+  visit("hinge_residual_work", &TimeseriesSample::hinge_residual_work);
 }
 
 /// The observables groups and the rows each holds.

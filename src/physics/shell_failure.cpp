@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "base/vec3.hpp"
+#include "forces/spring_force.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -51,10 +52,17 @@ std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, St
   }
   if (!worst) return std::nullopt;
   const std::size_t n = *worst;
-  state.springs.stiffness[n] *= failed_stiffness_factor;
-  state.springs.failed[n] = 1;
   const auto i = static_cast<std::size_t>(body.springs[n][0]);
   const auto j = static_cast<std::size_t>(body.springs[n][1]);
+  // The energy budget's failure term: the spring's elastic energy at this strain before and
+  // after its stiffness drops (the same evaluator as the force law; shell springs are linear).
+  const double length = (vec3_at(state.position, i) - vec3_at(state.position, j)).norm();
+  auto elastic_energy = [&] {
+    return SpringEvaluator(state.springs.rest_length[n], state.springs.stiffness[n], 0.0).force_and_energy(length, 0).energy;
+  };
+  const double energy_before = elastic_energy();
+  state.springs.stiffness[n] *= failed_stiffness_factor;
+  state.springs.failed[n] = 1;
   const Vec3 mid = 0.5 * (vec3_at(state.position, i) + vec3_at(state.position, j));
   FailureEvent event;
   event.time = state.time;
@@ -62,6 +70,7 @@ std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, St
   event.spring = static_cast<std::int32_t>(n);
   event.strain = worst_strain;
   event.position = {mid.x(), mid.y(), mid.z()};
+  event.released_energy = energy_before - elastic_energy();
   return event;
 }
 

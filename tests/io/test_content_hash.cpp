@@ -68,7 +68,7 @@ TEST(ContentHash, RecordListsEveryObjectAndAnUnmodifiedFileReadsBack) {
                                "/particles/body/position/step", "/connectivity/springs", "/checkpoint@softening",
                                "/checkpoint@state_hash", "/checkpoint/record@damping", "/checkpoint/record/snapshot_steps",
                                "/parameters/config", "/parameters/provenance@git_commit",
-                               "/observables/timeseries/kinetic_energy", "/checkpoint/perturber"}) {
+                               "/checkpoint/timeseries/kinetic_energy", "/checkpoint/perturber"}) {
     bool found = false;
     for (const auto& row : rows) found = found || row.path == expected;
     EXPECT_TRUE(found) << expected;
@@ -130,8 +130,8 @@ TEST(ContentHash, AddedOrRemovedObjectsAreRefused) {
        }},
       {"/checkpoint@diagnostic", "was removed",
        [](hid_t f) { H5Adelete(h5::open_group(f, "/checkpoint").get(), "diagnostic"); }},
-      {"/observables/timeseries/failed", "was removed",
-       [](hid_t f) { H5Ldelete(f, "/observables/timeseries/failed", H5P_DEFAULT); }},
+      {"/checkpoint/timeseries/failed", "was removed",
+       [](hid_t f) { H5Ldelete(f, "/checkpoint/timeseries/failed", H5P_DEFAULT); }},
       {"/particles/body/velocity/step", "was removed",
        [](hid_t f) { H5Ldelete(f, "/particles/body/velocity/step", H5P_DEFAULT); }},
   };
