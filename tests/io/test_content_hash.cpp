@@ -123,10 +123,10 @@ TEST(ContentHash, AddedOrRemovedObjectsAreRefused) {
       {"/newgroup", "was added", [](hid_t f) { h5::create_group(f, "/newgroup"); }},
       {"/checkpoint@note", "was added",
        [](hid_t f) { h5::write_string_attribute(h5::open_group(f, "/checkpoint").get(), "note", "edited"); }},
-      {"/particles/body/mass@unit", "was added",
+      {"/particles/body/mass@comment", "was added",
        [](hid_t f) {
          h5::Object mass(H5Oopen(f, "/particles/body/mass", H5P_DEFAULT));
-         h5::write_string_attribute(mass.get(), "unit", "M");
+         h5::write_string_attribute(mass.get(), "comment", "edited");
        }},
       {"/checkpoint@diagnostic", "was removed",
        [](hid_t f) { H5Adelete(h5::open_group(f, "/checkpoint").get(), "diagnostic"); }},
