@@ -1,4 +1,4 @@
-# tidalcrust: make run | make test | make bench
+# tidalcrust: make run | make test | make bench | make check-viewers
 # Installs the Debian packages it needs (when root; otherwise prints the apt-get line),
 # configures with CMake and builds.
 BUILD    ?= build
@@ -6,8 +6,10 @@ JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
             libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev
 EXE      := $(BUILD)/tidalcrust
+# Only for check-viewers: the outside readers the files are checked with.
+VIEWER_PACKAGES := python3-paraview python3-mdanalysis python3-h5py python3-numpy xvfb
 
-.PHONY: all deps configure build test run bench clean
+.PHONY: all deps configure build test run bench check-viewers clean
 
 all: build
 
@@ -49,6 +51,13 @@ bench: build
 	$(EXE) bench --config workflows/quick.toml --steps 50
 	$(EXE) bench --config workflows/paper-T.toml --steps 20
 	$(BUILD)/tidalcrust_microbench --benchmark_min_time=0.2
+
+# Every .xdmf sidecar of a quick run opened in ParaView's default and legacy XDMF readers, and
+# its checkpoints in MDAnalysis's H5MD reader (tools/check_viewers.py; installs the readers;
+# /usr/bin/python3: the Debian packages install for the system python).
+check-viewers: build
+	@$(MAKE) --no-print-directory deps PACKAGES="$(VIEWER_PACKAGES)"
+	xvfb-run -a /usr/bin/python3 tools/check_viewers.py --exe $(EXE)
 
 clean:
 	rm -rf $(BUILD)

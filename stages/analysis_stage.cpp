@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "analysis/conservation_drift.hpp"
+#include "analysis/energy_budget.hpp"
 #include "base/errors.hpp"
+#include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
@@ -36,8 +38,8 @@ struct Snapshot {
   fs::path file;
 };
 
-/// Mid-stage snapshots beside `from` that belong to the same encounter (same body, earlier
-/// step); unreadable or foreign files are reported and skipped.
+/// Mid-stage snapshots beside `from` that belong to the same encounter (same body, fingerprint
+/// and parent, earlier step); unreadable or foreign files are reported and skipped.
 std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& final_checkpoint) {
   std::vector<Snapshot> snapshots;
   for (const auto& found : find_snapshots(from)) {
@@ -47,6 +49,11 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
       if (!std::holds_alternative<EncounterRecord>(c->stage.record))
         throw InputError(fmt::format("{}: stage '{}' is not an encounter", found.file.string(), c->stage.name()));
       require_same_body(final_checkpoint.body, c->body, from.string(), found.file.string());
+      // A snapshot left by a superseded run of this encounter (other values, dt or parent).
+      if (c->stage.fingerprint != final_checkpoint.stage.fingerprint ||
+          c->stage.parent_hash != final_checkpoint.stage.parent_hash)
+        throw InputError(fmt::format("{}: belongs to another run of the encounter (its fingerprint or parent differs "
+                                     "from {})", found.file.string(), from.string()));
       snapshots.push_back({std::move(c), found.file});
     } catch (const InputError& err) {
       fmt::print(stderr, "tidalcrust analyze: skipping snapshot: {}\n", err.what());
@@ -67,6 +74,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
 
   const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
+  const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
   const std::vector<Snapshot> snapshots = load_snapshots(from, checkpoint);
 
   // Snapshot row: mid-stage snapshots and the final state, at most a handful of panels.
@@ -84,21 +92,22 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   for (const std::size_t i : panel_indices) panels.push_back(candidates[i]), panel_times.push_back(candidate_times[i]);
 
   const std::string name = record.encounter.name.empty() ? from.stem().string() : record.encounter.name;
-  const std::string parameters = fmt::format("M\u2082 = {:g}, q = {:g} R, V_q = {:g}", record.encounter.perturber_mass,
-                                             record.encounter.pericenter, record.encounter.pericenter_speed);
   const double t_after = checkpoint.state.time - record.pericenter_time;
+  auto title = [&](const std::string& headline) {
+    return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock);
+  };
   std::vector<fs::path> figures;
   auto add = [&](const FigureFiles& files) { figures.insert(figures.end(), files.begin(), files.end()); };
   add(write_fracture_map(fractures, out / "fracture_map",
-                         fmt::format("{}: {} failed shell springs ({}), t \u2212 t_peri = {:+.2f}", name, fractures.count(),
-                                     percent(fractures.fraction_shell), t_after)));
+                         title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
+                                           percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))));
   add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
-                             fmt::format("{} ({}): hemisphere facing pericenter", name, parameters)));
-  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", fmt::format("{}: perturber orbit ({})", name, parameters)));
+                             title(name + ": hemisphere facing pericenter")));
+  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", title(name + ": perturber orbit")));
   add(write_failure_history(checkpoint, record.pericenter_time, out / "failures",
-                            fmt::format("{}: shell spring failures", name)));
+                            title(name + ": shell spring failures")));
   add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
-                              fmt::format("{}: conservation diagnostics", name)));
+                              title(name + ": conservation diagnostics")));
 
   Json failed_springs = {{"spring", Json::array()},
                          {"longitude_deg", Json::array()},
@@ -149,7 +158,18 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"max_angular_momentum_change", drift.max_angular_momentum_change},
         {"max_relative_angular_momentum_change", drift.max_relative_angular_momentum_change},
         {"final_kinetic_energy_change", drift.final_kinetic_energy_change},
-        {"max_kinetic_energy_change", drift.max_kinetic_energy_change}}},
+        {"max_kinetic_energy_change", drift.max_kinetic_energy_change},
+        {"max_energy_error", budget.max_error},
+        {"final_energy_error", budget.final_error}}},
+      {"energy",
+       {{"units", "G M^2/R; errors relative to the binding energy 3/5 G M^2/R (docs/energy-budget.md)"},
+        {"deposited_in_body", budget.internal_change},
+        {"internal_kinetic_change", budget.internal_kinetic_change},
+        {"elastic_change", budget.elastic_change},
+        {"self_gravity_change", budget.self_gravity_change},
+        {"dissipated", budget.dissipated},
+        {"impulse_estimate_eq4", budget.impulse_estimate},
+        {"impulse_estimate_uniform_sphere", budget.impulse_estimate_uniform_sphere}}},
       {"snapshots", snapshot_list},
       {"figures", figure_names}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis

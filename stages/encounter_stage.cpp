@@ -137,7 +137,8 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.time_of_min = state.time;
   record.step_of_min = state.step;
 
-  c.observables.timeseries.push_back(sample_timeseries(c.body, state));
+  ForceField forces(c.body, force_options(config, record.damping));
+  c.observables.timeseries.push_back(sample_timeseries(c.body, state, forces, record.energy));
   return c;
 }
 
@@ -169,13 +170,26 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
 
   ForceField forces(checkpoint.body, force_options(config, schedule.damping));
   Leapfrog leapfrog(forces, checkpoint.stage.clock);
+  leapfrog.measure_work(true);
 
-  auto advance = [&](State& state) { leapfrog.step(state); };
+  // The energy budget's accumulators live in the record, so a resumed run continues them bit
+  // for bit (docs/energy-budget.md).
+  auto advance = [&](State& state) {
+    leapfrog.step(state);
+    EnergyLedger& ledger = checkpoint.stage.as<EncounterRecord>().energy;
+    ledger.damping_dissipated += leapfrog.last_work().damping_removed;
+    ledger.hinge_residual_work += leapfrog.last_work().hinge_added;
+  };
   auto after_step = [&](Checkpoint& c) {
     State& state = c.state;
+    EnergyLedger& ledger = c.stage.as<EncounterRecord>().energy;
     const std::int64_t done = state.step - start_step;
+    const std::size_t logged = c.observables.failures.size();
     apply_failure_rule(rule, c.body, state, start_step, c.observables.failures);
-    if (done % sample_interval == 0 || state.step == end_step) c.observables.timeseries.push_back(sample_timeseries(c.body, state));
+    for (std::size_t k = logged; k < c.observables.failures.size(); ++k)
+      ledger.failure_released += c.observables.failures[k].released_energy;
+    if (done % sample_interval == 0 || state.step == end_step)
+      c.observables.timeseries.push_back(sample_timeseries(c.body, state, forces, ledger));
 
     // Closest approach, sampled every step (the error of a step-sampled minimum is ~(V dt)^2/(8 q)).
     const Separation now = separation(c.body, state);

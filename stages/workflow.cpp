@@ -2,13 +2,18 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+#include <thread>
+
 #include "analysis/fracture_analysis.hpp"
 #include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/json.hpp"
 #include "io/progress.hpp"
+#include "io/stage_lock.hpp"
 #include "io/state_hash.hpp"
+#include "io/stop_signal.hpp"
 #include "model/stage_fingerprint.hpp"
 #include "stages/analysis_stage.hpp"
 #include "stages/build_stage.hpp"
@@ -28,6 +33,34 @@ struct RunContext {
 
 void say(const RunContext& ctx, const std::string& text) {
   if (!ctx.quiet) fmt::print("{}\n", text);
+}
+
+/// How often a process waiting for another one's stage looks again.
+constexpr auto lock_poll_interval = std::chrono::milliseconds(100);
+
+/// Locks the stage `file` for computing the version `identity`: at once when it is free (taking
+/// over, and saying so, the lock of a process that died); after waiting when another process
+/// computes the same version (one line says whom it waits for); InputError naming the holder when
+/// another process computes another version. Nothing when SIGINT/SIGTERM arrive while waiting.
+std::optional<StageLock> lock_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
+                                    const std::string& identity) {
+  for (bool waiting = false;; std::this_thread::sleep_for(lock_poll_interval)) {
+    LockAttempt attempt = try_lock_stage(file, identity);
+    if (attempt.lock) {
+      if (attempt.lock->taken_over_from()) fmt::print(stderr, "tidalcrust: {}\n", attempt.lock->takeover_note());
+      return std::move(attempt.lock);
+    }
+    const LockHolder& holder = *attempt.holder;
+    if (holder.pid > 0 && holder.identity != identity)
+      throw InputError(fmt::format(
+          "{}: {} is being computed with other values by {} (lock {}); wait for it to finish or use another --out",
+          file.string(), name, holder.describe(), lock_path(file).string()));
+    if (!waiting && holder.pid > 0) {
+      say(ctx, fmt::format("{}: waiting for {}, which is computing the same {}", name, holder.describe(), name));
+      waiting = true;
+    }
+    if (stop_requested()) return std::nullopt;
+  }
 }
 
 /// A finished checkpoint that can be reused as it is, or nothing.
@@ -56,39 +89,53 @@ std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fing
   return existing;
 }
 
-/// A stage without time steps (build, stretch): its final file when that is current, else
-/// made anew and written.
+/// A stage without time steps (build, stretch), under its lock (lock_stage): its final file
+/// when that is current, else made anew and written. Nothing when interrupted while waiting.
 template <typename Make>
-Checkpoint instant_stage(const RunContext& ctx, const char* name, const fs::path& file, const std::string& fingerprint,
-                         const std::string& parent_hash, const char* doing, Make make) {
+std::optional<Checkpoint> instant_stage(const RunContext& ctx, const char* name, const fs::path& file,
+                                        const std::string& fingerprint, const std::string& parent_hash,
+                                        const char* doing, Make make) {
+  const auto lock = lock_stage(ctx, name, file, stage_lock_identity(fingerprint, parent_hash));
+  if (!lock) return std::nullopt;
   if (auto existing = reusable(file, fingerprint, parent_hash)) {
     say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
-    return std::move(*existing);
+    return existing;
   }
   say(ctx, fmt::format("{}: {}", name, doing));
+  remove_stage_outputs(file, false);
   Checkpoint made = make();
   made.stage.fingerprint = fingerprint;
   write_checkpoint(file, made);
   return made;
 }
 
-/// A time-stepping stage (relax, encounter): its final file when that is current; else resumed
-/// from a matching mid-stage checkpoint or begun anew, run, written. Nothing when interrupted.
+/// A time-stepping stage (relax, encounter), under its lock (lock_stage): its final file when
+/// that is current; else resumed from a matching mid-stage checkpoint or begun anew, run,
+/// written; then `finish` (the encounter's analysis) still under the lock. Nothing when
+/// interrupted.
 /// A stage begun here runs with `config`; a resumed one with the configuration it started with
 /// (values outside its fingerprint may have changed since).
-template <typename Begin, typename Run>
+/// Outputs of a superseded run (final file, diagnostic; when begun anew also the mid-stage
+/// checkpoint and snapshots; and `derived`, e.g. the analysis folder) are removed before the
+/// stage writes anything.
+template <typename Begin, typename Run, typename Finish>
 std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
                                          const std::string& fingerprint, const std::string& parent_hash,
                                          const Config& config, std::int64_t checkpoint_interval, Begin begin,
-                                         Run run) {
+                                         Run run, const fs::path& derived, Finish finish) {
+  const auto lock = lock_stage(ctx, name, file, stage_lock_identity(fingerprint, parent_hash));
+  if (!lock) return std::nullopt;
   if (auto existing = reusable(file, fingerprint, parent_hash)) {
     say(ctx, fmt::format("{}: up to date ({})", name, file.string()));
+    finish(*existing);
     return existing;
   }
   StepLoopOptions loop = stage_loop_options(file, name, checkpoint_interval);
   loop.status_file = ctx.status_file;
   loop.quiet = ctx.quiet;
   std::optional<Checkpoint> checkpoint = resumable(loop.mid_checkpoint, fingerprint, parent_hash);
+  remove_stage_outputs(file, checkpoint.has_value());
+  if (!derived.empty()) fs::remove_all(derived);
   std::optional<Config> stored;
   if (checkpoint) {
     say(ctx, fmt::format("{}: resuming from {} (step {})", name, loop.mid_checkpoint.string(), checkpoint->state.step));
@@ -100,6 +147,7 @@ std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::strin
   if (run(*checkpoint, stored ? *stored : config, loop, file) == LoopOutcome::interrupted) return std::nullopt;
   write_checkpoint(file, *checkpoint);
   remove_checkpoint_files(loop.mid_checkpoint);
+  finish(*checkpoint);
   return checkpoint;
 }
 
@@ -125,6 +173,41 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
+/// Encounter folders below `root` (also in dt<factor>/) whose encounter branched from another
+/// relaxed body (the body chain changed) are superseded: their checkpoints, snapshots and
+/// analysis are removed, unless another process holds the encounter's lock. Unreadable ones are
+/// left alone (run reports them when it reaches them).
+void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const std::string& relaxed_hash) {
+  std::vector<fs::path> folders;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(root, ec)) {
+    if (!entry.is_directory(ec)) continue;
+    folders.push_back(entry.path());
+    if (entry.path().filename().string().starts_with("dt"))
+      for (const auto& inner : fs::directory_iterator(entry.path(), ec))
+        if (inner.is_directory(ec)) folders.push_back(inner.path());
+  }
+  for (const auto& dir : folders) {
+    const fs::path file = dir / "encounter.h5";
+    const fs::path found = fs::exists(file) ? file : sibling_checkpoint(file, "mid");
+    if (!fs::exists(found)) continue;
+    try {
+      const LockAttempt attempt = try_lock_stage(file, "");
+      if (!attempt.lock || read_checkpoint(found).stage.parent_hash == relaxed_hash) continue;
+      remove_stage_outputs(file, false);
+      fs::remove_all(dir / "analysis", ec);
+      say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
+    } catch (const InputError&) {
+      continue;
+    }
+  }
+}
+
+WorkflowResult interrupted(WorkflowResult& result) {
+  result.interrupted = true;
+  return std::move(result);
+}
+
 }  // namespace
 
 WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
@@ -136,30 +219,32 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   ctx.status_file = options.root / "status.json";
   WorkflowResult result;
 
-  // Body chain.
-  const Checkpoint built = instant_stage(ctx, "build", body_dir / "build.h5", build_fingerprint(config), "",
-                                         "building the body", [&] { return build_stage(config); });
-  const Checkpoint stretched =
-      instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), state_hash(built.state),
-                    "stretching and strengthening", [&] { return stretch_stage(built, config); });
+  // Body chain: one process computes each stage, others that need the same version wait.
+  const auto built = instant_stage(ctx, "build", body_dir / "build.h5", build_fingerprint(config), "",
+                                   "building the body", [&] { return build_stage(config); });
+  if (!built) return interrupted(result);
+  const auto stretched =
+      instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), state_hash(built->state),
+                    "stretching and strengthening", [&] { return stretch_stage(*built, config); });
+  if (!stretched) return interrupted(result);
   const auto relaxed = stepping_stage(
-      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), state_hash(stretched.state), config,
-      config.relax.checkpoint_interval, [&] { return begin_relax(stretched, config); },
+      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), state_hash(stretched->state), config,
+      config.relax.checkpoint_interval, [&] { return begin_relax(*stretched, config); },
       [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path&) {
         return run_relax(c, run_config, loop);
-      });
-  if (!relaxed) {
-    result.interrupted = true;
-    return result;
-  }
+      },
+      fs::path(), [](const Checkpoint&) {});
+  if (!relaxed) return interrupted(result);
   result.relaxed = relaxed->stage.as<RelaxRecord>();
 
-  // Encounters, each branching from the relaxed body, at dt * dt_factor.
+  // Encounters, each branching from the relaxed body, at dt * dt_factor; each encounter's lock
+  // also covers its analysis, so processes running different encounters run side by side.
   Config encounter_config = config;
   if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
   const fs::path encounter_root =
       options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);
   const std::string relaxed_hash = state_hash(relaxed->state);
+  remove_superseded_encounters(ctx, options.root, relaxed_hash);
   for (const auto& spec : options.encounters) {
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);
@@ -170,12 +255,10 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
         [&] { return begin_encounter(*relaxed, encounter_config, spec); },
         [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path& out) {
           return run_encounter(c, run_config, loop, out);
-        });
-    if (!encounter) {
-      result.interrupted = true;
-      return result;
-    }
-    analyze_if_stale(ctx, file, *encounter, dir / "analysis", spec.name);
+        },
+        dir / "analysis",
+        [&](const Checkpoint& done) { analyze_if_stale(ctx, file, done, dir / "analysis", spec.name); });
+    if (!encounter) return interrupted(result);
     result.encounters.push_back({spec.name, file, dir / "analysis",
                                  fracture_summary_line(spec.name, analyze_fractures(encounter->body, encounter->state))});
   }

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include <xxhash.h>
+
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
 #include "model/derived_quantities.hpp"
@@ -18,6 +20,9 @@ namespace tidalcrust {
 
 namespace {
 
+constexpr const char* spring_constant_unit = "G M^2/R^3";
+constexpr const char* pure_number = "1";  ///< the unit of counts and ratios (shown bare in the table)
+
 std::vector<double> as_vector(const std::array<double, 3>& a) { return {a.begin(), a.end()}; }
 
 ReportSection counts_section(const Checkpoint& c) {
@@ -25,14 +30,14 @@ ReportSection counts_section(const Checkpoint& c) {
   const std::int64_t failed =
       std::accumulate(c.state.springs.failed.begin(), c.state.springs.failed.end(), std::int64_t{0});
   ReportSection s{"counts", {}};
-  s.add("interior", b.count_species(Species::interior))
-      .add("shell", b.count_species(Species::shell))
-      .add("springs_interior", b.count_springs(SpringKind::interior))
-      .add("springs_shell", b.count_springs(SpringKind::shell))
-      .add("springs_cross", b.count_springs(SpringKind::cross))
-      .add("hinges", b.hinge_count())
-      .add("faces", b.faces.size())
-      .add("failed", failed);
+  s.add("interior", b.count_species(Species::interior), "1")
+      .add("shell", b.count_species(Species::shell), "1")
+      .add("springs_interior", b.count_springs(SpringKind::interior), "1")
+      .add("springs_shell", b.count_springs(SpringKind::shell), "1")
+      .add("springs_cross", b.count_springs(SpringKind::cross), "1")
+      .add("hinges", b.hinge_count(), "1")
+      .add("faces", b.faces.size(), "1")
+      .add("failed", failed, "1");
   return s;
 }
 
@@ -40,30 +45,35 @@ ReportSection derived_section(const Checkpoint& c, const std::string& file) {
   const Config config = parse_config(c.config_toml, file + ":/parameters/config");
   const DerivedQuantities q = derive_quantities(c.body, c.state, config.interior.radius);
   ReportSection s{"derived", {}};
-  s.add("E_I", q.E_I).add("L_I", q.L_I).add("k_I", q.k_I).add("L_S", q.L_S).add("k_S", q.k_S).add("M_S", q.M_S);
-  s.add("L_C", q.L_C).add("k_C", q.k_C).add("V_IP", q.V_IP).add("V_SP", q.V_SP).add("V_Co", q.V_Co);
-  s.add("h_S", q.h_S).add("dt_max", q.dt_max);
+  // Units as documented in model/derived_quantities.hpp (e_g = G M^2/R^4).
+  s.add("E_I", q.E_I, "e_g").add("L_I", q.L_I, "R").add("k_I", q.k_I, spring_constant_unit);
+  s.add("L_S", q.L_S, "R").add("k_S", q.k_S, spring_constant_unit).add("M_S", q.M_S, "M");
+  s.add("L_C", q.L_C, "R").add("k_C", q.k_C, spring_constant_unit);
+  s.add("V_IP", q.V_IP, "sqrt(GM/R)").add("V_SP", q.V_SP, "sqrt(GM/R)").add("V_Co", q.V_Co, "sqrt(GM/R)");
+  s.add("h_S", q.h_S, "R").add("dt_max", q.dt_max, "t_grav");
   return s;
 }
 
 ReportSection conservation_section(const Checkpoint& c) {
   const Conservation totals = measure_conservation(c.body, c.state);
   ReportSection s{"conservation", {}};
-  s.add("momentum", as_vector(totals.momentum))
-      .add("angular_momentum", as_vector(totals.angular_momentum))
-      .add("kinetic_energy", totals.kinetic_energy);
+  s.add("momentum", as_vector(totals.momentum), "M sqrt(GM/R)")
+      .add("angular_momentum", as_vector(totals.angular_momentum), "M R sqrt(GM/R)")
+      .add("kinetic_energy", totals.kinetic_energy, "G M^2/R");
   return s;
 }
 
 /// Every field of the stage's record (model/stage_records.hpp), in stored order.
 ReportSection record_section(const Checkpoint& c) {
   ReportSection s{"record", {}};
-  auto add = [&s](const char* name, const auto& value, const char*, const char*) {
+  auto add = [&s](const char* name, const auto& value, const char* unit, const char*) {
     using T = std::decay_t<decltype(value)>;
     if constexpr (std::is_same_v<T, std::vector<std::int64_t>>)
-      s.add(name, std::vector<double>(value.begin(), value.end()));
-    else
+      s.add(name, std::vector<double>(value.begin(), value.end()), unit);
+    else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>)
       s.add(name, value);
+    else
+      s.add(name, value, unit);
   };
   std::visit([&](const auto& record) { visit_fields(record, add); }, c.stage.record);
   return s;
@@ -71,6 +81,11 @@ ReportSection record_section(const Checkpoint& c) {
 
 std::string value_text(const ReportValue& v) {
   auto number = [](double x) { return fmt::format("{:.6g}", x); };
+  if (!v.unit.empty() && v.unit != pure_number) {
+    ReportValue bare = v;
+    bare.unit.clear();
+    return value_text(bare) + " " + v.unit;
+  }
   switch (v.kind) {
     case ReportValue::Kind::integer: return fmt::format("{}", v.integer);
     case ReportValue::Kind::number: return number(v.number);
@@ -83,6 +98,14 @@ std::string value_text(const ReportValue& v) {
     }
   }
   return {};
+}
+
+/// The units of a section's values, by key (values without a unit left out).
+Json units_of(const ReportSection& s) {
+  Json units = Json::object();
+  for (const auto& [key, v] : s.entries)
+    if (!v.unit.empty()) units[key] = v.unit;
+  return units;
 }
 
 Json json_of(const ReportSection& s) {
@@ -112,23 +135,38 @@ void add_failures_section(const Checkpoint& c, InspectReport& r) {
   if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
   const Json summary = failure_summary_json(analyze_fractures(c.body, c.state));
+  // Keys of failure_summary_json: counts and fractions are pure numbers, angles in degrees,
+  // crack lengths in R.
   for (const auto& [key, value] : summary.items()) {
-    if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>());
-    else failures.add(key, value.get<double>());
+    const std::string unit = key.ends_with("_deg") ? "deg" : key.starts_with("longest_crack") ? "R" : "1";
+    if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>(), unit);
+    else failures.add(key, value.get<double>(), unit);
   }
+}
+
+std::string fingerprint_hash(const std::string& fingerprint) {
+  if (fingerprint.empty()) return "none";
+  return fmt::format("xxh3:{:016x}", XXH3_64bits(fingerprint.data(), fingerprint.size()));
 }
 
 InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
   InspectReport r;
-  r.top.add("format_version", checkpoint_format_version)
+  r.top.add("format_version", checkpoint_format_version, "1")
       .add("stage", c.stage.name())
       .add("complete", c.stage.complete)
-      .add("time", c.state.time)
-      .add("step", c.state.step)
-      .add("dt", c.stage.clock.dt)
+      .add("time", c.state.time, "t_grav")
+      .add("step", c.state.step, "1")
+      .add("dt", c.stage.clock.dt, "t_grav")
       .add("state_hash", state_hash(c.state))
-      .add("parent_hash", c.stage.parent_hash);
+      .add("parent_hash", c.stage.parent_hash)
+      .add("fingerprint_hash", fingerprint_hash(c.stage.fingerprint));
+  r.fingerprint = c.stage.fingerprint;
   if (!c.stage.diagnostic.empty()) r.top.add("diagnostic", c.stage.diagnostic);
+  r.section("provenance")
+      .add("version", c.provenance.version)
+      .add("git_commit", c.provenance.git_commit)
+      .add("compiler", c.provenance.compiler)
+      .add("build_flags", c.provenance.build_flags);
   r.sections.push_back(counts_section(c));
   r.sections.push_back(derived_section(c, file));
   r.sections.push_back(conservation_section(c));
@@ -136,18 +174,26 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
 
   if (const auto* e = std::get_if<EncounterRecord>(&c.stage.record)) {
     ReportSection& p = r.section("perturber");
-    if (c.state.perturber.present) p.add("mass", c.state.perturber.mass);
-    p.add("min_distance", e->min_distance).add("speed_at_min", e->speed_at_min);
+    if (c.state.perturber.present) p.add("mass", c.state.perturber.mass, "M");
+    p.add("min_distance", e->min_distance, "R").add("speed_at_min", e->speed_at_min, "sqrt(GM/R)");
   }
   if (const auto* relax = std::get_if<RelaxRecord>(&c.stage.record); relax && relax->probe_runs > 0)
-    r.section("stability").add("failures", relax->probe_failures).add("max_shell_strain", relax->probe_max_shell_strain);
+    r.section("stability")
+        .add("failures", relax->probe_failures, "1")
+        .add("max_shell_strain", relax->probe_max_shell_strain, "1");
   add_failures_section(c, r);
   return r;
 }
 
 std::string inspect_report_json(const InspectReport& r) {
   Json json = json_of(r.top);
-  for (const auto& s : r.sections) json[s.name] = json_of(s);
+  json["fingerprint"] = r.fingerprint;
+  Json units = units_of(r.top);
+  for (const auto& s : r.sections) {
+    json[s.name] = json_of(s);
+    if (Json section_units = units_of(s); !section_units.empty()) units[s.name] = std::move(section_units);
+  }
+  json["units"] = std::move(units);
   return json_text(json);
 }
 
@@ -156,7 +202,7 @@ std::string inspect_report_table(const InspectReport& r) {
   for (const auto& [key, value] : r.top.entries) width = std::max(width, key.size());
   for (const auto& s : r.sections)
     for (const auto& [key, value] : s.entries) width = std::max(width, key.size() + 2);
-  std::string out;
+  std::string out = "units: G = M = R = 1 (README \"Units\"); a number without a unit is a count or a ratio\n";
   for (const auto& [key, value] : r.top.entries) out += fmt::format("{:<{}}  {}\n", key, width, value_text(value));
   for (const auto& s : r.sections) {
     out += s.name + (s.entries.empty() ? "  (none)\n" : "\n");

@@ -13,10 +13,13 @@
 
 namespace tidalcrust {
 
-/// One value of the report: an integer, a number, a flag, a text or a list of numbers.
+/// One value of the report: an integer, a number, a flag, a text or a list of numbers, with the
+/// unit of a number (G = M = R = 1: "R", "t_grav", "sqrt(GM/R)", ...; "1" a pure number or
+/// count, "step" a global step; "" for texts and flags).
 struct ReportValue {
   enum class Kind { integer, number, flag, text, numbers };
   Kind kind = Kind::integer;
+  std::string unit;
   std::int64_t integer = 0;
   double number = 0;
   bool flag = false;
@@ -29,10 +32,11 @@ struct ReportSection {
   std::string name;
   std::vector<std::pair<std::string, ReportValue>> entries;
 
-  ReportSection& add(std::string key, double value) {
+  ReportSection& add(std::string key, double value, std::string unit) {
     ReportValue v;
     v.kind = ReportValue::Kind::number;
     v.number = value;
+    v.unit = std::move(unit);
     return put(std::move(key), std::move(v));
   }
   ReportSection& add(std::string key, std::string value) {
@@ -42,23 +46,27 @@ struct ReportSection {
     return put(std::move(key), std::move(v));
   }
   ReportSection& add(std::string key, const char* value) { return add(std::move(key), std::string(value)); }
-  ReportSection& add(std::string key, std::vector<double> values) {
+  ReportSection& add(std::string key, std::vector<double> values, std::string unit) {
     ReportValue v;
     v.kind = ReportValue::Kind::numbers;
     v.numbers = std::move(values);
+    v.unit = std::move(unit);
     return put(std::move(key), std::move(v));
   }
-  /// Any integer (counts, steps) is stored as int64; bool is a flag.
+  /// Any integer (counts, steps) is stored as int64.
   template <std::integral T>
-  ReportSection& add(std::string key, T value) {
+    requires(!std::is_same_v<T, bool>)
+  ReportSection& add(std::string key, T value, std::string unit) {
     ReportValue v;
-    if constexpr (std::is_same_v<T, bool>) {
-      v.kind = ReportValue::Kind::flag;
-      v.flag = value;
-    } else {
-      v.kind = ReportValue::Kind::integer;
-      v.integer = static_cast<std::int64_t>(value);
-    }
+    v.kind = ReportValue::Kind::integer;
+    v.integer = static_cast<std::int64_t>(value);
+    v.unit = std::move(unit);
+    return put(std::move(key), std::move(v));
+  }
+  ReportSection& add(std::string key, bool value) {
+    ReportValue v;
+    v.kind = ReportValue::Kind::flag;
+    v.flag = value;
     return put(std::move(key), std::move(v));
   }
 
@@ -72,14 +80,17 @@ struct ReportSection {
 struct InspectReport {
   ReportSection top;                    ///< top-level keys (format_version, stage, ...)
   std::vector<ReportSection> sections;  ///< nested objects, in output order
+  std::string fingerprint;              ///< the stage fingerprint's full text (JSON only)
 
   /// The section called `name`, appended if it does not exist yet.
   ReportSection& section(const std::string& name);
 };
 
-/// Builds the full report: top-level stage keys, counts, derived (Table 3 quantities with r_I
-/// from the stored configuration), conservation, the stage record, and for encounters the
-/// perturber, for relaxed bodies the stability probe, plus add_failures_section.
+/// Builds the full report: top-level stage keys (with the fingerprint's short hash), the writer's
+/// provenance (version, git commit, compiler, build flags), counts, derived (Table 3 quantities
+/// with r_I from the stored configuration), conservation, the stage record (units from
+/// visit_fields), and for encounters the perturber, for relaxed bodies the stability probe, plus
+/// add_failures_section. Every number carries its unit.
 /// `file` names the checkpoint in error messages (e.g. an unparsable stored configuration).
 InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::string& file);
 
@@ -87,10 +98,19 @@ InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::stri
 /// adds nothing yet; the analysis code fills it in.
 void add_failures_section(const Checkpoint& checkpoint, InspectReport& report);
 
-/// One JSON object (io/json.hpp: doubles read back to the same bits, NaN is null).
+/// One JSON object (io/json.hpp: doubles read back to the same bits, NaN is null): the values
+/// as "key": value, and their units in one more object "units", laid out like the values
+/// ("units": {"time": "t_grav", ..., "record": {"pericenter": "R", ...}}; keys without a unit are
+/// left out). The fingerprint appears in full ("fingerprint") beside its short hash.
 std::string inspect_report_json(const InspectReport& report);
 
-/// Aligned "key  value" lines, sections indented below their names.
+/// A line naming the units, then aligned "key  value unit" lines (the unit "1" of counts and
+/// ratios left out), sections indented below their names; the fingerprint as its short hash only
+/// (inspect --fingerprint prints the text).
 std::string inspect_report_table(const InspectReport& report);
+
+/// Short identity of a stage fingerprint: "xxh3:" and 16 hex digits of XXH3-64 of its text, or
+/// "none" for an empty fingerprint (a checkpoint not written by `run`).
+std::string fingerprint_hash(const std::string& fingerprint);
 
 }  // namespace tidalcrust

@@ -28,6 +28,7 @@ int command_build(int argc, char** argv) {
   // every later stage continues with it (no common option is ignored).
   const Config config = resolve_config("", "", common);
   apply_thread_count(common.threads);
+  const StageLock lock = lock_output(out, {}, false);
   Checkpoint body = build_stage(config);
   write_checkpoint(out, body);
   fmt::print("{}: build written ({} particles, {} springs, {} hinges)\n", out.string(), body.body.particle_count(),

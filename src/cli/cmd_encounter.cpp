@@ -58,6 +58,7 @@ int command_encounter(int argc, char** argv) {
     validate(checked, "encounter options");  // NaN, negative mass, q inside the body -> exit 2
     checkpoint = begin_encounter(input, config, spec);
   }
+  const StageLock lock = lock_output(out, from, resuming);
   StepLoopOptions loop = loop_options_for(parsed, out, "encounter " + checkpoint.stage.as<EncounterRecord>().encounter.name,
                                           config.encounter.checkpoint_interval);
   return finish_stage(run_encounter(checkpoint, config, loop, out), checkpoint, out, loop);

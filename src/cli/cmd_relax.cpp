@@ -25,6 +25,7 @@ int command_relax(int argc, char** argv) {
   Config config = stage_config(input, from, common, resuming);
   apply_thread_count(common.threads);
   Checkpoint checkpoint = resuming ? std::move(input) : begin_relax(input, config);
+  const StageLock lock = lock_output(out, from, resuming);
   StepLoopOptions loop = loop_options_for(parsed, out, "relax", config.relax.checkpoint_interval);
   return finish_stage(run_relax(checkpoint, config, loop), checkpoint, out, loop);
 }

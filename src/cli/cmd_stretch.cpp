@@ -19,6 +19,7 @@ int command_stretch(int argc, char** argv) {
   const auto& [parsed, common, from, out, input] = *in;
   Config config = stage_config(input, from, common, false);
   apply_thread_count(common.threads);
+  const StageLock lock = lock_output(out, from, false);
   Checkpoint stretched = stretch_stage(input, config);
   write_checkpoint(out, stretched);
   fmt::print("{}: stretch written (factor {}, residual surface acceleration {:.3g})\n", out.string(),

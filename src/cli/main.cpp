@@ -21,7 +21,7 @@ void print_usage(std::FILE* to) {
       "  relax     --from STRETCHED.h5 --out RELAXED.h5\n"
       "  encounter --from RELAXED.h5 --out ENC.h5 (--encounter NAME | --m2 M --q Q --vq V)\n"
       "  analyze   --from ENC.h5 --out DIR\n"
-      "  inspect CKPT.h5 [--json]\n"
+      "  inspect CKPT.h5 [--json | --fingerprint]\n"
       "  compare A.h5 B.h5 [--json]\n"
       "  estimate [--body NAME | --mass KG --radius KM] [--json]\n"
       "  bench [--config WORKFLOW.toml] [--steps N] [--json]\n"

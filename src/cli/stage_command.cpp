@@ -23,6 +23,16 @@ void check_output_path(const fs::path& out) {
   if (out.extension() != ".h5") throw InputError(fmt::format("{}: output file must end in .h5", out.string()));
 }
 
+StageLock lock_output(const fs::path& out, const fs::path& from, bool resuming) {
+  LockAttempt attempt = try_lock_stage(out, "");
+  if (!attempt.lock)
+    throw InputError(fmt::format("{}: is being computed by {} (lock {}); wait for it to finish or use another --out",
+                                 out.string(), attempt.holder->describe(), lock_path(out).string()));
+  if (attempt.lock->taken_over_from()) fmt::print(stderr, "tidalcrust: {}\n", attempt.lock->takeover_note());
+  remove_stage_outputs(out, resuming, {out, from});
+  return std::move(*attempt.lock);
+}
+
 void add_loop_options(cxxopts::Options& options) {
   options.add_options("stepping")
       ("checkpoint-every", "steps between mid-stage checkpoints (default: from the configuration)",

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "io/stage_lock.hpp"
 #include "model/checkpoint.hpp"
 #include "cli/cli_options.hpp"
 #include "stages/step_loop.hpp"
@@ -16,6 +17,12 @@ namespace tidalcrust {
 std::string required_option(const cxxopts::ParseResult& parsed, const char* name);
 /// The output folder must exist and the name end in .h5 (checked before any work).
 void check_output_path(const std::filesystem::path& out);
+/// The lock of a single-stage command's output `out` (io/stage_lock.hpp), taken before any work:
+/// InputError naming the holder when another process holds it (a stale one is taken over, with
+/// a line on stderr). Then what a superseded run left beside `out` is removed: its diagnostic
+/// checkpoint and, unless `resuming` (they belong to the run resumed), its mid-stage checkpoint
+/// and snapshots; never `out` itself (replaced when the stage is done) nor `from`.
+StageLock lock_output(const std::filesystem::path& out, const std::filesystem::path& from, bool resuming);
 /// --checkpoint-every, --stop-after-step, --quiet.
 void add_loop_options(cxxopts::Options& options);
 StepLoopOptions loop_options_for(const cxxopts::ParseResult& parsed, const std::filesystem::path& out,

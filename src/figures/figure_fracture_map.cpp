@@ -13,6 +13,9 @@ namespace {
 constexpr double map_width_pt = 720, map_height_pt = 420;
 constexpr PageRect map_area{62, 40, 640, 320};
 
+constexpr double max_map_step_deg = 3;  ///< largest longitude or latitude step between two drawn points
+constexpr int max_subdivisions = 40;     ///< halvings of the segment before a step counts as a pole passage
+
 /// Wraps a longitude difference into (-180, 180].
 double wrap_deg(double d) {
   while (d > 180) d -= 360;
@@ -20,24 +23,66 @@ double wrap_deg(double d) {
   return d;
 }
 
-/// One half-bar centroid -> edge midpoint, sampled along the chord so that it bends as the
-/// projection does; longitudes are unwrapped along the bar, and a bar that leaves [-180, 180]
-/// is drawn again shifted by 360 degrees (the map is clipped to its frame).
-void draw_bar(cairo_t* cr, const PlotAxes& axes, const Vec3& from, const Vec3& to) {
-  constexpr int pieces = 8;
-  std::vector<double> lon(pieces + 1), lat(pieces + 1);
-  for (int i = 0; i <= pieces; ++i) {
-    const Vec3 p = from + (to - from) * (static_cast<double>(i) / pieces);
-    lat[i] = latitude_deg(p);
-    lon[i] = i == 0 ? longitude_deg(p) : lon[i - 1] + wrap_deg(longitude_deg(p) - lon[i - 1]);
+struct MapPoint {
+  double lon, lat;
+};
+
+MapPoint map_point(const Vec3& p) { return {longitude_deg(p), latitude_deg(p)}; }
+
+/// Appends the map points of from + s (to - from) for s in (s0, s1], halving the interval until
+/// each step spans at most max_map_step_deg in longitude and latitude (or cannot be halved any
+/// more: the segment passes over a pole there).
+void sample_segment(const Vec3& from, const Vec3& to, double s0, MapPoint p0, double s1, MapPoint p1, int depth,
+                    std::vector<MapPoint>& out) {
+  if ((std::abs(wrap_deg(p1.lon - p0.lon)) <= max_map_step_deg && std::abs(p1.lat - p0.lat) <= max_map_step_deg) ||
+      depth >= max_subdivisions) {
+    out.push_back(p1);
+    return;
   }
-  double lo = lon[0], hi = lon[0];
-  for (const double l : lon) lo = std::min(lo, l), hi = std::max(hi, l);
-  for (const double shift : {0.0, -360.0, 360.0}) {
-    if ((shift < 0 && hi <= 180) || (shift > 0 && lo >= -180)) continue;
-    std::vector<double> shifted(lon);
-    for (double& l : shifted) l += shift;
-    axes.path(cr, shifted, lat);
+  const double s = 0.5 * (s0 + s1);
+  const MapPoint middle = map_point(from + (to - from) * s);
+  sample_segment(from, to, s0, p0, s, middle, depth + 1, out);
+  sample_segment(from, to, s, middle, s1, p1, depth + 1, out);
+}
+}  // namespace
+
+std::vector<MapPolyline> map_segment_pieces(const Vec3& from, const Vec3& to) {
+  std::vector<MapPoint> points{map_point(from)};
+  sample_segment(from, to, 0, points.front(), 1, map_point(to), 0, points);
+
+  std::vector<MapPolyline> pieces(1);
+  auto add = [&](double lon, double lat) {
+    pieces.back().longitude_deg.push_back(lon);
+    pieces.back().latitude_deg.push_back(lat);
+  };
+  add(points.front().lon, points.front().lat);
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    const MapPoint& p = points[i - 1];
+    const MapPoint& q = points[i];
+    const double step = wrap_deg(q.lon - p.lon);
+    if (std::abs(step) > max_map_step_deg) {
+      // Over a pole the longitude jumps: the cylindrical map stretches that point into its whole
+      // top or bottom edge, so the line is broken there rather than drawn along the edge.
+      pieces.emplace_back();
+    } else if (const double unwrapped = p.lon + step; unwrapped > 180 || unwrapped < -180) {
+      // Across the seam: end on it and continue from the other side at the same latitude.
+      const double seam = unwrapped > 180 ? 180 : -180;
+      const double lat = p.lat + (seam - p.lon) / step * (q.lat - p.lat);
+      add(seam, lat);
+      pieces.emplace_back();
+      add(-seam, lat);
+    }
+    add(q.lon, q.lat);
+  }
+  std::erase_if(pieces, [](const MapPolyline& piece) { return piece.longitude_deg.size() < 2; });
+  return pieces;
+}
+
+namespace {
+/// One half-bar centroid -> edge midpoint (map_segment_pieces).
+void draw_bar(cairo_t* cr, const PlotAxes& axes, const Vec3& from, const Vec3& to) {
+  for (const MapPolyline& piece : map_segment_pieces(from, to)) {
+    axes.path(cr, piece.longitude_deg, piece.latitude_deg);
     cairo_stroke(cr);
   }
 }
@@ -80,8 +125,8 @@ FigureFiles write_fracture_map(const FractureSummary& fractures, const std::file
     axes.draw_frame(cr, "longitude [deg]", "latitude [deg]", lon_ticks, lat_ticks);
     draw_title(cr, map_area, title);
     draw_text(cr,
-              "cylindrical projection about the body's centre of mass; equator = orbital plane; "
-              "ring: subsatellite point (lon 90\u00b0)",
+              "cylindrical projection about the centre of mass, longitude stretched by 1/cos(lat); "
+              "equator = orbital plane; ring: subsatellite point (90\u00b0)",
               map_area.left, map_height_pt - 12, 0, 1, tick_font_size);
   });
 }

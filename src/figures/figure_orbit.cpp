@@ -7,6 +7,7 @@
 
 #include "figures/figure_output.hpp"
 #include "figures/figure_style.hpp"
+#include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
 #include "physics/orbital_frame.hpp"
 #include "analysis/recorded_track.hpp"
@@ -228,7 +229,7 @@ FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord
     track_line_style(cr);
     legend_line(row0);
     draw_text(cr,
-              content.simulated ? fmt::format("simulated (max {:.3f} R from analytic)", content.max_deviation)
+              content.simulated ? fmt::format("simulated (max {} R from analytic)", fixed_text(content.max_deviation, 3))
                                 : "two-body track (analytic; q, V_q, M\u2082)",
               col0 + 12, row0, 0, 0.5, tick_font_size);
     if (content.simulated) {
@@ -241,7 +242,7 @@ FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord
     diamond(cr, col1, row0, 3.2);
     cairo_fill(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, fmt::format("every {:g} t_grav from the stage start", content.tick_every), col1 + 12, row0, 0, 0.5,
+    draw_text(cr, fmt::format("every {} t_grav from the stage start", general_text(content.tick_every)), col1 + 12, row0, 0, 0.5,
               tick_font_size);
     const double snapshot_row = content.simulated ? row2 : row1;
     cairo_set_line_width(cr, 0.9);
@@ -253,7 +254,7 @@ FigureFiles write_orbit_plot(const Checkpoint& checkpoint, const EncounterRecord
     cross(cr, col1, row1);
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, fmt::format("stored position, t \u2212 t_peri = {:+.2f}", checkpoint.state.time - tq), col1 + 12,
+    draw_text(cr, "stored position, " + time_from_pericenter_text(checkpoint.state.time - tq), col1 + 12,
               row1, 0, 0.5, tick_font_size);
 
     axes.draw_frame(cr, "x [R]", "y [R]");

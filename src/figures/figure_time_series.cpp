@@ -7,6 +7,7 @@
 #include "figures/figure_output.hpp"
 #include "figures/figure_style.hpp"
 #include "figures/figures.hpp"
+#include "physics/conservation.hpp"
 
 namespace tidalcrust {
 
@@ -73,7 +74,7 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
     cairo_restore(cr);
     axes.draw_frame(cr, time_axis_label(), "failed shell springs");
     draw_title(cr, area, title);
-    draw_text(cr, from_events ? "cumulative failure events (/observables/failures)" : "sampled counts (/observables/timeseries)",
+    draw_text(cr, from_events ? "cumulative failure events (/checkpoint/failures)" : "sampled counts (/checkpoint/timeseries)",
               area.left, 370 - 10, 0, 1, tick_font_size);
   });
 }
@@ -81,13 +82,19 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
 FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericenter_time,
                                     const std::filesystem::path& stem, const std::string& title) {
   const auto& samples = checkpoint.observables.timeseries;
+  // The energy budget's conserved total (docs/energy-budget.md) relative to the binding energy
+  // 3/5 G M^2/R; a record without the budget (NaN terms) falls back to the kinetic energy.
+  const bool budget = !samples.empty() && std::isfinite(samples.front().conserved_energy());
   std::vector<double> t, energy, momentum, angular;
   if (!samples.empty()) {
     const auto& first = samples.front();
     for (const auto& s : samples) {
       t.push_back(s.time - pericenter_time);
-      energy.push_back(first.kinetic_energy != 0 ? (s.kinetic_energy - first.kinetic_energy) / first.kinetic_energy
-                                                 : s.kinetic_energy - first.kinetic_energy);
+      if (budget)
+        energy.push_back((s.conserved_energy() - first.conserved_energy()) / uniform_sphere_binding_energy);
+      else
+        energy.push_back(first.kinetic_energy != 0 ? (s.kinetic_energy - first.kinetic_energy) / first.kinetic_energy
+                                                   : s.kinetic_energy - first.kinetic_energy);
       double dp = 0, dl = 0;
       for (int k = 0; k < 3; ++k) {
         dp += (s.momentum[k] - first.momentum[k]) * (s.momentum[k] - first.momentum[k]);
@@ -101,7 +108,7 @@ FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericen
     const std::vector<double>* values;
     const char* label;
   };
-  const Panel panels[] = {{&energy, "(K \u2212 K\u2080)/K\u2080"},
+  const Panel panels[] = {{&energy, budget ? "(E \u2212 E\u2080)/(3/5 GM\u00b2/R)" : "(K \u2212 K\u2080)/K\u2080"},
                           {&momentum, "|P \u2212 P\u2080| [M \u221a(GM/R)]"},
                           {&angular, "|L \u2212 L\u2080| [M R \u221a(GM/R)]"}};
   const auto [x_lo, x_hi] = range_of(t);
@@ -127,7 +134,8 @@ FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericen
     }
     draw_text(cr,
               samples.empty() ? "no timeseries samples stored"
-                              : "body + perturber about the origin; K: kinetic energy (damping and tides change it)",
+              : budget ? "body + perturber about the origin; E = K + U + damping and failure losses \u2212 hinge work"
+                       : "body + perturber about the origin; K: kinetic energy (damping and tides change it)",
               left, height - 10, 0, 1, tick_font_size);
   });
 }

@@ -15,10 +15,21 @@ namespace tidalcrust {
 using FigureFiles = std::vector<std::filesystem::path>;
 
 /// Figure 8 (fig:lat): cylindrical map, longitude -180..180 deg, latitude -90..90 deg, cracks as
-/// dual-lattice bars (Figure 4; faces across the dateline drawn on both sides), subsatellite
+/// dual-lattice bars (Figure 4; drawn as map_segment_pieces), subsatellite
 /// point (+90, 0) marked by a yellow ring.
 FigureFiles write_fracture_map(const FractureSummary& fractures, const std::filesystem::path& stem,
                                const std::string& title);
+/// One line drawn on the fracture map: longitudes in [-180, 180] and latitudes, degrees.
+struct MapPolyline {
+  std::vector<double> longitude_deg, latitude_deg;
+};
+/// The map image of the straight segment from -> to (R, relative to the centre of mass, map
+/// frame), as the pieces to draw: sampled so that no step spans more than 3 degrees of longitude
+/// or latitude (a segment near a pole bends as the projection does), split in two where it
+/// crosses the +-180 degree seam (both pieces end on the seam at the same latitude), and broken
+/// where it passes over a pole (where the projection stretches one point into the map's whole top
+/// or bottom edge). No piece crosses the map.
+std::vector<MapPolyline> map_segment_pieces(const Vec3& from, const Vec3& to);
 /// Where write_fracture_map puts longitude (x, degrees) and latitude (y, degrees), in points.
 PlotAxes fracture_map_axes();
 
@@ -28,9 +39,16 @@ PlotAxes fracture_map_axes();
 /// perturber crosses from left to right (the paper's viewer at -y sees a frame turned by pi about
 /// x, where it moves right to left). Lambert-shaded triangles, crack bars in black, the perturber
 /// as a translucent magenta disc of radius M2^(1/3) R (same density as the body), hidden by the
-/// body when behind it. Panels are labelled with t - t_peri.
+/// body when behind it, under the cracks when in front (hemisphere_panel_layers). Panels are
+/// labelled with t - t_peri in t_grav.
 FigureFiles write_hemisphere_views(const std::vector<const Checkpoint*>& snapshots, double pericenter_time,
                                    const std::filesystem::path& stem, const std::string& title);
+/// What a hemisphere panel draws, in the order returned by hemisphere_panel_layers.
+enum class HemisphereLayer { faces, cracks, perturber_fill, perturber_outline };
+/// Drawing order of one hemisphere panel: faces then cracks; a perturber behind the body first
+/// (the faces cover it); a perturber in front as a translucent fill between the faces and the
+/// cracks, and its outline last, so that the disc never hides a crack.
+std::vector<HemisphereLayer> hemisphere_panel_layers(bool perturber_present, bool perturber_in_front);
 /// Where panel `index` of write_hemisphere_views (of `panel_count`) puts screen coordinates
 /// (x = -x_body, y = z_body, R relative to the centre of mass), in points.
 PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count);

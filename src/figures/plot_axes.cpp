@@ -1,11 +1,11 @@
 #include "figures/plot_axes.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
+
+#include "figures/figure_text.hpp"
 
 namespace tidalcrust {
 
@@ -68,9 +68,9 @@ std::string tick_label(double value, double step) {
   const double magnitude = std::max(std::abs(value), std::abs(step));
   if (magnitude >= 1e-3 && magnitude < 1e5) {
     const int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(std::abs(step)) + 1e-9)));
-    return fmt::format("{:.{}f}", value, decimals);
+    return fixed_text(value, decimals);
   }
-  return fmt::format("{:.2g}", value);
+  return general_text(value, 2);
 }
 
 PlotAxes::PlotAxes(PageRect area, double x_min, double x_max, double y_min, double y_max)
@@ -141,7 +141,22 @@ void PlotAxes::path(cairo_t* cr, const std::vector<double>& x, const std::vector
 }
 
 void draw_title(cairo_t* cr, const PageRect& area, std::string_view title) {
-  draw_text(cr, title, area.left + 0.5 * area.width, area.top - 8, 0.5, 1, title_font_size, true);
+  const double x = area.left + 0.5 * area.width;
+  // Each line shrinks, if need be, to fit the page (the clip extents) centred on x.
+  double page_left = 0, page_top = 0, page_right = 0, page_bottom = 0;
+  cairo_clip_extents(cr, &page_left, &page_top, &page_right, &page_bottom);
+  const double room = 2 * std::min(x - page_left, page_right - x) - 8;
+  auto line = [&](std::string_view text, double y, double size, bool bold) {
+    const double width = text_width(cr, text, size, bold);
+    draw_text(cr, text, x, y, 0.5, 1, width > room && room > 0 ? size * room / width : size, bold);
+  };
+  const auto newline = title.find('\n');
+  if (newline == std::string_view::npos) {
+    line(title, area.top - 8, title_font_size, true);
+    return;
+  }
+  line(title.substr(0, newline), area.top - 8 - label_font_size - 4, title_font_size, true);
+  line(title.substr(newline + 1), area.top - 7, label_font_size, false);
 }
 
 }  // namespace tidalcrust

@@ -63,7 +63,8 @@ class PlotAxes {
   double x_min_, x_max_, y_min_, y_max_;
 };
 
-/// Title centred above `area`.
+/// Title centred above `area`; text after a '\n' is a second, smaller line (the parameters and
+/// units of the run) between the first line and the area.
 void draw_title(cairo_t* cr, const PageRect& area, std::string_view title);
 
 }  // namespace tidalcrust

@@ -77,6 +77,8 @@ ForceField::ForceField(const Body& body, ForceOptions options)
   build_incidence(n, pairs, hinge_offset_, hinge_entry_);
   spring_force_.assign(3 * ns, 0.0);
   hinge_force_.assign(12 * nh, 0.0);
+  spring_damping_.assign(ns, 0.0);
+  hinge_work_rate_.assign(nh, 0.0);
 }
 
 template <typename Visit>
@@ -116,17 +118,21 @@ void ForceField::for_each_hinge(std::size_t begin, std::size_t end, const double
 void ForceField::spring_range(std::size_t begin, std::size_t end, const double* position, const double* velocity,
                               const SpringState& springs) {
   double* force = spring_force_.data();
+  double* damping = spring_damping_.data();
   for_each_spring(begin, end, position, velocity, springs,
-                  [force](std::size_t s, const double* d, const SpringForceEnergy& spring) {
+                  [force, damping](std::size_t s, const double* d, const SpringForceEnergy& spring) {
                     for (std::size_t k = 0; k < 3; ++k) force[3 * s + k] = -spring.coefficient * d[k];
+                    damping[s] = spring.damping_coefficient;
                   });
 }
 
 std::int64_t ForceField::hinge_range(std::size_t begin, std::size_t end, const double* position) {
   double* force = hinge_force_.data();
+  double* work_rate = hinge_work_rate_.data();
   std::int64_t collapsed = -1;
-  for_each_hinge(begin, end, position, [force, &collapsed](std::size_t h, const HingeForces& f) {
+  for_each_hinge(begin, end, position, [force, work_rate, &collapsed](std::size_t h, const HingeForces& f) {
     if (f.collapsed && collapsed < 0) collapsed = static_cast<std::int64_t>(h);
+    work_rate[h] = f.energy_per_prefactor;
     for (std::size_t v = 0; v < 4; ++v)
       for (std::size_t k = 0; k < 3; ++k) force[12 * h + 3 * v + k] = f.on[v][k];
   });
@@ -267,6 +273,29 @@ Energies ForceField::energies(const double* position, const double* velocity, co
   if (options_.self_gravity) e.self_gravity = self_gravity_energy(body_.mass, body_.softening, position);
   e.perturber = perturber_energy(body_.mass, body_.softening, position, perturber);
   return e;
+}
+
+StepWork ForceField::work_of_step(const double* start, const double* half, const double* end) const {
+  StepWork work;
+  const std::size_t ns = body_.spring_count();
+  if (options_.damping != 0) {
+    for (std::size_t s = 0; s < ns; ++s) {
+      const std::size_t i = 3 * static_cast<std::size_t>(body_.springs[s][0]);
+      const std::size_t j = 3 * static_cast<std::size_t>(body_.springs[s][1]);
+      double d_dot_change = 0;  // d_half . ((x_i - x_j)_end - (x_i - x_j)_start)
+      for (std::size_t k = 0; k < 3; ++k)
+        d_dot_change += (half[i + k] - half[j + k]) * ((end[i + k] - start[i + k]) - (end[j + k] - start[j + k]));
+      work.damping_removed += spring_damping_[s] * d_dot_change;
+    }
+  }
+  for (std::size_t h = 0; h < body_.hinge_count(); ++h) {
+    if (hinge_work_rate_[h] == 0) continue;  // at rest angle (or k_e = 0): no work
+    const auto& c = body_.hinges[h];
+    const double change = hinge_prefactor(point(end, c[0]), point(end, c[1]), point(end, c[2]), point(end, c[3])) -
+                          hinge_prefactor(point(start, c[0]), point(start, c[1]), point(start, c[2]), point(start, c[3]));
+    work.hinge_added += hinge_work_rate_[h] * change;
+  }
+  return work;
 }
 
 std::string ForceField::describe(const ForceAlarms& alarms, const double* position) const {

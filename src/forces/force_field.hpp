@@ -72,6 +72,19 @@ struct Energies {
   double potential() const { return spring + hinge + self_gravity + perturber; }
 };
 
+/// Work done in one leapfrog step by the forces that have no potential (docs/energy-budget.md),
+/// G M^2/R. Both are measured as the integrator applies the forces: the step's force F at the
+/// half-step positions times the step's displacement Delta x = x_end - x_start.
+struct StepWork {
+  /// Energy the spring damping took out of the motion: sum over springs of
+  /// c_d (d_half . Delta d), c_d = gamma mu (d_half . dv_start)/L_half^2 the damping coefficient
+  /// of the step (start-of-step velocities, as the kick uses them); >= 0 up to O(dt^2).
+  double damping_removed = 0;
+  /// Work of the hinge forces beyond minus the change of the hinge energy E_h: sum over hinges
+  /// of (E_h/C)(half step) * (C(end) - C(start)), the midpoint rule for the integral of (E_h/C) dC.
+  double hinge_added = 0;
+};
+
 class ForceField {
  public:
   /// Keeps a reference to `body`, which must outlive the ForceField.
@@ -94,6 +107,11 @@ class ForceField {
   Energies energies(const State& state) {
     return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
   }
+
+  /// The work of the non-conservative forces in the step from positions `start` to `end` [N*3]
+  /// (R) whose forces the last compute() evaluated at `half` (the half-step positions; it must
+  /// have been called with exactly these). Sums in index order on one thread: deterministic.
+  StepWork work_of_step(const double* start, const double* half, const double* end) const;
 
   // The pieces of compute(), public for tests and micro-benchmarks.
   /// Fills spring_forces(): force on the first particle of each spring (the second feels -F).
@@ -151,6 +169,8 @@ class ForceField {
   std::vector<std::int32_t> hinge_offset_, hinge_entry_;
   std::vector<double> spring_force_;
   std::vector<double> hinge_force_;
+  std::vector<double> spring_damping_;      ///< [Ns] damping coefficient of the last pass (work_of_step)
+  std::vector<double> hinge_work_rate_;     ///< [Nh] E_h/C of the last pass (work_of_step)
   std::vector<double> cached_rest_angle_;  ///< rest angles the half-angle table was made from
   std::vector<HalfRestAngle> half_rest_;
 };

@@ -41,9 +41,11 @@ struct PlummerPairEvaluator {
   }
 };
 
-/// Potential energy of the body's self-gravity, sum over pairs i < j (i outer, in index order) of
+/// Potential energy of the body's self-gravity, sum over pairs i < j of
 /// -m_i m_j / sqrt(r_ij^2 + eps^2) (G M^2/R): mass [N] in M, softening eps in R, position [N*3]
-/// in R. One thread, O(N^2): for diagnostics such as an energy budget, not for every step.
+/// in R. O(N^2), for diagnostics such as the energy budget's samples, not for every step. Each
+/// row i sums its j > i in 8 SIMD lanes fixed by the indices, the rows run in parallel and are
+/// added in index order: the same bits for any thread count and any run.
 double self_gravity_energy(const std::vector<double>& mass, double softening, const double* position);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2) for every particle.

@@ -17,8 +17,17 @@ namespace tidalcrust {
 struct HingeForces {
   std::array<Vec3, 4> on;
   bool collapsed = false;  ///< a face is (nearly) degenerate: see collapsed_face_fraction
-  double energy = 0;       ///< bending energy, G M^2/R (see HingeEvaluator: approximate)
+  double energy = 0;       ///< bending energy E_h, G M^2/R (HingeEvaluator; docs/energy-budget.md)
+  /// E_h / C = 2 k_e (1 - cos((theta - theta_rest)/2)), G M^2/R^2: the rate dW/dC at which the
+  /// hinge force does work that E_h does not account for (docs/energy-budget.md).
+  double energy_per_prefactor = 0;
 };
+
+/// Bridson's geometric prefactor C = L^2/(|N1| + |N2|) (R) of the hinge {x1, x2, x3, x4} =
+/// {wing_1, wing_2, edge_a, edge_b}: the edge length squared over twice the summed face areas.
+inline double hinge_prefactor(const Vec3& x1, const Vec3& x2, const Vec3& x3, const Vec3& x4) {
+  return (x4 - x3).squaredNorm() / ((x1 - x3).cross(x1 - x4).norm() + (x2 - x4).cross(x2 - x3).norm());
+}
 
 /// A face counts as collapsed (hinge forces ~ 1/|N|^2 blow up) when twice its area |N| falls
 /// below this fraction of L^2, L the hinge edge: a wing vertex within ~1e-3 L of the edge line
@@ -46,16 +55,19 @@ struct HalfRestAngle {
 /// theta back to theta_rest. The u_i sum to zero and exert no net torque (momentum and angular
 /// momentum conserved). sin and cos of theta/2 come from half-angle formulas, no atan2.
 ///
-/// Energy: this force has no exact potential. A potential E would need grad E parallel to
-/// grad theta everywhere, so E a function of theta alone, but C also changes with the edge
-/// length and the face areas at fixed theta. The energy returned is the one whose gradient is
-/// -F when C is held fixed:
-///   E = 2 k_e C (1 - cos((theta - theta_rest)/2)) = 4 k_e C sin^2((theta - theta_rest)/4),
-/// (zero at rest, k_e C (theta - theta_rest)^2/4 near it). Its exact gradient is
-///   dE/dx_i = -F_i + 2 k_e (1 - cos((theta - theta_rest)/2)) dC/dx_i,
-/// so the mismatch is second order in theta - theta_rest while the force is first order: relative
-/// to the force about tan((theta - theta_rest)/4) |grad C| / (C |grad theta|), which
-/// tests/forces/test_energies.cpp checks term by term. 1 - cos is evaluated as
+/// Energy: this force has no potential at all (docs/energy-budget.md gives the proof): its work
+/// form -k_e C sin((theta - theta_rest)/2) d theta has the exterior derivative
+/// -k_e sin((theta - theta_rest)/2) dC ^ d theta, not zero because C and theta are independent
+/// functions of the positions (moving a wing within its face plane changes C, not theta): the
+/// work around a loop that bends the hinge at one C and back at another is not zero. The energy
+/// returned is the one whose gradient is -F when C is held fixed:
+///   E_h = 2 k_e C (1 - cos((theta - theta_rest)/2)) = 4 k_e C sin^2((theta - theta_rest)/4),
+/// (zero at rest, k_e C (theta - theta_rest)^2/4 near it). Exactly
+///   F . dx = -dE_h + (E_h/C) dC,
+/// so the hinge force does the work W_h = integral of (E_h/C) dC beyond -Delta E_h; the energy
+/// budget accumulates it every step (energy_per_prefactor, Leapfrog::last_work). The mismatch
+/// of the gradient is second order in theta - theta_rest while the force is first order:
+/// tests/forces/test_energies.cpp checks it term by term. 1 - cos is evaluated as
 /// sin^2/(1 + cos) where cos >= 0, free of cancellation for small angles. Theta jumps at a
 /// fully folded hinge (theta = pi); the energy jumps there too, as the force flips.
 class HingeEvaluator {
@@ -107,6 +119,7 @@ class HingeEvaluator {
                                                                 (1 + cos_half_difference)
                                                           : 1 - cos_half_difference;
     f.energy = 2 * scale * one_minus_cos;
+    f.energy_per_prefactor = 2 * stiffness_ * one_minus_cos;
     return f;
   }
 

@@ -45,6 +45,9 @@ inline double cross_spring_energy(double stretch, double rest_length, double sti
 struct SpringForceEnergy {
   /// c in G M^2/R^3: the force on particle i is -c (x_i - x_j), particle j feels the opposite.
   double coefficient = 0;
+  /// The damping part of `coefficient`, gamma mu (d.dv)/L^2 (1/t_grav times M): the damping force on
+  /// i is -damping_coefficient (x_i - x_j). The same bits as the term inside `coefficient`.
+  double damping_coefficient = 0;
   /// Elastic energy, G M^2/R: k (L - L0)^2 / 2, or cross_spring_energy() when eq. 26 applies.
   double energy = 0;
   /// Power the damping force removes from the motion, gamma mu (d.dv)^2 / L^2 >= 0 (G M^2/R per
@@ -72,8 +75,8 @@ class SpringEvaluator {
                    : 1.0;
     const double inv_length = 1.0 / length;
     SpringForceEnergy r;
-    r.coefficient = factor * stiffness_ * (length - rest_length_) * inv_length +
-                    gamma_mu_ * d_dot_dv * (inv_length * inv_length);
+    r.damping_coefficient = gamma_mu_ * d_dot_dv * (inv_length * inv_length);
+    r.coefficient = factor * stiffness_ * (length - rest_length_) * inv_length + r.damping_coefficient;
     const double stretch = length - rest_length_;
     r.energy = softening_ ? cross_spring_energy(stretch, rest_length_, stiffness_, *softening_)
                           : 0.5 * stiffness_ * stretch * stretch;

@@ -43,6 +43,7 @@ void Leapfrog::step(State& state) {
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
                                       clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
                                       likely_blow_up_cause(forces_.body(), state, clock_.dt)));
+  if (measure_work_) half_.assign(xw, xw + n3);
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {
     vw[k] = v[k] + dt * a[k];
@@ -56,6 +57,7 @@ void Leapfrog::step(State& state) {
 
   // Commit only a healthy state: on failure the caller keeps the last good step boundary.
   check_positions(xw, perturber, state);
+  work_ = measure_work_ ? forces_.work_of_step(x, half_.data(), xw) : StepWork{};
   // Copied, not swapped, so pointers into the state's arrays stay valid (~20 us a step).
   std::copy(position_.begin(), position_.end(), state.position.begin());
   std::copy(velocity_.begin(), velocity_.end(), state.velocity.begin());

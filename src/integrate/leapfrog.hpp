@@ -33,6 +33,13 @@ class Leapfrog {
   /// `count` steps.
   void advance(State& state, std::int64_t count);
 
+  /// Measure, in every step, the work of the forces that have no potential (spring damping and
+  /// the hinges' residual; ForceField::work_of_step): one more pass over springs and hinges.
+  /// Off by default; it never changes the step itself.
+  void measure_work(bool on) { measure_work_ = on; }
+  /// The work of the last step (zero unless measured), G M^2/R.
+  const StepWork& last_work() const { return work_; }
+
   /// Accelerations of the last step (at its half-step positions).
   const Accelerations& accelerations() const { return acc_; }
   const StepClock& clock() const { return clock_; }
@@ -48,6 +55,9 @@ class Leapfrog {
   Accelerations acc_;
   std::vector<double> position_;  ///< workspace: half-step, then end-of-step positions
   std::vector<double> velocity_;  ///< workspace: end-of-step velocities
+  std::vector<double> half_;      ///< workspace: half-step positions, kept when measuring work
+  bool measure_work_ = false;
+  StepWork work_;
 };
 
 }  // namespace tidalcrust

@@ -1,21 +1,27 @@
-// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (H5MD 1.1 compatible), written
+// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (valid H5MD 1.1), written
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include "io/checkpoint_file.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <pwd.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
+#include <type_traits>
+#include <string_view>
 
 #include "build_info.hpp"
 #include "base/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
 
@@ -51,7 +57,26 @@ constexpr const char* hinge_stiffness = "/checkpoint/hinges/stiffness";
 constexpr const char* perturber = "/checkpoint/perturber";
 constexpr const char* record = "/checkpoint/record";
 constexpr const char* config = "/parameters/config";
+constexpr const char* particles_group = "/particles/body";
+constexpr const char* failures = "/checkpoint/failures";
+constexpr const char* timeseries = "/checkpoint/timeseries";
 }  // namespace path
+
+/// H5MD units module strings (SI system) for the H5MD elements. The model is scale free
+/// (G = M = R = 1), so every choice of R and t_grav is an exact physical realization of a run;
+/// these strings name the one with R = 1 nm and t_grav = 1 ps (hence M = R^3/(G t_grav^2) =
+/// 1.4983e7 kg with CODATA 2018 G), chosen because readers that convert units (MDAnalysis)
+/// accept nm and ps. The numbers themselves are in R, t_grav, sqrt(GM/R) and M.
+namespace unit {
+constexpr const char* length = "nm";
+constexpr const char* time = "ps";
+constexpr const char* velocity = "nm ps-1";
+constexpr const char* mass = "14983000 kg";
+constexpr const char* realization =
+    "G = M = R = 1: lengths in body radii R, times in t_grav = sqrt(R^3/(G M)), velocities in "
+    "sqrt(G M/R), masses in M. The unit strings name the exact realization R = 1 nm, t_grav = 1 ps "
+    "(M = 1.4983e7 kg); for a real moon scale by its R and t_grav (tidalcrust estimate).";
+}  // namespace unit
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";
@@ -102,6 +127,7 @@ void visit_columns(std::type_identity<FailureEvent>, Visit&& visit) {
   visit("spring", &FailureEvent::spring);
   visit("strain", &FailureEvent::strain);
   visit("position", &FailureEvent::position);
+  visit("released_energy", &FailureEvent::released_energy);
 }
 template <typename Visit>
 void visit_columns(std::type_identity<TimeseriesSample>, Visit&& visit) {
@@ -111,13 +137,21 @@ void visit_columns(std::type_identity<TimeseriesSample>, Visit&& visit) {
   visit("momentum", &TimeseriesSample::momentum);
   visit("angular_momentum", &TimeseriesSample::angular_momentum);
   visit("perturber_offset", &TimeseriesSample::perturber_offset);
+  visit("internal_kinetic_energy", &TimeseriesSample::internal_kinetic_energy);
+  visit("spring_energy", &TimeseriesSample::spring_energy);
+  visit("hinge_energy", &TimeseriesSample::hinge_energy);
+  visit("self_gravity_energy", &TimeseriesSample::self_gravity_energy);
+  visit("perturber_energy", &TimeseriesSample::perturber_energy);
+  visit("damping_dissipated", &TimeseriesSample::damping_dissipated);
+  visit("failure_released", &TimeseriesSample::failure_released);
+  visit("hinge_residual_work", &TimeseriesSample::hinge_residual_work);
 }
 
 /// The observables groups and the rows each holds.
 template <typename O, typename Visit>
 void visit_observables(O& o, Visit&& visit) {
-  visit("/observables/failures", o.failures);
-  visit("/observables/timeseries", o.timeseries);
+  visit(path::failures, o.failures);
+  visit(path::timeseries, o.timeseries);
 }
 
 /// Element type, value count and first value of an array stored flat (rows of std::array are
@@ -201,22 +235,66 @@ std::string consistency_problem(const Checkpoint& c) {
   for (std::size_t r = 0; r < c.observables.failures.size(); ++r) {
     auto s = c.observables.failures[r].spring;
     if (s < 0 || static_cast<std::size_t>(s) >= ns)
-      return fmt::format("/observables/failures/spring row {}: spring index {} out of range [0, {})", r, s, ns);
+      return fmt::format("{}/spring row {}: spring index {} out of range [0, {})", path::failures, r, s, ns);
   }
   return {};
 }
 
 // ---- writing --------------------------------------------------------------------------------
 
+/// The person responsible for the run (H5MD's /h5md/author@name): $TIDALCRUST_AUTHOR if set,
+/// else the full name of the account (first field of the passwd GECOS entry), else its login
+/// name, else "unknown". Files written by the same author of equal checkpoints stay
+/// byte-identical.
+std::string author_name() {
+  if (const char* set = std::getenv("TIDALCRUST_AUTHOR"); set && *set) return set;
+  struct passwd entry {};
+  struct passwd* found = nullptr;
+  std::vector<char> buffer(16384);
+  if (::getpwuid_r(::getuid(), &entry, buffer.data(), buffer.size(), &found) == 0 && found) {
+    const std::string gecos = found->pw_gecos ? found->pw_gecos : "";
+    const std::string full = gecos.substr(0, gecos.find(','));
+    if (!full.empty()) return full;
+    if (found->pw_name && *found->pw_name) return found->pw_name;
+  }
+  return "unknown";
+}
+
+/// /h5md: the H5MD version, author, creator and the units module (variable-length strings,
+/// as the specification prescribes).
 void write_h5md_header(hid_t root) {
   h5::Group h5md = h5::create_group(root, "h5md");
   h5::write_attribute_array<std::int32_t>(h5md.get(), "version", {1, 1});
   h5::Group author = h5::create_group(h5md.get(), "author");
-  // A fixed author keeps files from different users byte-identical.
-  h5::write_string_attribute(author.get(), "name", "tidalcrust user");
+  h5::write_vl_string_attribute(author.get(), "name", author_name());
   h5::Group creator = h5::create_group(h5md.get(), "creator");
-  h5::write_string_attribute(creator.get(), "name", "tidalcrust");
-  h5::write_string_attribute(creator.get(), "version", build_info::version);
+  h5::write_vl_string_attribute(creator.get(), "name", "tidalcrust");
+  h5::write_vl_string_attribute(creator.get(), "version", build_info::version);
+  h5::Group modules = h5::create_group(h5md.get(), "modules");
+  h5::Group units = h5::create_group(modules.get(), "units");
+  h5::write_attribute_array<std::int32_t>(units.get(), "version", {1, 0});
+  h5::write_vl_string_attribute(units.get(), "system", "SI");
+  h5::write_vl_string_attribute(units.get(), "reduced_units", unit::realization);
+}
+
+/// Applies `edit(id)` to the group or dataset at `object_path`.
+template <typename Edit>
+void edit_object(hid_t root, const char* object_path, Edit edit) {
+  h5::Object object(h5::check(H5Oopen(root, object_path, H5P_DEFAULT), fmt::format("cannot open {}", object_path)));
+  edit(object.get());
+}
+
+/// The H5MD metadata of the stored arrays: units, the particles group of each connectivity
+/// list, and the names of the integer codes of species and spring kinds (labels[i] names code i).
+void write_h5md_metadata(hid_t root) {
+  for (auto [dataset, u] : {std::pair{path::position, unit::length}, std::pair{path::position_time, unit::time},
+                            std::pair{path::velocity, unit::velocity}, std::pair{path::mass, unit::mass}})
+    edit_object(root, dataset, [&](hid_t id) { h5::write_vl_string_attribute(id, "unit", u); });
+  for (const char* list : {path::springs, path::hinges, path::faces})
+    edit_object(root, list, [](hid_t id) { h5::write_object_reference_attribute(id, "particles_group", path::particles_group); });
+  edit_object(root, path::species, [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell"}); });
+  edit_object(root, path::spring_kind,
+              [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell", "cross"}); });
 }
 
 /// The groups of /particles and /connectivity with their H5MD metadata, and every per-element
@@ -229,8 +307,8 @@ void write_body_and_state(hid_t root, const Checkpoint& c) {
     h5::write_attribute<std::int32_t>(box.get(), "dimension", 3);
     h5::write_string_array_attribute(box.get(), "boundary", {"none", "none", "none"});
     h5::Group position = h5::create_group(body.get(), "position");
-    h5::write_dataset<std::int64_t>(position.get(), "step", &c.state.step, {1});
-    h5::write_dataset<double>(position.get(), "time", &c.state.time, {1});
+    h5::write_extensible_dataset<std::int64_t>(position.get(), "step", &c.state.step, {1});
+    h5::write_extensible_dataset<double>(position.get(), "time", &c.state.time, {1});
     h5::create_group(body.get(), "velocity");
     h5::hard_link(root, path::position_step, "/particles/body/velocity/step");
     h5::hard_link(root, path::position_time, "/particles/body/velocity/time");
@@ -240,8 +318,11 @@ void write_body_and_state(hid_t root, const Checkpoint& c) {
     h5::create_group(checkpoint.get(), "hinges");
   }
   visit_element_arrays(c, [&](const char* dataset, const auto& values, const Shape& shape) {
-    h5::write_dataset(root, dataset, flat_data(values), dims_of(shape, rows_of(values, shape)));
+    const auto dims = dims_of(shape, rows_of(values, shape));
+    if (shape.time_slice) h5::write_extensible_dataset(root, dataset, flat_data(values), dims);
+    else h5::write_dataset(root, dataset, flat_data(values), dims);
   });
+  write_h5md_metadata(root);
 }
 
 /// Writes one stage-record field under /checkpoint/record: numbers and flags as attributes,
@@ -330,9 +411,9 @@ void write_parameters(hid_t root, const Checkpoint& c) {
   h5::write_string_attribute(provenance.get(), "build_flags", build_info::build_flags);
 }
 
-/// The failure log and the timeseries, one dataset per column (visit_columns).
+/// The failure log and the timeseries, one dataset per column (visit_columns). They live in our
+/// own /checkpoint group: H5MD's /observables holds only H5MD elements (step, time, value).
 void write_observables(hid_t root, const Observables& o) {
-  h5::create_group(root, "observables");
   visit_observables(o, [&](const char* group_path, const auto& rows) {
     using Row = typename std::decay_t<decltype(rows)>::value_type;
     h5::Group group = h5::create_group(root, group_path);
@@ -356,6 +437,15 @@ std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
   write_checkpoint_group(root, c, state_hash(c.state));
   write_parameters(root, c);
   write_observables(root, c.observables);
+  // The digests come from the file image itself, opened as a reader opens the file, so they
+  // cover exactly the bytes that reach the disk; then the record is added to that image.
+  std::vector<ObjectDigest> digests;
+  {
+    // Another name: HDF5 would take the same name for the open file being written.
+    h5::File image = h5::open_memory_image(h5::file_image(root), file.string() + " (image)");
+    digests = object_digests(image.get());
+  }
+  write_integrity_record(root, digests);
   std::string bytes = h5::file_image(root);
   f.close("cannot close");
   return bytes;
@@ -387,15 +477,10 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
         "<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}</DataItem>", dims,
         number_type, precision, h5, dataset);
   };
-  // position/value and velocity/value are [1][N][3]: select the one time slice.
-  auto slice = [&](const char* dataset) {
-    return fmt::format(
-        "<DataItem ItemType=\"HyperSlab\" Type=\"HyperSlab\" Dimensions=\"{0} 3\">\n"
-        "            <DataItem Dimensions=\"3 3\" Format=\"XML\">0 0 0 1 1 1 1 {0} 3</DataItem>\n"
-        "            {1}\n"
-        "          </DataItem>",
-        n, heavy(fmt::format("1 {} 3", n), "Float", 8, dataset));
-  };
+  // position/value and velocity/value are [1][N][3], H5MD's one time slice: a plain DataItem
+  // on the whole dataset gives N points in every XDMF reader (a HyperSlab of it loads 0 points in
+  // ParaView's Xdmf3 readers and warns in the legacy one).
+  auto slice = [&](const char* dataset) { return heavy(fmt::format("1 {} 3", n), "Float", 8, dataset); };
   const std::string geometry = fmt::format(
       "        <Geometry GeometryType=\"XYZ\">\n          {}\n        </Geometry>\n", slice(path::position));
   auto attribute = [&](const char* name, const char* center, std::size_t count, const char* number_type,
@@ -499,12 +584,27 @@ void read_element_arrays(hid_t root, Checkpoint& c) {
   });
 }
 
-void read_stage_info(hid_t root, Checkpoint& c) {
+/// Which program wrote the file (/parameters/provenance), for inspect.
+void read_provenance(hid_t root, Provenance& p) {
+  h5::Group g = h5::open_group(root, "/parameters/provenance");
+  p.version = h5::read_string_attribute(g.get(), "version");
+  p.git_commit = h5::read_string_attribute(g.get(), "git_commit");
+  p.compiler = h5::read_string_attribute(g.get(), "compiler");
+  p.build_flags = h5::read_string_attribute(g.get(), "build_flags");
+}
+
+
+/// Checked first: a file of another version may lay out anything else, the integrity record too.
+void check_format_version(hid_t root) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::int64_t version = h5::read_attribute<std::int64_t>(g.get(), "format_version");
   if (version != checkpoint_format_version)
     throw h5::Error(fmt::format("attribute /checkpoint@format_version is {}, this tidalcrust reads version {}",
                                 version, checkpoint_format_version));
+}
+
+void read_stage_info(hid_t root, Checkpoint& c) {
+  h5::Group g = h5::open_group(root, "/checkpoint");
   const std::string stage = h5::read_string_attribute(g.get(), "stage");
   if (!make_stage_record(stage, c.stage.record))
     throw h5::Error(
@@ -647,11 +747,15 @@ Checkpoint read_checkpoint(const fs::path& file) {
   std::string stored_hash;
   try {
     const hid_t root = f.get();
+    check_format_version(root);
+    // Every byte the reads below use is verified before any of it is interpreted.
+    verify_integrity(root);
     read_stage_info(root, c);
     h5::Group g = h5::open_group(root, "/checkpoint");
     stored_hash = h5::read_string_attribute(g.get(), "state_hash");
     read_body_and_state(root, c);
     c.config_toml = h5::read_string_dataset(root, path::config);
+    read_provenance(root, c.provenance);
     read_observables(root, c.observables);
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: {}", name, err.what()));

@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (H5MD 1.1 compatible), written
+// Checkpoint files: the HDF5 layout of docs/checkpoint-layout.md (valid H5MD 1.1), written
 // atomically and reproducibly, read back with full validation, plus the .xdmf sidecar.
 #include <cstdint>
 #include <filesystem>
@@ -10,16 +10,20 @@ namespace tidalcrust {
 
 /// 2: /observables/timeseries/perturber_offset. 3: typed stage records (/checkpoint/record), the
 /// stage clock (@dt, @start_time), hinge stiffness as a body property, no per-spring damping.
-inline constexpr std::int64_t checkpoint_format_version = 3;
+/// 4: valid H5MD 1.1 (units, particles_group references, extensible time dimension, labels);
+/// the failure log and the timeseries moved from /observables to /checkpoint.
+inline constexpr std::int64_t checkpoint_format_version = 4;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
+/// The file carries its integrity record (/integrity: a digest of every object).
 /// Never overwrites a valid checkpoint in place. Equal checkpoints give byte-identical files.
 /// Also writes the .xdmf sidecar beside it. Throws InputError if the folder is not writable.
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
 
-/// Reads and validates (format version, dataset shapes, stage name, state_hash).
-/// Throws InputError naming the file and the dataset for a missing, truncated, corrupt or
-/// tampered file.
+/// Reads and validates: format version, then the integrity record (every dataset, attribute
+/// and link digested and compared with /integrity, io/content_hash.hpp), then dataset shapes,
+/// stage name, indices and state_hash. Throws InputError naming the file and the dataset or
+/// attribute for a missing, truncated, corrupt or tampered file.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 /// True if `file` exists and read_checkpoint would succeed (used by restart logic).

@@ -23,6 +23,22 @@ void remove_checkpoint_files(const std::filesystem::path& file) {
   std::filesystem::remove(xdmf.replace_extension(".xdmf"), ignored);
 }
 
+void remove_stage_outputs(const std::filesystem::path& file, bool keep_resume_files,
+                          const std::vector<std::filesystem::path>& keep) {
+  std::vector<std::filesystem::path> outputs = {file, sibling_checkpoint(file, "diagnostic")};
+  if (!keep_resume_files) {
+    outputs.push_back(sibling_checkpoint(file, "mid"));
+    for (const auto& snapshot : find_snapshots(file)) outputs.push_back(snapshot.file);
+  }
+  std::error_code ignored;
+  for (const auto& output : outputs) {
+    const bool kept = std::any_of(keep.begin(), keep.end(), [&](const std::filesystem::path& k) {
+      return std::filesystem::weakly_canonical(k, ignored) == std::filesystem::weakly_canonical(output, ignored);
+    });
+    if (!kept) remove_checkpoint_files(output);
+  }
+}
+
 std::filesystem::path snapshot_path(const std::filesystem::path& checkpoint_file, std::int64_t step) {
   return checkpoint_file.parent_path() /
          fmt::format("{}{}{}{}", checkpoint_file.stem().string(), snapshot_infix, step, checkpoint_file.extension().string());

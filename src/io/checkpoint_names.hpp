@@ -16,6 +16,14 @@ std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const
 /// Removes a checkpoint and its .xdmf sidecar if they exist (a finished stage's mid file).
 void remove_checkpoint_files(const std::filesystem::path& file);
 
+/// Removes what an earlier run of a stage left beside its checkpoint `file` once that run is
+/// superseded (another fingerprint or parent): `file`, its diagnostic checkpoint and, unless
+/// `keep_resume_files` (the stage resumes from its matching mid-stage checkpoint, whose
+/// snapshots belong to it), its mid-stage checkpoint and its snapshots; each with its .xdmf.
+/// Files in `keep` (e.g. the input of a single-stage command) stay. Missing files are no error.
+void remove_stage_outputs(const std::filesystem::path& file, bool keep_resume_files,
+                          const std::vector<std::filesystem::path>& keep = {});
+
 inline constexpr std::string_view snapshot_infix = ".snap-";
 
 /// The snapshot file of `checkpoint_file` at global step `step`.

@@ -239,6 +239,18 @@ inline File open_file_readonly(const std::filesystem::path& path) {
   return File(id);
 }
 
+/// Opens the file image `bytes` (as file_image returns it) read-only in memory; `name` only
+/// names it in HDF5's messages.
+inline File open_memory_image(const std::string& bytes, const std::string& name) {
+  silence_errors();
+  PropList fapl = file_access_plist();
+  check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
+  check(H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()), "H5Pset_file_image");
+  const hid_t id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (id < 0) throw Error("cannot open the file image: " + error_stack_text());
+  return File(id);
+}
+
 inline Group create_group(hid_t loc, std::string_view name) {
   PropList gcpl = untimed_plist(H5P_GROUP_CREATE);
   std::string n(name);
@@ -336,11 +348,42 @@ Array<T> read_dataset(hid_t loc, std::string_view name) {
   return out;
 }
 
-/// Address of a contiguous dataset's raw data in the file (tests use it to corrupt bytes).
+/// Writes a dataset whose first dimension is time (an H5MD `value`, `step` or `time`): chunked,
+/// one sample per chunk, maxshape unlimited in the first dimension so that a reader or a later
+/// tool can append samples (H5MD 1.1, time-dependent data). dims must be non-empty.
+template <typename T>
+void write_extensible_dataset(hid_t loc, std::string_view name, const T* data, const std::vector<hsize_t>& dims) {
+  const std::string what = object_path(loc, name);
+  std::vector<hsize_t> max = dims, chunk = dims;
+  max.at(0) = H5S_UNLIMITED;
+  chunk[0] = 1;
+  for (auto& c : chunk) c = std::max<hsize_t>(c, 1);  // a chunk cannot have a zero dimension
+  Dataspace space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), max.data()),
+                        "cannot create dataspace for " + what));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  check(H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), "cannot chunk " + what);
+  std::string n(name);
+  Dataset set(check(H5Dcreate2(loc, n.c_str(), type_of<T>().file, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  if (H5Sget_simple_extent_npoints(space.get()) > 0)
+    check(H5Dwrite(set.get(), type_of<T>().memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + what);
+}
+
+/// Address of a dataset's raw data in the file (tests use it to corrupt bytes): of the data of
+/// a contiguous dataset, of the first chunk of a chunked one.
 inline haddr_t dataset_offset(hid_t loc, std::string_view name) {
   std::string n(name);
   Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open dataset " + object_path(loc, name)));
-  return H5Dget_offset(set.get());
+  const haddr_t contiguous = H5Dget_offset(set.get());
+  if (contiguous != HADDR_UNDEF) return contiguous;
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + object_path(loc, name)));
+  const std::vector<hsize_t> first(static_cast<std::size_t>(std::max(H5Sget_simple_extent_ndims(space.get()), 0)), 0);
+  haddr_t address = HADDR_UNDEF;
+  hsize_t size = 0;
+  unsigned filters = 0;
+  check(H5Dget_chunk_info_by_coord(set.get(), first.data(), &filters, &address, &size),
+        "cannot locate the data of " + object_path(loc, name));
+  return address;
 }
 
 // ---- strings --------------------------------------------------------------------------------
@@ -402,18 +445,6 @@ inline void write_string_dataset(hid_t loc, std::string_view name, const std::st
   check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, text.c_str()), "cannot write dataset " + what);
 }
 
-inline std::string read_string_dataset(hid_t loc, std::string_view name) {
-  const std::string what = "dataset " + object_path(loc, name);
-  std::string n(name);
-  if (!exists(loc, n)) throw Error(what + " is missing");
-  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
-  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
-  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
-  if (H5Sget_simple_extent_npoints(space.get()) != 1) throw Error(what + ": expected a single string");
-  return read_strings(type.get(), 1, what, [&](hid_t memory, void* buffer) {
-    return H5Dread(set.get(), memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
-  })[0];
-}
 
 // ---- attributes -----------------------------------------------------------------------------
 
@@ -445,13 +476,99 @@ inline void write_string_attribute(hid_t loc, std::string_view name, const std::
   write_attribute_raw(loc, name, type.get(), type.get(), text.c_str(), {});
 }
 
-inline void write_string_array_attribute(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+/// Strings packed for a fixed-length string type: the element size (the longest, at least 1)
+/// and the NUL-padded bytes.
+inline std::pair<std::size_t, std::vector<char>> packed_strings(const std::vector<std::string>& texts) {
   std::size_t size = 1;
   for (const auto& t : texts) size = std::max(size, t.size());
   std::vector<char> buffer(size * texts.size(), '\0');
   for (std::size_t i = 0; i < texts.size(); ++i) std::copy(texts[i].begin(), texts[i].end(), buffer.begin() + i * size);
+  return {size, std::move(buffer)};
+}
+
+inline void write_string_array_attribute(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+  const auto [size, buffer] = packed_strings(texts);
   Type type = fixed_string_type(size);
   write_attribute_raw(loc, name, type.get(), type.get(), buffer.data(), {texts.size()});
+}
+
+/// A 1-D fixed-length string dataset [n] (n may be 0).
+inline void write_string_array_dataset(hid_t loc, std::string_view name, const std::vector<std::string>& texts) {
+  const std::string what = object_path(loc, name);
+  const auto [size, buffer] = packed_strings(texts);
+  Type type = fixed_string_type(size);
+  const hsize_t n = texts.size();
+  Dataspace space(check(H5Screate_simple(1, &n, nullptr), "cannot create dataspace for " + what));
+  PropList dcpl = untimed_plist(H5P_DATASET_CREATE);
+  std::string nm(name);
+  Dataset set(check(H5Dcreate2(loc, nm.c_str(), type.get(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+                    "cannot create dataset " + what));
+  if (n > 0)
+    check(H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()), "cannot write dataset " + what);
+}
+
+/// All strings of a string dataset (any string type, any shape) in row-major order, and its
+/// rank; Error if missing or not strings.
+inline std::pair<std::vector<std::string>, int> read_string_values(hid_t loc, std::string_view name) {
+  const std::string what = "dataset " + object_path(loc, name);
+  std::string n(name);
+  if (!exists(loc, n)) throw Error(what + " is missing");
+  Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
+  Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (rank < 0 || count < 0) throw Error("cannot read the shape of " + what);
+  auto values = read_strings(type.get(), static_cast<std::size_t>(count), what, [&](hid_t memory, void* buffer) {
+    return H5Dread(set.get(), memory, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+  });
+  return {std::move(values), rank};
+}
+
+/// A dataset holding a single string (scalar or one element).
+inline std::string read_string_dataset(hid_t loc, std::string_view name) {
+  auto [values, rank] = read_string_values(loc, name);
+  if (values.size() != 1) throw Error("dataset " + object_path(loc, name) + ": expected a single string");
+  return values[0];
+}
+
+/// A 1-D string dataset [n].
+inline std::vector<std::string> read_string_array_dataset(hid_t loc, std::string_view name) {
+  auto [values, rank] = read_string_values(loc, name);
+  if (rank != 1) throw Error("dataset " + object_path(loc, name) + ": expected a 1-D array of strings");
+  return values;
+}
+
+/// A scalar variable-length ASCII string attribute: the type H5MD prescribes for its metadata
+/// (h5md/author@name, ...) and for `unit` (h5py reads it as str, a fixed-length one as bytes).
+inline void write_vl_string_attribute(hid_t loc, std::string_view name, const std::string& text) {
+  Type type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "H5Tset_size");
+  check(H5Tset_cset(type.get(), H5T_CSET_ASCII), "H5Tset_cset");
+  const char* pointer = text.c_str();
+  write_attribute_raw(loc, name, type.get(), type.get(), &pointer, {});
+}
+
+/// An attribute holding an HDF5 object reference to the object at `target` (absolute path).
+inline void write_object_reference_attribute(hid_t loc, std::string_view name, const std::string& target) {
+  hobj_ref_t reference{};
+  check(H5Rcreate(&reference, loc, target.c_str(), H5R_OBJECT, -1), "cannot reference " + target);
+  write_attribute_raw(loc, name, H5T_STD_REF_OBJ, H5T_STD_REF_OBJ, &reference, {});
+}
+
+/// The path of the object an object-reference attribute points to; Error if it is missing,
+/// not a reference or dangling.
+inline std::string read_object_reference_attribute(hid_t loc, std::string_view name) {
+  const std::string what = "attribute " + object_path(loc, "") + "@" + std::string(name);
+  std::string n(name);
+  if (H5Aexists(loc, n.c_str()) <= 0) throw Error(what + " is missing");
+  Attribute attr(check(H5Aopen(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
+  Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
+  if (H5Tequal(type.get(), H5T_STD_REF_OBJ) <= 0) throw Error(what + ": stored type is not an object reference");
+  hobj_ref_t reference{};
+  check(H5Aread(attr.get(), H5T_STD_REF_OBJ, &reference), "cannot read " + what);
+  Object target(check(H5Rdereference2(loc, H5P_DEFAULT, H5R_OBJECT, &reference), what + ": dangling reference"));
+  return object_path(target.get(), "");
 }
 
 /// Opens attribute `name` of `loc`; Error naming it if missing.

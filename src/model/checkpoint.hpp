@@ -4,6 +4,7 @@
 // io/checkpoint_file.hpp.
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -23,19 +24,36 @@ struct FailureEvent {
   std::int32_t spring = 0;              ///< index into Body::springs
   double strain = 0;                    ///< (L - L0)/L0 when it failed
   std::array<double, 3> position{};     ///< spring midpoint, R, same frame as State
+  /// Elastic energy the failure removed, (1 - F_Sk) k (L - L0)^2/2 at the strain it failed at, G M^2/R.
+  double released_energy = 0;
 };
 
-/// A sample of the conserved quantities (body + perturber, about the origin) and of where the
-/// perturber is.
+/// A sample of the conserved quantities (body + perturber, about the origin), of where the
+/// perturber is, and of the energy budget (docs/energy-budget.md; G M^2/R, NaN where not
+/// measured: the relax stage).
 struct TimeseriesSample {
+  static constexpr double not_measured = std::numeric_limits<double>::quiet_NaN();
   double time = 0;
   std::int64_t failed = 0;              ///< failed springs so far
-  double kinetic_energy = 0;
+  double kinetic_energy = 0;            ///< body particles and perturber
   std::array<double, 3> momentum{};
   std::array<double, 3> angular_momentum{};
   /// Perturber position minus the body's centre of mass (orbital_frame.hpp), R; the simulated
   /// track including the body's recoil. Zero when there is no perturber.
   std::array<double, 3> perturber_offset{};
+  double internal_kinetic_energy = not_measured;  ///< body particles about the body's centre of mass
+  double spring_energy = not_measured;       ///< elastic energy of the springs
+  double hinge_energy = not_measured;        ///< bending energy E_h of the hinges
+  double self_gravity_energy = not_measured; ///< the body's gravitational self-energy
+  double perturber_energy = not_measured;    ///< gravitational energy of the body in the perturber's field
+  double damping_dissipated = not_measured;  ///< EnergyLedger, since the stage began
+  double failure_released = not_measured;    ///< EnergyLedger, since the stage began
+  double hinge_residual_work = not_measured; ///< EnergyLedger, since the stage began
+  /// The conserved total K + U + damping_dissipated + failure_released - hinge_residual_work.
+  double conserved_energy() const {
+    return kinetic_energy + spring_energy + hinge_energy + self_gravity_energy + perturber_energy +
+           damping_dissipated + failure_released - hinge_residual_work;
+  }
 };
 
 struct Observables {
@@ -68,8 +86,18 @@ struct StageInfo {
   }
 };
 
+/// Which program wrote a checkpoint (/parameters/provenance). Filled by read_checkpoint;
+/// write_checkpoint always stores the running program's own build information instead.
+struct Provenance {
+  std::string version;      ///< tidalcrust version
+  std::string git_commit;   ///< commit it was built from
+  std::string compiler;     ///< compiler name and version
+  std::string build_flags;  ///< compiler flags of the build
+};
+
 struct Checkpoint {
   StageInfo stage;
+  Provenance provenance;    ///< of the file read; empty for a checkpoint made in memory
   std::string config_toml;  ///< resolved configuration (to_toml)
   Body body;
   State state;

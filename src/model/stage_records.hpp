@@ -68,6 +68,17 @@ struct RelaxRecord {
   bool operator==(const RelaxRecord&) const = default;
 };
 
+/// The energy that the forces without a potential and the failures moved in or out of the motion
+/// since the stage began, accumulated every step (docs/energy-budget.md), G M^2/R. With them the
+/// total kinetic + potential + damping_dissipated + failure_released - hinge_residual_work is
+/// conserved up to the leapfrog's O(dt^2) error.
+struct EnergyLedger {
+  double damping_dissipated = 0;   ///< work done against the spring damping (>= 0 up to O(dt^2))
+  double failure_released = 0;     ///< elastic energy removed by failures: (1 - F_Sk) k (L - L0)^2/2 each
+  double hinge_residual_work = 0;  ///< work of the hinge forces beyond minus the change of the hinge energy
+  bool operator==(const EnergyLedger&) const = default;
+};
+
 /// Stage 4 (encounter, paper sections 2.6, 2.9): the perturber, the failure rule and schedules
 /// fixed when the encounter begins, and what the run measured.
 struct EncounterRecord {
@@ -89,6 +100,7 @@ struct EncounterRecord {
   double speed_at_min = 0;            ///< relative speed there, sqrt(GM/R)
   double time_of_min = 0;             ///< t_grav
   std::int64_t step_of_min = 0;
+  EnergyLedger energy;                ///< accumulated every step since the encounter began
   bool operator==(const EncounterRecord&) const = default;
 };
 
@@ -159,6 +171,10 @@ void visit_fields(Record& r, Visit&& visit) {
   visit("speed_at_min", r.speed_at_min, "sqrt(GM/R)", "relative speed at the closest approach");
   visit("time_of_min", r.time_of_min, "t_grav", "time of the closest approach");
   visit("step_of_min", r.step_of_min, "step", "step of the closest approach");
+  visit("damping_dissipated", r.energy.damping_dissipated, "G M^2/R", "work done against spring damping so far");
+  visit("failure_released", r.energy.failure_released, "G M^2/R", "elastic energy removed by failures so far");
+  visit("hinge_residual_work", r.energy.hinge_residual_work, "G M^2/R",
+        "hinge work not accounted for by the hinge energy so far");
 }
 
 /// The record of whichever stage wrote a checkpoint; the alternative IS the stage.

@@ -7,6 +7,10 @@
 
 namespace tidalcrust {
 
+/// Gravitational binding energy of a uniform sphere of mass M and radius R, 3/5 G M^2/R: the
+/// scale against which the energy budget's error is quoted.
+inline constexpr double uniform_sphere_binding_energy = 0.6;
+
 struct Conservation {
   std::array<double, 3> momentum{};          ///< M sqrt(GM/R)
   std::array<double, 3> angular_momentum{};  ///< about the origin, M R sqrt(GM/R)

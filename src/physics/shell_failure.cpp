@@ -10,6 +10,7 @@
 
 #include "base/errors.hpp"
 #include "base/vec3.hpp"
+#include "forces/spring_force.hpp"
 #include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
@@ -53,6 +54,15 @@ Vec3 spring_midpoint(const Body& body, const State& state, std::size_t n) {
 
 /// Spring n fails now: stiffness *= F_Sk, failed = 1; the event to log.
 FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double strain, double failed_stiffness_factor) {
+  const auto i = static_cast<std::size_t>(body.springs[n][0]);
+  const auto j = static_cast<std::size_t>(body.springs[n][1]);
+  // The energy budget's failure term: the spring's elastic energy at this strain before and
+  // after its stiffness drops (the same evaluator as the force law; shell springs are linear).
+  const double length = (vec3_at(state.position, i) - vec3_at(state.position, j)).norm();
+  auto elastic_energy = [&] {
+    return SpringEvaluator(state.springs.rest_length[n], state.springs.stiffness[n], 0.0).force_and_energy(length, 0).energy;
+  };
+  const double energy_before = elastic_energy();
   state.springs.stiffness[n] *= failed_stiffness_factor;
   state.springs.failed[n] = 1;
   const Vec3 mid = spring_midpoint(body, state, n);
@@ -62,6 +72,7 @@ FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double s
   event.spring = static_cast<std::int32_t>(n);
   event.strain = strain;
   event.position = {mid.x(), mid.y(), mid.z()};
+  event.released_energy = energy_before - elastic_energy();
   return event;
 }
 

@@ -31,7 +31,8 @@ double max_shell_tension(const Body& body, const State& state);
 
 /// One failure check: among the unfailed shell springs with strain > failure_strain (eps_S),
 /// the most strained one (lowest index on ties) fails: stiffness *= failed_stiffness_factor
-/// (F_Sk), failed = 1. Returns the event (time, step, strain, midpoint) or nothing when no
+/// (F_Sk), failed = 1. Returns the event (time, step, strain, midpoint, the elastic energy
+/// (1 - F_Sk) k (L - L0)^2/2 the drop removed) or nothing when no
 /// spring exceeds eps_S. The caller decides when to check (every t_fail steps).
 std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, State& state, double failure_strain,
                                                             double failed_stiffness_factor);

@@ -93,3 +93,56 @@ TEST(InspectReport, UnparsableStoredConfigurationNamesTheDataset) {
     EXPECT_TRUE(contains(err.what(), "odd.h5:/parameters/config")) << err.what();
   }
 }
+
+TEST(InspectReport, EveryNumberHasAUnit) {
+  const InspectReport r = build_inspect_report(synthetic_checkpoint(), "synthetic.h5");
+  std::vector<const ReportSection*> sections{&r.top};
+  for (const auto& s : r.sections) sections.push_back(&s);
+  for (const ReportSection* s : sections)
+    for (const auto& [key, v] : s->entries) {
+      if (v.kind == ReportValue::Kind::integer || v.kind == ReportValue::Kind::number ||
+          v.kind == ReportValue::Kind::numbers) {
+        EXPECT_FALSE(v.unit.empty()) << s->name << "." << key;
+      }
+    }
+  const std::string table = inspect_report_table(r);
+  for (const char* line : {"\ndt ", "\n  pericenter ", "\n  pericenter_speed ", "\n  E_I ", "\n  momentum "}) {
+    const auto at = table.find(line);
+    ASSERT_NE(at, std::string::npos) << line << table;
+    const std::string row = table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+    const std::string unit = std::string(line) == "\ndt "                  ? " t_grav"
+                             : std::string(line) == "\n  pericenter "      ? " R"
+                             : std::string(line) == "\n  pericenter_speed " ? " sqrt(GM/R)"
+                             : std::string(line) == "\n  E_I "             ? " e_g"
+                                                                            : "] M sqrt(GM/R)";
+    EXPECT_TRUE(row.ends_with(unit)) << row;
+  }
+  const std::string json = inspect_report_json(r);
+  EXPECT_TRUE(contains(json, "\"units\": {")) << json;
+  EXPECT_TRUE(contains(json, "\"pericenter_speed\": \"sqrt(GM/R)\"")) << json;
+  EXPECT_TRUE(contains(json, "\"time\": \"t_grav\"")) << json;
+}
+
+TEST(InspectReport, FingerprintIsOneShortLineAndProvenanceIsShown) {
+  Checkpoint c = synthetic_checkpoint();
+  c.provenance = {"9.8.7", "abc123def456", "GNU 12.2.0", "-O2 -ffp-contract=off"};
+  const InspectReport r = build_inspect_report(c, "synthetic.h5");
+  const std::string table = inspect_report_table(r);
+  // The multi-line fingerprint is not in the table; its hash is, on one line.
+  EXPECT_FALSE(contains(table, "integrator.dt = 0.002")) << table;
+  const auto at = table.find("\nfingerprint_hash ");
+  ASSERT_NE(at, std::string::npos) << table;
+  const std::string row = table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+  EXPECT_TRUE(row.ends_with(fingerprint_hash(c.stage.fingerprint))) << row;
+  EXPECT_EQ(fingerprint_hash(c.stage.fingerprint).size(), 5u + 16u);
+  EXPECT_EQ(fingerprint_hash(""), "none");
+  EXPECT_NE(fingerprint_hash("a = 1\n"), fingerprint_hash("a = 2\n"));
+  EXPECT_TRUE(contains(table, "\nprovenance\n  version ")) << table;
+  for (const char* part : {"9.8.7\n", "abc123def456\n", "GNU 12.2.0\n", "-O2 -ffp-contract=off\n"})
+    EXPECT_TRUE(contains(table, part)) << part;
+  // The JSON carries the full text and the same provenance.
+  const std::string json = inspect_report_json(r);
+  EXPECT_TRUE(contains(json, "\"fingerprint\": \"encounter.damping = 0.01\\nintegrator.dt = 0.002\\n\"")) << json;
+  EXPECT_TRUE(contains(json, "\"git_commit\": \"abc123def456\"")) << json;
+  EXPECT_TRUE(contains(json, "\"version\": \"9.8.7\"")) << json;
+}

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "analysis/inspect_report.hpp"
+#include "build_info.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
 #include "model/config.hpp"
@@ -35,7 +36,8 @@ TEST(InspectCli, JsonOfAWrittenCheckpoint) {
   write_checkpoint(dir / "enc.h5", c);
   const CliResult r = run_cli("inspect " + quoted(dir / "enc.h5") + " --json");
   EXPECT_EQ(r.exit_code, 0);
-  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(c, (dir / "enc.h5").string())));
+  // The report of the file as read back: with the provenance its writer stored.
+  EXPECT_EQ(r.out, inspect_report_json(build_inspect_report(read_checkpoint(dir / "enc.h5"), (dir / "enc.h5").string())));
   for (const char* key : {"\"counts\": {", "\"derived\": {", "\"conservation\": {", "\"perturber\": {",
                           "\"springs_cross\": 4", "\"time\": 2.25", "\"step\": 1125"})
     EXPECT_TRUE(contains(r.out, key)) << key;
@@ -104,4 +106,46 @@ TEST(InspectCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run_cli("inspect a.h5 b.h5").exit_code, 2);
   EXPECT_EQ(run_cli("inspect --bogus x.h5").exit_code, 2);
   EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
+}
+
+TEST(InspectCli, CheckpointOfTheFormerLayoutIsRefusedNamingItsVersion) {
+  // Format 3 kept the failure log and timeseries in /observables; such a file gets one line
+  // naming the version, exit 2, and stays as it was.
+  const ScratchFolder scratch("inspect_old_version");
+  write_checkpoint(scratch.path / "valid.h5", synthetic_checkpoint());
+  const fs::path file = edited_copy(scratch.path / "valid.h5", scratch.path, "old.h5", [](hid_t f) {
+    h5::Group g = h5::open_group(f, "/checkpoint");
+    H5Adelete(g.get(), "format_version");
+    h5::write_attribute<std::int64_t>(g.get(), "format_version", 3);
+  });
+  const std::string before = read_file(file);
+  const CliResult r = run_cli("inspect " + quoted(file));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_TRUE(contains(r.err, file.string() + ": ")) << r.err;
+  EXPECT_TRUE(contains(r.err, "format_version is 3, this tidalcrust reads version 4")) << r.err;
+  EXPECT_EQ(read_file(file), before);
+}
+
+TEST(InspectCli, ShowsTheWritersProvenanceAndTheFingerprintOnRequest) {
+  const ScratchFolder scratch("inspect_provenance");
+  const fs::path file = scratch.path / "enc.h5";
+  const Checkpoint c = synthetic_checkpoint();
+  write_checkpoint(file, c);
+  const CliResult table = run_cli("inspect " + quoted(file));
+  EXPECT_EQ(table.exit_code, 0);
+  for (const std::string& part : {std::string("  version "), std::string(build_info::version) + "\n",
+                                 std::string("  git_commit "), std::string(build_info::git_commit) + "\n",
+                                 std::string(build_info::compiler) + "\n", fingerprint_hash(c.stage.fingerprint) + "\n",
+                                 std::string(" t_grav\n")})
+    EXPECT_TRUE(contains(table.out, part)) << part << "\n" << table.out;
+  EXPECT_FALSE(contains(table.out, "integrator.dt = 0.002")) << table.out;
+  const CliResult json = run_cli("inspect " + quoted(file) + " --json");
+  EXPECT_TRUE(contains(json.out, "\"git_commit\": \"" + std::string(build_info::git_commit) + "\"")) << json.out;
+  const CliResult text = run_cli("inspect " + quoted(file) + " --fingerprint");
+  EXPECT_EQ(text.exit_code, 0);
+  EXPECT_EQ(text.out, c.stage.fingerprint);
+  const CliResult both = run_cli("inspect " + quoted(file) + " --json --fingerprint");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_EQ(std::count(both.err.begin(), both.err.end(), '\n'), 1) << both.err;
 }

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <string>
@@ -18,6 +19,7 @@
 
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
+#include "support/bad_checkpoints.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -219,6 +221,52 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   EXPECT_EQ(read_file(out / "body" / "build.h5"), build_bytes);
   EXPECT_FALSE(fs::exists(out / "A"));
   EXPECT_FALSE(fs::exists(dir / "fresh"));
+}
+
+// Issue 10 item 2: one interior mass of body/relax.h5 changed with an HDF5 tool kept its
+// state_hash; `run` called relax up to date and branched a different encounter with exit 0.
+// Now every edited dataset or attribute is refused by `run` and `inspect` (exit 2, one line
+// naming the file and the object) and the folder's results are left as they were.
+TEST(RunWorkflow, CheckpointEditedAfterWritingIsRefusedNamingTheObject) {
+  const ScratchFolder scratch("run_edited");
+  const fs::path& dir = scratch.path;
+  const auto workflow = small_workflow(dir);
+  const auto out = dir / "out";
+  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --quiet --only B --out " + quoted(out)).exit_code, 0);
+  const fs::path relax = out / "body" / "relax.h5", encounter = out / "B" / "encounter.h5";
+  const std::string relax_bytes = read_file(relax), encounter_bytes = read_file(encounter);
+  const Checkpoint relaxed = read_checkpoint(relax);
+  ASSERT_EQ(relaxed.body.species[0], 0) << "particle 0 is an interior node";
+  const double mass = relaxed.body.mass[0], damping = relaxed.stage.as<RelaxRecord>().damping;
+  const std::int32_t end = relaxed.body.springs[4][1];
+  struct Case {
+    std::string object;
+    std::function<void(hid_t)> edit;
+  } cases[] = {
+      {"/particles/body/mass", [&](hid_t f) { overwrite_element(f, "/particles/body/mass", 0, mass * 1.01); }},
+      {"/checkpoint/record@damping",
+       [&](hid_t f) { overwrite_attribute(f, "/checkpoint/record", "damping", damping / 2); }},
+      {"/checkpoint@softening", [&](hid_t f) { overwrite_attribute(f, "/checkpoint", "softening", 0.02); }},
+      {"/connectivity/springs",
+       [&](hid_t f) { overwrite_element<std::int32_t>(f, "/connectivity/springs", 9, end == 0 ? 1 : 0); }},
+  };
+  for (const auto& c : cases) {
+    write_file(relax, relax_bytes);
+    edit_in_place(relax, c.edit);
+    const std::string expected =
+        relax.string() + ": " + c.object + " changed since the file was written (content hash mismatch)";
+    for (const std::string& args : {"run " + quoted(workflow) + " --quiet --only B --out " + quoted(out),
+                                    "inspect " + quoted(relax)}) {
+      const auto r = run_cli(args);
+      EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+      EXPECT_EQ(count_lines(r.err), 1) << r.err;
+      EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+    }
+    EXPECT_EQ(read_file(encounter), encounter_bytes) << c.object;
+  }
+  write_file(relax, relax_bytes);
+  EXPECT_EQ(run_cli("run " + quoted(workflow) + " --quiet --only B --out " + quoted(out)).exit_code, 0);
+  EXPECT_EQ(read_file(encounter), encounter_bytes);
 }
 
 TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {

@@ -1,4 +1,5 @@
 #include <cairo.h>
+#include <Eigen/Geometry>  // cross()
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -204,5 +205,118 @@ TEST(Figures, OrbitPlotDrawsTheSimulatedTrackWhereItWasSampled) {
     EXPECT_GT(Png(files[0]).luminance(axes.page_x(between.x()), axes.page_y(between.y())), 0.9);
     const Vec3 on_analytic = orbit.state_at_time(0.65 - encounter.pericenter_time).position;
     EXPECT_LT(Png(files[0]).luminance(axes.page_x(on_analytic.x()), axes.page_y(on_analytic.y())), 0.5);
+  }
+}
+
+namespace {
+/// Angle between two map points on the unit sphere, degrees.
+double map_angle_deg(double lon1, double lat1, double lon2, double lat2) {
+  constexpr double rad = std::numbers::pi / 180;
+  auto unit = [](double lon, double lat) {
+    return Vec3(std::cos(lat * rad) * std::cos(lon * rad), std::cos(lat * rad) * std::sin(lon * rad), std::sin(lat * rad));
+  };
+  const Vec3 a = unit(lon1, lat1), b = unit(lon2, lat2);
+  return std::atan2(a.cross(b).norm(), a.dot(b)) / rad;
+}
+
+/// The unit vector at map longitude and latitude (degrees): orbital_frame.hpp, longitude from +x
+/// in the xy-plane, latitude toward +z.
+Vec3 on_map(double lon, double lat) {
+  constexpr double rad = std::numbers::pi / 180;
+  return {std::cos(lat * rad) * std::cos(lon * rad), std::cos(lat * rad) * std::sin(lon * rad), std::sin(lat * rad)};
+}
+
+/// Checks what every drawn piece must satisfy: longitudes inside the map, no step longer than
+/// 3 degrees in longitude or latitude, so no piece is drawn across the map.
+void expect_drawable(const std::vector<MapPolyline>& pieces) {
+  for (const auto& piece : pieces) {
+    ASSERT_EQ(piece.longitude_deg.size(), piece.latitude_deg.size());
+    ASSERT_GE(piece.longitude_deg.size(), 2u);
+    for (std::size_t i = 0; i < piece.longitude_deg.size(); ++i) {
+      EXPECT_GE(piece.longitude_deg[i], -180.0);
+      EXPECT_LE(piece.longitude_deg[i], 180.0);
+      if (i == 0) continue;
+      EXPECT_LE(std::abs(piece.longitude_deg[i] - piece.longitude_deg[i - 1]), 3.0 + 1e-9);
+      EXPECT_LE(std::abs(piece.latitude_deg[i] - piece.latitude_deg[i - 1]), 3.0 + 1e-9);
+    }
+  }
+}
+
+/// Sum over the drawn steps of the angle between their end points, degrees.
+double drawn_angle_deg(const std::vector<MapPolyline>& pieces) {
+  double sum = 0;
+  for (const auto& p : pieces)
+    for (std::size_t i = 1; i < p.longitude_deg.size(); ++i)
+      sum += map_angle_deg(p.longitude_deg[i - 1], p.latitude_deg[i - 1], p.longitude_deg[i], p.latitude_deg[i]);
+  return sum;
+}
+
+double angle_deg(const Vec3& a, const Vec3& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180 / std::numbers::pi;
+}
+}  // namespace
+
+TEST(Figures, MapSegmentAcrossTheSeamIsTwoPiecesMeetingOnIt) {
+  const Vec3 from = on_map(178, 10), to = on_map(-176, 12);
+  const auto pieces = map_segment_pieces(from, to);
+  ASSERT_EQ(pieces.size(), 2u);
+  expect_drawable(pieces);
+  EXPECT_EQ(pieces[0].longitude_deg.front(), longitude_deg(from));
+  EXPECT_EQ(pieces[0].longitude_deg.back(), 180.0);
+  EXPECT_EQ(pieces[1].longitude_deg.front(), -180.0);
+  EXPECT_EQ(pieces[1].longitude_deg.back(), longitude_deg(to));
+  EXPECT_EQ(pieces[0].latitude_deg.back(), pieces[1].latitude_deg.front());
+  EXPECT_GT(pieces[1].latitude_deg.front(), 10.0);
+  EXPECT_LT(pieces[1].latitude_deg.front(), 12.0);
+  // Together no longer than the segment itself (6 degrees of longitude near the equator).
+  EXPECT_NEAR(drawn_angle_deg(pieces), angle_deg(from, to), 0.01 * angle_deg(from, to));
+}
+
+TEST(Figures, MapSegmentNearAPoleFollowsItAndBreaksOverIt) {
+  // The crack bar of the quick run at latitude -85: 2.3 degrees long, 27 degrees of longitude.
+  const Vec3 from = on_map(115.5, -84.8), to = on_map(142.1, -85.5);
+  const auto near = map_segment_pieces(from, to);
+  ASSERT_EQ(near.size(), 1u);
+  expect_drawable(near);
+  EXPECT_GE(near[0].longitude_deg.size(), 10u);  // bent as the projection bends it
+  EXPECT_NEAR(drawn_angle_deg(near), angle_deg(from, to), 0.01 * angle_deg(from, to));
+  // A bar over the south pole: two pieces, one on each side, none along the map's edge (where
+  // the projection puts the pole).
+  const Vec3 a = on_map(10, -87.5), b = on_map(-170, -88);
+  const auto over = map_segment_pieces(a, b);
+  ASSERT_EQ(over.size(), 2u);
+  expect_drawable(over);
+  for (const double lon : over[0].longitude_deg) EXPECT_NEAR(lon, 10, 3.0);
+  for (const double lon : over[1].longitude_deg) EXPECT_NEAR(lon, -170, 3.0);
+  EXPECT_LE(drawn_angle_deg(over), angle_deg(a, b) * 1.001);
+  EXPECT_GE(drawn_angle_deg(over), angle_deg(a, b) * 0.95);
+}
+
+TEST(Figures, HemispherePerturberInFrontIsDrawnUnderTheCracks) {
+  using enum HemisphereLayer;
+  EXPECT_EQ(hemisphere_panel_layers(false, true), (std::vector<HemisphereLayer>{faces, cracks}));
+  EXPECT_EQ(hemisphere_panel_layers(true, false),
+            (std::vector<HemisphereLayer>{perturber_fill, perturber_outline, faces, cracks}));
+  EXPECT_EQ(hemisphere_panel_layers(true, true),
+            (std::vector<HemisphereLayer>{faces, perturber_fill, cracks, perturber_outline}));
+
+  // Drawn: a crack facing the viewer under the disc of a perturber in front of it stays black,
+  // not tinted magenta.
+  Checkpoint c = synthetic_encounter(3);
+  fail_spring_near(c, {0.05, 1, 0.05});
+  c.state.perturber.position = {0, 2.5, 0};
+  const ScratchFolder scratch("figures_perturber_in_front");
+  const auto files = write_hemisphere_views({&c}, 0.0, scratch.path / "hemisphere", "in front");
+  const Png png(files[0]);
+  const PlotAxes axes = hemisphere_panel_axes(0, 1);
+  cairo_surface_flush(png.surface.get());
+  for (const auto& bar : analyze_fractures(c.body, c.state).bars) {
+    const Vec3 middle = 0.5 * (bar.centroid + bar.edge_midpoint);
+    const int px = static_cast<int>(axes.page_x(-middle.x()) * png_pixels_per_point);
+    const int py = static_cast<int>(axes.page_y(middle.z()) * png_pixels_per_point);
+    const auto* row = cairo_image_surface_get_data(png.surface.get()) + py * cairo_image_surface_get_stride(png.surface.get());
+    const std::uint32_t argb = reinterpret_cast<const std::uint32_t*>(row)[px];
+    EXPECT_LT(static_cast<int>(argb >> 16 & 0xff) - static_cast<int>(argb >> 8 & 0xff), 12);  // red minus green
+    EXPECT_LT(png.luminance(axes.page_x(-middle.x()), axes.page_y(middle.z())), 0.2);
   }
 }

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -93,7 +94,8 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   for (std::size_t i = 0; i < a.observables.failures.size(); ++i) {
     const auto &x = a.observables.failures[i], &y = b.observables.failures[i];
     EXPECT_TRUE(same_bits(x.time, y.time) && x.step == y.step && x.spring == y.spring &&
-                same_bits(x.strain, y.strain) && same_bits(x.position, y.position))
+                same_bits(x.strain, y.strain) && same_bits(x.position, y.position) &&
+                same_bits(x.released_energy, y.released_energy))
         << "failure row " << i;
   }
   ASSERT_EQ(a.observables.timeseries.size(), b.observables.timeseries.size());
@@ -103,6 +105,12 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
                 same_bits(x.momentum, y.momentum) && same_bits(x.angular_momentum, y.angular_momentum) &&
                 same_bits(x.perturber_offset, y.perturber_offset))
         << "timeseries row " << i;
+    for (double TimeseriesSample::*term :
+         {&TimeseriesSample::internal_kinetic_energy, &TimeseriesSample::spring_energy, &TimeseriesSample::hinge_energy,
+          &TimeseriesSample::self_gravity_energy, &TimeseriesSample::perturber_energy,
+          &TimeseriesSample::damping_dissipated, &TimeseriesSample::failure_released,
+          &TimeseriesSample::hinge_residual_work})
+      EXPECT_TRUE(same_bits(x.*term, y.*term)) << "timeseries row " << i;
   }
 }
 
@@ -150,6 +158,24 @@ TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
   EXPECT_TRUE(tmp_files_in(dir).empty());
 }
 
+TEST(Checkpoint, EveryEnergyBudgetColumnIsRequired) {
+  // Format 4 files always have the budget's columns; one deleted (integrity record rebuilt, so
+  // the layout check itself is exercised) is refused naming it.
+  const ScratchFolder scratch("no_energy_columns");
+  write_checkpoint(scratch.path / "full.h5", synthetic_checkpoint());
+  for (const char* column : {"/checkpoint/timeseries/spring_energy", "/checkpoint/timeseries/hinge_residual_work",
+                             "/checkpoint/failures/released_energy"}) {
+    const fs::path old = edited_copy(scratch.path / "full.h5", scratch.path, "old.h5",
+                                     [&](hid_t f) { H5Ldelete(f, column, H5P_DEFAULT); });
+    try {
+      read_checkpoint(old);
+      ADD_FAILURE() << column << " deleted, file accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(column), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
   const ScratchFolder scratch("roundtrip_empty");
   const fs::path& dir = scratch.path;
@@ -168,7 +194,7 @@ TEST(Checkpoint, RoundTripWithoutPerturberAndWithEmptyObservables) {
   EXPECT_FALSE(back.state.perturber.present);
   h5::File f = h5::open_file_readonly(dir / "c.h5");
   EXPECT_FALSE(h5::exists(f.get(), "/checkpoint/perturber"));
-  EXPECT_EQ(h5::read_dataset<double>(f.get(), "/observables/failures/position").dims,
+  EXPECT_EQ(h5::read_dataset<double>(f.get(), "/checkpoint/failures/position").dims,
             (std::vector<hsize_t>{0, 3}));
 }
 
@@ -272,7 +298,7 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
       else
         EXPECT_GT(H5Aexists(record.get(), name), 0) << name;
     });
-    EXPECT_EQ(fields, 18u);
+    EXPECT_EQ(fields, 21u);  // 18 + the energy budget's three accumulators
   }
   EXPECT_EQ(h5::read_string_dataset(root, "/parameters/config"), c.config_toml);
   {
@@ -280,8 +306,8 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
     for (const char* key : {"version", "git_commit", "compiler", "build_flags"})
       EXPECT_FALSE(h5::read_string_attribute(p.get(), key).empty()) << key;
   }
-  for (const char* d : {"/observables/timeseries/momentum", "/observables/timeseries/angular_momentum",
-                        "/observables/timeseries/perturber_offset"})
+  for (const char* d : {"/checkpoint/timeseries/momentum", "/checkpoint/timeseries/angular_momentum",
+                        "/checkpoint/timeseries/perturber_offset"})
     EXPECT_EQ(h5::read_dataset<double>(root, d).dims, (std::vector<hsize_t>{2, 3})) << d;
   // Stored as little-endian IEEE float64 whatever the reader.
   h5::Dataset set(H5Dopen2(root, "/checkpoint/springs/rest_length", H5P_DEFAULT));

@@ -75,6 +75,7 @@ void expect_same_failures(const std::vector<FailureEvent>& a, const std::vector<
     EXPECT_EQ(a[i].time, b[i].time) << "event " << i;
     EXPECT_EQ(a[i].strain, b[i].strain) << "event " << i;
     EXPECT_EQ(a[i].position, b[i].position) << "event " << i;
+    EXPECT_EQ(a[i].released_energy, b[i].released_energy) << "event " << i;
   }
 }
 
@@ -87,6 +88,13 @@ void expect_same_timeseries(const std::vector<TimeseriesSample>& a, const std::v
     EXPECT_EQ(a[i].momentum, b[i].momentum) << "sample " << i;
     EXPECT_EQ(a[i].angular_momentum, b[i].angular_momentum) << "sample " << i;
     EXPECT_EQ(a[i].perturber_offset, b[i].perturber_offset) << "sample " << i;
+    // The energy budget, its accumulators included (they continue across a resume).
+    for (double TimeseriesSample::*term :
+         {&TimeseriesSample::internal_kinetic_energy, &TimeseriesSample::spring_energy, &TimeseriesSample::hinge_energy,
+          &TimeseriesSample::self_gravity_energy, &TimeseriesSample::perturber_energy,
+          &TimeseriesSample::damping_dissipated, &TimeseriesSample::failure_released,
+          &TimeseriesSample::hinge_residual_work})
+      EXPECT_EQ(a[i].*term, b[i].*term) << "sample " << i;
   }
 }
 

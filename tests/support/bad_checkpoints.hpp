@@ -1,10 +1,12 @@
 #pragma once
-// Damaged copies of a valid checkpoint that read_checkpoint must reject (make_bad_checkpoints).
+// Damaged copies of a valid checkpoint that read_checkpoint must reject (make_bad_checkpoints),
+// and in-place edits of a checkpoint as an HDF5 tool makes them (edit_in_place, overwrite_*).
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "io/checkpoint_file.hpp"
+#include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "support/files.hpp"
 
@@ -16,16 +18,56 @@ struct BadCheckpoint {
   std::string expected_message;  ///< substring of the InputError message (dataset or cause)
 };
 
-/// Opens a copy of `valid` named `name` in `folder` read-write and lets `edit` change it.
+/// Opens `file` read-write in place and lets `edit` change it, as a user editing a checkpoint
+/// with an HDF5 tool would; the integrity record is left as it was (the edit shows).
+template <typename Edit>
+void edit_in_place(const std::filesystem::path& file, Edit edit) {
+  h5::silence_errors();
+  h5::File f(h5::check(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open for editing"));
+  edit(f.get());
+  f.close("close after editing");
+}
+
+/// Overwrites element `index` (row-major over all dimensions) of the dataset `path` of an open
+/// file in place with `value`.
+template <typename T>
+void overwrite_element(hid_t f, const char* path, hsize_t index, T value) {
+  h5::Dataset set(h5::check(H5Dopen2(f, path, H5P_DEFAULT), path));
+  h5::Dataspace space(h5::check(H5Dget_space(set.get()), path));
+  std::vector<hsize_t> coordinates(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space.get())));
+  std::vector<hsize_t> dims(coordinates.size());
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  for (std::size_t d = coordinates.size(); d-- > 0;) {
+    coordinates[d] = index % dims[d];
+    index /= dims[d];
+  }
+  h5::check(H5Sselect_elements(space.get(), H5S_SELECT_SET, 1, coordinates.data()), path);
+  const hsize_t one = 1;
+  h5::Dataspace memory(h5::check(H5Screate_simple(1, &one, nullptr), path));
+  h5::check(H5Dwrite(set.get(), h5::type_of<T>().memory, memory.get(), space.get(), H5P_DEFAULT, &value), path);
+}
+
+/// Replaces the scalar numeric attribute `name` of the group `path` with `value` (deleted and
+/// written again, as h5py's `attrs[name] = value` does).
+template <typename T>
+void overwrite_attribute(hid_t f, const char* path, const char* name, T value) {
+  h5::Group group = h5::open_group(f, path);
+  h5::check(H5Adelete(group.get(), name), std::string("delete ") + name);
+  h5::write_attribute<T>(group.get(), name, value);
+}
+
+/// Opens a copy of `valid` named `name` in `folder` read-write, lets `edit` change it and then
+/// re-seals it (a fresh integrity record of the edited content), so that the checks behind the
+/// integrity check (shapes, names, indices, state_hash) are what refuses it.
 template <typename Edit>
 std::filesystem::path edited_copy(const std::filesystem::path& valid, const std::filesystem::path& folder,
                                   const std::string& name, Edit edit) {
   auto file = folder / name;
   std::filesystem::copy_file(valid, file, std::filesystem::copy_options::overwrite_existing);
-  h5::silence_errors();
-  h5::File f(h5::check(H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "open for editing"));
-  edit(f.get());
-  f.close("close after editing");
+  edit_in_place(file, [&](hid_t f) {
+    edit(f);
+    write_integrity_record(f, object_digests(f));
+  });
   return file;
 }
 
@@ -55,7 +97,8 @@ inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::pa
   std::string flipped = bytes;
   flipped.at(position_offset + 8 * 4 + 3) ^= 0x10;  // inside position value 4 (particle 1, y)
   write_file(folder / "flipped.h5", flipped);
-  bad.push_back({"flipped byte in positions", folder / "flipped.h5", "state_hash mismatch"});
+  bad.push_back({"flipped byte in positions", folder / "flipped.h5",
+                 "/particles/body/position/value changed since the file was written (content hash mismatch)"});
 
   bad.push_back({"missing dataset",
                  edited_copy(valid, folder, "missing_dataset.h5",

@@ -1,7 +1,9 @@
 #pragma once
-// Runs the tidalcrust binary as a user would (run_cli: exit code, stdout, stderr; quoted paths).
+// Runs the tidalcrust binary as a user would (run_cli: exit code, stdout, stderr; quoted paths;
+// BackgroundCli: the same, started in the background for concurrent runs).
 #include <fmt/format.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -34,6 +36,46 @@ inline CliResult run_cli(const std::string& args) {
   result.err = read_file(err);
   return result;
 }
+
+/// `tidalcrust ARGS` started in the background (as run_cli runs it, with `exec`, so that its
+/// pid is the program's own); finish() waits for it and returns what run_cli would.
+class BackgroundCli {
+ public:
+  explicit BackgroundCli(const std::string& args) : capture_("cli_background") {
+    const std::string command = fmt::format("exec '{}' {} >{} 2>{} </dev/null", TIDALCRUST_EXE, args,
+                                            quoted(capture_.path / "out.txt"), quoted(capture_.path / "err.txt"));
+    pid_ = fork();
+    if (pid_ == 0) {
+      execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    started_ = pid_;
+  }
+  BackgroundCli(const BackgroundCli&) = delete;
+  BackgroundCli& operator=(const BackgroundCli&) = delete;
+  ~BackgroundCli() {
+    if (pid_ > 0) finish();
+  }
+
+  /// The program's pid (also after finish()).
+  pid_t pid() const { return started_; }
+
+  CliResult finish() {
+    int status = 0;
+    if (pid_ > 0) waitpid(pid_, &status, 0);
+    pid_ = -1;
+    CliResult result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_file(capture_.path / "out.txt");
+    result.err = read_file(capture_.path / "err.txt");
+    return result;
+  }
+
+ private:
+  ScratchFolder capture_;
+  pid_t pid_ = -1;
+  pid_t started_ = -1;
+};
 
 inline int count_lines(const std::string& text) {
   int lines = 0;

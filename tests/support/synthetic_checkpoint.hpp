@@ -64,6 +64,18 @@ inline Checkpoint synthetic_checkpoint() {
   c.observables.failures = {{2.1, 1050, 5, 0.0031, {0.0, 0.1, -0.9}}};
   c.observables.timeseries = {{2.0, 0, 0.01, {1e-17, 0, 0}, {0, 0, 0.2}, {3.25, -1.5, 1e-16}},
                               {2.2, 1, 0.011, {0, -1e-17, 0}, {0, 1e-9, 0.2}, {2.9, -0.7, -3e-17}}};
+  c.observables.failures[0].released_energy = 2.7e-8;
+  // The energy budget's columns: the second row as an encounter fills them, the first left
+  // unmeasured (NaN), as the relax stage leaves them.
+  TimeseriesSample& measured = c.observables.timeseries[1];
+  measured.internal_kinetic_energy = 1.5e-4;
+  measured.spring_energy = 3.1e-3;
+  measured.hinge_energy = 2.2e-6;
+  measured.self_gravity_energy = -0.61;
+  measured.perturber_energy = -0.17;
+  measured.damping_dissipated = 4e-7;
+  measured.failure_released = 2.7e-8;
+  measured.hinge_residual_work = -1e-11;
   return c;
 }
 

@@ -1,0 +1,122 @@
+// Stage locks (io/stage_lock.hpp): a held lock names its holder to the next process, a released
+// one leaves no file, the lock file of a process that died is taken over; the same with the
+// O_CREAT|O_EXCL fallback for file systems without locks (ENOLCK), which can tell a dead holder
+// only on its own host.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "base/errors.hpp"
+#include "io/stage_lock.hpp"
+#include "support/files.hpp"
+#include "support/processes.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lock_text(long pid, const std::string& host, const std::string& identity) {
+  return "pid=" + std::to_string(pid) + "\nhost=" + host + "\nsince=2026-01-01T00:00:00Z\nidentity=" + identity + "\n";
+}
+
+class StageLockTest : public ::testing::TestWithParam<LockMethod> {};
+
+}  // namespace
+
+TEST_P(StageLockTest, HeldLockNamesItsHolderAndReleaseRemovesTheFile) {
+  const ScratchFolder scratch("lock_held");
+  const fs::path stage = scratch.path / "relax.h5";
+  LockAttempt first = try_lock_stage(stage, "abc", GetParam());
+  ASSERT_TRUE(first.lock);
+  EXPECT_FALSE(first.holder);
+  EXPECT_EQ(first.lock->path(), scratch.path / "relax.h5.lock");
+  EXPECT_FALSE(first.lock->taken_over_from());
+  EXPECT_TRUE(fs::exists(lock_path(stage)));
+
+  // flock conflicts between two open file descriptions even within one process.
+  const LockAttempt second = try_lock_stage(stage, "other", GetParam());
+  ASSERT_FALSE(second.lock);
+  ASSERT_TRUE(second.holder);
+  EXPECT_EQ(second.holder->pid, static_cast<long>(getpid()));
+  EXPECT_EQ(second.holder->host, this_host());
+  EXPECT_EQ(second.holder->identity, "abc");
+  EXPECT_NE(second.holder->describe().find("pid " + std::to_string(getpid()) + " on host " + this_host() + " (since "),
+            std::string::npos)
+      << second.holder->describe();
+
+  first.lock->release();
+  EXPECT_FALSE(fs::exists(lock_path(stage)));
+  const LockAttempt third = try_lock_stage(stage, "other", GetParam());
+  ASSERT_TRUE(third.lock);
+  EXPECT_FALSE(third.lock->taken_over_from());
+}
+
+TEST_P(StageLockTest, LockFileOfADeadProcessIsTakenOver) {
+  const ScratchFolder scratch("lock_dead");
+  const fs::path stage = scratch.path / "build.h5";
+  const long dead = dead_pid();
+  write_file(lock_path(stage), lock_text(dead, this_host(), "abc"));
+  const LockAttempt attempt = try_lock_stage(stage, "new", GetParam());
+  ASSERT_TRUE(attempt.lock);
+  ASSERT_TRUE(attempt.lock->taken_over_from());
+  EXPECT_EQ(attempt.lock->taken_over_from()->pid, dead);
+  EXPECT_NE(attempt.lock->takeover_note().find("took over the stale lock of pid " + std::to_string(dead)),
+            std::string::npos)
+      << attempt.lock->takeover_note();
+  // The file now names the new holder.
+  EXPECT_NE(read_file(lock_path(stage)).find("identity=new\n"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothMethods, StageLockTest,
+                         ::testing::Values(LockMethod::flock, LockMethod::exclusive_create));
+
+TEST(StageLock, FlockTakesOverAnUnlockedFileThatNamesNobody) {
+  const ScratchFolder scratch("lock_empty");
+  const fs::path stage = scratch.path / "relax.h5";
+  write_file(lock_path(stage), "");
+  const LockAttempt attempt = try_lock_stage(stage, "x");
+  ASSERT_TRUE(attempt.lock);
+  ASSERT_TRUE(attempt.lock->taken_over_from());
+  EXPECT_EQ(attempt.lock->taken_over_from()->pid, 0);
+}
+
+// Without locks the file's existence is the lock: a living holder on this host, or any holder on
+// another host (whose liveness cannot be checked), keeps it.
+TEST(StageLock, ExclusiveCreateRespectsLivingAndRemoteHolders) {
+  const ScratchFolder scratch("lock_excl");
+  const fs::path stage = scratch.path / "encounter.h5";
+  write_file(lock_path(stage), lock_text(getppid(), this_host(), "abc"));
+  LockAttempt attempt = try_lock_stage(stage, "abc", LockMethod::exclusive_create);
+  ASSERT_TRUE(attempt.holder);
+  EXPECT_EQ(attempt.holder->pid, static_cast<long>(getppid()));
+
+  write_file(lock_path(stage), lock_text(dead_pid(), "another-host.example", "abc"));
+  attempt = try_lock_stage(stage, "abc", LockMethod::exclusive_create);
+  ASSERT_TRUE(attempt.holder);
+  EXPECT_EQ(attempt.holder->host, "another-host.example");
+}
+
+TEST(StageLock, IdentityDependsOnFingerprintAndParent) {
+  EXPECT_EQ(stage_lock_identity("a = 1", "p"), stage_lock_identity("a = 1", "p"));
+  EXPECT_NE(stage_lock_identity("a = 1", "p"), stage_lock_identity("a = 2", "p"));
+  EXPECT_NE(stage_lock_identity("a = 1", "p"), stage_lock_identity("a = 1", "q"));
+  EXPECT_EQ(stage_lock_identity("", "").size(), 16u);
+}
+
+TEST(StageLock, UncreatableLockFileIsAnInputErrorNamingIt) {
+  const ScratchFolder scratch("lock_nofolder");
+  const fs::path stage = scratch.path / "missing" / "relax.h5";
+  try {
+    try_lock_stage(stage, "x");
+    FAIL() << "no error";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("relax.h5.lock: cannot create the lock file: No such file or directory"),
+              std::string::npos)
+        << err.what();
+  }
+}
