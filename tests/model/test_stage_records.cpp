@@ -55,5 +55,5 @@ TEST(StageRecord, EveryFieldIsVisitedOnceWithAUnit) {
   check(BuildRecord{}, 3);
   check(StretchRecord{}, 9);
   check(RelaxRecord{}, 13);
-  check(EncounterRecord{}, 21);  // 18 + the energy budget's three accumulators
+  check(EncounterRecord{}, 24);  // 18 + the energy budget's three accumulators + the local rule's three
 }
