@@ -26,7 +26,7 @@ TEST(EncounterEstimates, GrazingParabolicEqualMassGivesStrainOfOrderTenPercent) 
 }
 
 TEST(EncounterEstimates, EquationsAreMutuallyConsistent) {
-  const Encounter g{"T5", 0.5, 1.84, 1.60, {}};
+  const Encounter g{"T5", 0.5, 1.84, 1.60, {}, {}};
   const double E = 3.0;  // e_g
   const auto est = estimate_encounter(g, E);
   const double tidal = 0.5 / (1.84 * 1.84) / 1.60;  // (R/q)^2 (m/M) (v_c/V_q)
