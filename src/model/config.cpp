@@ -316,6 +316,87 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
   return encounters;
 }
 
+/// The values of one [sweep] axis: a list of numbers, or {from, to, count} (count values evenly
+/// spaced from `from` to `to`, both included). Empty when the key is absent.
+std::vector<double> sweep_axis(const toml::table& sweep, std::string_view key, const std::string& origin) {
+  const toml::node* node = sweep.get(key);
+  if (!node) return {};
+  const std::string where = fmt::format("{}: sweep.{}", origin, key);
+  std::vector<double> values;
+  if (auto* list = node->as_array()) {
+    for (auto&& item : *list) {
+      const auto v = item.value<double>();
+      if (!v || !std::isfinite(*v)) throw InputError(where + ": every entry must be a finite number");
+      values.push_back(*v);
+    }
+  } else if (auto* range = node->as_table()) {
+    for (auto&& [k, unused] : *range)
+      if (k.str() != "from" && k.str() != "to" && k.str() != "count")
+        throw InputError(fmt::format("{}: unknown key '{}' (a range has from, to, count)", where, k.str()));
+    constexpr double missing = std::numeric_limits<double>::quiet_NaN();
+    const toml::node* count_node = range->get("count");
+    const double from = range->get("from") ? range->get("from")->value<double>().value_or(missing) : missing;
+    const double to = range->get("to") ? range->get("to")->value<double>().value_or(missing) : missing;
+    if (!std::isfinite(from) || !std::isfinite(to) || !count_node || !count_node->is_integer())
+      throw InputError(where + ": a range needs numbers from, to and an integer count");
+    const std::int64_t count = count_node->value<std::int64_t>().value_or(0);
+    if (count < 1 || count > 1000) throw InputError(fmt::format("{}: count = {} is out of range [1, 1000]", where, count));
+    for (std::int64_t i = 0; i < count; ++i)
+      values.push_back(count == 1 ? from : from + (to - from) * static_cast<double>(i) / static_cast<double>(count - 1));
+  } else {
+    throw InputError(where + ": must be a list of numbers or a range {from, to, count}");
+  }
+  if (values.empty()) throw InputError(where + ": has no values");
+  return values;
+}
+
+/// A number as it appears in a sweep encounter's name: the shortest form that reads back the
+/// same double, without '+' (names allow letters, digits, '-', '_', '.').
+std::string name_number(double v) {
+  std::string text = fmt::format("{}", v);
+  std::erase(text, '+');
+  return text;
+}
+
+/// [sweep]: the product of its axes (perturber_mass and pericenter required; pericenter_speed
+/// omitted: the parabolic speed sqrt(2 G (M + M2) / q); failure_strain omitted: shell.failure_strain)
+/// as encounters named M<M2>_q<q>_V<V_q or "par">[_eps<eps_S>], M2 outermost.
+std::vector<Encounter> parse_sweep(const toml::node& node, const std::string& origin) {
+  auto* sweep = node.as_table();
+  if (!sweep) throw InputError(fmt::format("{}: 'sweep' must be a table", origin));
+  static constexpr std::string_view axes[] = {"perturber_mass", "pericenter", "pericenter_speed", "failure_strain"};
+  for (auto&& [k, unused] : *sweep)
+    if (std::find(std::begin(axes), std::end(axes), k.str()) == std::end(axes))
+      throw InputError(fmt::format("{}: unknown key 'sweep.{}' (known: {})", origin, k.str(), fmt::join(axes, ", ")));
+  const auto masses = sweep_axis(*sweep, "perturber_mass", origin);
+  const auto pericenters = sweep_axis(*sweep, "pericenter", origin);
+  const auto speeds = sweep_axis(*sweep, "pericenter_speed", origin);
+  const auto strains = sweep_axis(*sweep, "failure_strain", origin);
+  if (masses.empty() || pericenters.empty())
+    throw InputError(fmt::format("{}: [sweep] needs perturber_mass and pericenter", origin));
+  const std::size_t total = masses.size() * pericenters.size() * std::max<std::size_t>(1, speeds.size()) *
+                            std::max<std::size_t>(1, strains.size());
+  if (total > 10'000)
+    throw InputError(fmt::format("{}: [sweep] expands into {} encounters (at most 10000)", origin, total));
+  std::vector<Encounter> out;
+  for (double m : masses)
+    for (double q : pericenters)
+      for (std::size_t v = 0; v < std::max<std::size_t>(1, speeds.size()); ++v)
+        for (std::size_t s = 0; s < std::max<std::size_t>(1, strains.size()); ++s) {
+          Encounter& e = out.emplace_back();
+          e.perturber_mass = m;
+          e.pericenter = q;
+          e.pericenter_speed = speeds.empty() ? std::sqrt(2.0 * (1.0 + m) / q) : speeds[v];
+          e.name = fmt::format("M{}_q{}_V{}", name_number(m), name_number(q),
+                               speeds.empty() ? std::string("par") : name_number(speeds[v]));
+          if (!strains.empty()) {
+            e.failure_strain = strains[s];
+            e.name += "_eps" + name_number(strains[s]);
+          }
+        }
+  return out;
+}
+
 /// One [section] of to_toml.
 std::string section_toml(const Config& config, std::string_view section) {
   std::string out = fmt::format("[{}]\n", section);
@@ -390,11 +471,17 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   for (auto&& [sk, snode] : root) {
     const std::string section(sk.str());
     if (section == "encounters") {
-      config.encounters = parse_encounters(snode, origin);
+      auto listed = parse_encounters(snode, origin);
+      config.encounters.insert(config.encounters.begin(), listed.begin(), listed.end());
+      continue;
+    }
+    if (section == "sweep") {  // expanded here; the stored configuration lists its encounters
+      auto swept = parse_sweep(snode, origin);
+      config.encounters.insert(config.encounters.end(), swept.begin(), swept.end());
       continue;
     }
     if (std::find(section_names().begin(), section_names().end(), section) == section_names().end())
-      throw InputError(fmt::format("{}: unknown section '{}' (known: {}, encounters)", origin, section,
+      throw InputError(fmt::format("{}: unknown section '{}' (known: {}, encounters, sweep)", origin, section,
                                    fmt::join(section_names(), ", ")));
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "model/config.hpp"
@@ -161,5 +162,64 @@ TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {
     ADD_FAILURE() << "an unknown crust support was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "--set: relax.crust_support = \"glued\" is not one of: paper, balanced");
+  }
+}
+
+TEST(Config, SweepExpandsIntoNamedEncountersThatTheStoredConfigurationKeeps) {
+  const Config config = parse_config(R"(
+[workflow]
+name = "sweep"
+[[encounters]]
+name = "T5"
+[sweep]
+perturber_mass = [0.1, 0.5]
+pericenter = {from = 1.5, to = 2.5, count = 3}
+failure_strain = [0.001, 0.002]
+)",
+                                     "sweep.toml");
+  ASSERT_EQ(config.encounters.size(), 1u + 2 * 3 * 2);
+  EXPECT_EQ(config.encounters[0].name, "T5");  // listed encounters first
+  const Encounter& first = config.encounters[1];
+  EXPECT_EQ(first.name, "M0.1_q1.5_Vpar_eps0.001");
+  EXPECT_EQ(first.perturber_mass, 0.1);
+  EXPECT_EQ(first.pericenter, 1.5);
+  EXPECT_EQ(first.pericenter_speed, std::sqrt(2.0 * 1.1 / 1.5));  // parabolic when no speed is swept
+  EXPECT_EQ(first.failure_strain, 0.001);
+  EXPECT_EQ(config.encounters[4].name, "M0.1_q2_Vpar_eps0.002");
+  EXPECT_EQ(config.encounters.back().name, "M0.5_q2.5_Vpar_eps0.002");
+  // The stored configuration lists the expanded encounters; reading it back gives them again.
+  const Config again = parse_config(to_toml(config), "stored");
+  EXPECT_EQ(again.encounters, config.encounters);
+  const Config speeds = parse_config("[sweep]\nperturber_mass = [1.0]\npericenter = [2.0]\npericenter_speed = [1.6, 1.94]\n", "s.toml");
+  ASSERT_EQ(speeds.encounters.size(), 2u);
+  EXPECT_EQ(speeds.encounters[1].name, "M1_q2_V1.94");
+  EXPECT_EQ(speeds.encounters[1].pericenter_speed, 1.94);
+  EXPECT_FALSE(speeds.encounters[1].failure_strain);
+}
+
+TEST(Config, BadSweepsAreOneLineErrorsNamingTheFileAndKey) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"[sweep]\npericenter = [2.0]\n", "needs perturber_mass and pericenter"},
+      {"[sweep]\nperturber_mass = []\npericenter = [2.0]\n", "sweep.perturber_mass: has no values"},
+      {"[sweep]\nperturber_mass = [0.5, \"x\"]\npericenter = [2.0]\n", "sweep.perturber_mass: every entry"},
+      {"[sweep]\nperturber_mass = [0.5]\npericenter = {from = 1.5, to = 2}\n", "a range needs"},
+      {"[sweep]\nperturber_mass = [0.5]\npericenter = {from = 1.5, to = 2, count = 0}\n", "count = 0 is out of range"},
+      {"[sweep]\nperturber_mass = [0.5]\npericenter = {from = 1.5, to = 2, count = 2, step = 1}\n", "unknown key 'step'"},
+      {"[sweep]\nperturber_mass = [0.5]\npericenter = [2.0]\nspeed = [1]\n", "unknown key 'sweep.speed'"},
+      {"[sweep]\nperturber_mass = [0.5]\npericenter = [0.5]\n", "pericenter = 0.5 is out of range"},
+      {"[sweep]\nperturber_mass = [0.5, 0.5]\npericenter = [2.0]\n", "appears twice"},
+      {"[sweep]\nperturber_mass = {from = 0.1, to = 1, count = 1000}\npericenter = {from = 1.5, to = 3, count = 100}\n",
+       "at most 10000"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parse_config(text, "w.toml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("w.toml: ", 0), 0u) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
   }
 }
