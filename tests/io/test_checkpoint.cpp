@@ -114,14 +114,6 @@ void expect_identical(const Checkpoint& a, const Checkpoint& b) {
   }
 }
 
-std::string input_error_of(const fs::path& file) {
-  try {
-    read_checkpoint(file);
-  } catch (const InputError& err) {
-    return err.what();
-  }
-  return "(no InputError)";
-}
 
 std::vector<std::string> tmp_files_in(const fs::path& folder) {
   std::vector<std::string> names;
@@ -349,7 +341,7 @@ TEST(Checkpoint, BadFilesAreRejectedWithMessagesNamingFileAndDataset) {
   const auto bad = make_bad_checkpoints(dir / "valid.h5", dir);
   EXPECT_EQ(bad.size(), 11u);
   for (const auto& b : bad) {
-    const std::string message = input_error_of(b.file);
+    const std::string message = checkpoint_read_error(b.file);
     EXPECT_NE(message.find(b.file.string() + ": "), std::string::npos) << b.what << ": " << message;
     EXPECT_NE(message.find(b.expected_message), std::string::npos) << b.what << ": " << message;
     EXPECT_FALSE(is_valid_checkpoint(b.file)) << b.what;
@@ -369,7 +361,7 @@ TEST(Checkpoint, HashMismatchMessageGivesBothHashes) {
     H5Ldelete(f, "/particles/body/position/value", H5P_DEFAULT);
     h5::write_dataset(f, "/particles/body/position/value", changed.state.position, {1, 5, 3});
   });
-  EXPECT_EQ(input_error_of(file), file.string() + ": state_hash mismatch: stored " + state_hash(c.state) +
+  EXPECT_EQ(checkpoint_read_error(file), file.string() + ": state_hash mismatch: stored " + state_hash(c.state) +
                                       ", computed " + state_hash(changed.state) + " (file modified or corrupt)");
 }
 

@@ -12,6 +12,7 @@
 #include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/hdf5_handles.hpp"
+#include "support/bad_checkpoints.hpp"
 #include "support/files.hpp"
 #include "support/synthetic_checkpoint.hpp"
 
@@ -21,15 +22,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The message of the InputError read_checkpoint(file) throws ("" if none).
-std::string read_error(const fs::path& file) {
-  try {
-    read_checkpoint(file);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(CheckpointAccess, FilesAreOpenedWithoutHdf5FileLocking) {
   const h5::PropList fapl = h5::file_access_plist();
@@ -49,9 +41,9 @@ TEST(CheckpointAccess, ReadAndReplaceWorkWhileAnotherHolderLocksTheFile) {
   const int fd = ::open(file.c_str(), O_RDWR | O_CLOEXEC);
   ASSERT_GE(fd, 0);
   ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
-  EXPECT_EQ(read_error(file), "");
+  EXPECT_EQ(checkpoint_read_error(file), "(no InputError)");
   EXPECT_NO_THROW(write_checkpoint(file, original));
-  EXPECT_EQ(read_error(file), "");
+  EXPECT_EQ(checkpoint_read_error(file), "(no InputError)");
   ::flock(fd, LOCK_UN);
   ::close(fd);
 }
@@ -61,32 +53,32 @@ TEST(CheckpointAccess, ReadFailuresNameTheirRealCause) {
   const fs::path& dir = scratch.path;
 
   const fs::path missing = dir / "missing.h5";
-  EXPECT_EQ(read_error(missing), missing.string() + ": no such checkpoint file: No such file or directory");
+  EXPECT_EQ(checkpoint_read_error(missing), missing.string() + ": no such checkpoint file: No such file or directory");
 
   const fs::path folder = dir / "folder.h5";
   fs::create_directory(folder);
-  EXPECT_EQ(read_error(folder), folder.string() + ": not a regular file (Is a directory)");
+  EXPECT_EQ(checkpoint_read_error(folder), folder.string() + ": not a regular file (Is a directory)");
 
   const fs::path fifo = dir / "fifo.h5";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
-  EXPECT_EQ(read_error(fifo), fifo.string() + ": not a regular file (a FIFO, socket or device)");
+  EXPECT_EQ(checkpoint_read_error(fifo), fifo.string() + ": not a regular file (a FIFO, socket or device)");
 
   const fs::path text = dir / "text.h5";
   write_file(text, "not hdf5 at all");
-  EXPECT_EQ(read_error(text), text.string() + ": not an HDF5 file or truncated (no HDF5 signature at its start)");
+  EXPECT_EQ(checkpoint_read_error(text), text.string() + ": not an HDF5 file or truncated (no HDF5 signature at its start)");
 
   // A valid start and a cut-off rest: HDF5 itself refuses it.
   write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
   const fs::path cut = dir / "cut.h5";
   write_file(cut, read_file(dir / "valid.h5").substr(0, 600));
-  EXPECT_EQ(read_error(cut).rfind(cut.string() + ": ", 0), 0u) << read_error(cut);
-  EXPECT_NE(read_error(cut), "");
+  EXPECT_EQ(checkpoint_read_error(cut).rfind(cut.string() + ": ", 0), 0u) << checkpoint_read_error(cut);
+  EXPECT_NE(checkpoint_read_error(cut), "(no InputError)");
 
   if (::geteuid() != 0) {  // root reads files whatever their mode
     const fs::path denied = dir / "denied.h5";
     fs::copy_file(dir / "valid.h5", denied);
     fs::permissions(denied, fs::perms::none);
-    EXPECT_EQ(read_error(denied), denied.string() + ": cannot open checkpoint: Permission denied");
+    EXPECT_EQ(checkpoint_read_error(denied), denied.string() + ": cannot open checkpoint: Permission denied");
   }
 }
 

@@ -26,15 +26,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The message of the InputError read_checkpoint(file) throws ("(no InputError)" if none).
-std::string read_error(const fs::path& file) {
-  try {
-    read_checkpoint(file);
-  } catch (const InputError& err) {
-    return err.what();
-  }
-  return "(no InputError)";
-}
 
 /// The one-line message for `object` of `file` changed, added or removed after writing.
 std::string changed_message(const fs::path& file, const std::string& object, const char* how = "changed") {
@@ -48,7 +39,7 @@ TEST(ContentHash, RecordListsEveryObjectAndAnUnmodifiedFileReadsBack) {
   const fs::path file = scratch.path / "c.h5";
   const Checkpoint c = synthetic_checkpoint();
   write_checkpoint(file, c);
-  EXPECT_EQ(read_error(file), "(no InputError)");
+  EXPECT_EQ(checkpoint_read_error(file), "(no InputError)");
 
   h5::File f = h5::open_file_readonly(file);
   const std::vector<ObjectDigest> rows = object_digests(f.get());
@@ -107,7 +98,7 @@ TEST(ContentHash, EditedDatasetsAndAttributesAreNamed) {
     const fs::path file = scratch.path / "edited.h5";
     fs::copy_file(valid, file, fs::copy_options::overwrite_existing);
     edit_in_place(file, e.edit);
-    EXPECT_EQ(read_error(file), changed_message(file, e.object));
+    EXPECT_EQ(checkpoint_read_error(file), changed_message(file, e.object));
   }
 }
 
@@ -139,9 +130,9 @@ TEST(ContentHash, AddedOrRemovedObjectsAreRefused) {
     const fs::path file = scratch.path / "edited.h5";
     fs::copy_file(valid, file, fs::copy_options::overwrite_existing);
     edit_in_place(file, e.edit);
-    EXPECT_EQ(read_error(file), changed_message(file, e.object, e.how.c_str()));
+    EXPECT_EQ(checkpoint_read_error(file), changed_message(file, e.object, e.how.c_str()));
   }
-  EXPECT_EQ(read_error(valid), "(no InputError)");
+  EXPECT_EQ(checkpoint_read_error(valid), "(no InputError)");
 }
 
 TEST(ContentHash, MissingOrDamagedRecordIsRefused) {
@@ -152,7 +143,7 @@ TEST(ContentHash, MissingOrDamagedRecordIsRefused) {
 
   fs::copy_file(valid, file, fs::copy_options::overwrite_existing);
   edit_in_place(file, [](hid_t f) { H5Ldelete(f, integrity_group, H5P_DEFAULT); });
-  EXPECT_EQ(read_error(file), file.string() + ": group /integrity (the content hashes) is missing: written by a "
+  EXPECT_EQ(checkpoint_read_error(file), file.string() + ": group /integrity (the content hashes) is missing: written by a "
                                               "tidalcrust without the integrity check, or damaged");
 
   // A stored digest changed (to that of an edit the editor wanted to hide) no longer matches
@@ -165,7 +156,7 @@ TEST(ContentHash, MissingOrDamagedRecordIsRefused) {
     H5Ldelete(g.get(), "digest", H5P_DEFAULT);
     h5::write_string_array_dataset(g.get(), "digest", digests);
   });
-  EXPECT_EQ(read_error(file), file.string() + ": the integrity record /integrity is damaged (its rows do not give "
+  EXPECT_EQ(checkpoint_read_error(file), file.string() + ": the integrity record /integrity is damaged (its rows do not give "
                                               "/integrity@content_hash)");
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
@@ -17,6 +18,16 @@ struct BadCheckpoint {
   std::filesystem::path file;
   std::string expected_message;  ///< substring of the InputError message (dataset or cause)
 };
+
+/// The message of the InputError read_checkpoint(file) throws, "(no InputError)" if it reads.
+inline std::string checkpoint_read_error(const std::filesystem::path& file) {
+  try {
+    read_checkpoint(file);
+  } catch (const InputError& err) {
+    return err.what();
+  }
+  return "(no InputError)";
+}
 
 /// Opens `file` read-write in place and lets `edit` change it, as a user editing a checkpoint
 /// with an HDF5 tool would; the integrity record is left as it was (the edit shows).
