@@ -14,6 +14,7 @@ Checkpoint child_checkpoint(const Checkpoint& parent, StageRecord record, const 
   child.stage.end_step = parent.state.step;
   child.stage.parent_hash = state_hash(parent.state);
   child.config_toml = to_toml(config);
+  child.stage.gravity_kernel = parent.stage.gravity_kernel;  // the kernel of the state it starts from
   return child;
 }
 

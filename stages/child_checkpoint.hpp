@@ -13,7 +13,8 @@ namespace tidalcrust {
 /// The parent's body and state with a fresh StageInfo: the given (empty) record, which names the
 /// stage; parent_hash = state_hash(parent.state); the clock starting at the parent's step and time
 /// with the configured time step (integrator.dt); end_step = the parent's step; not complete. The
-/// stage's resolved configuration, and empty observables (they belong to the new stage).
+/// stage's resolved configuration, and empty observables (they belong to the new stage). It keeps
+/// the parent's gravity_kernel until it computes forces of its own (gravity_kernel_check.hpp).
 Checkpoint child_checkpoint(const Checkpoint& parent, StageRecord record, const Config& config);
 
 /// InputError unless `parent` is a complete checkpoint of stage Parent, for the named stage.

@@ -242,6 +242,8 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   out.stage.complete = true;  // stretching takes no time steps
   auto& record = out.stage.as<StretchRecord>();
   if (!config.stretch.enabled) return out;
+  // The stretch factor is found from forces that include self-gravity.
+  out.stage.gravity_kernel = gravity_kernel_label(gravity_kernel_of(config));
 
   const Body& body = built.body;
   StretchTrial trial(built, config);

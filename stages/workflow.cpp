@@ -18,6 +18,7 @@
 #include "stages/analysis_stage.hpp"
 #include "stages/build_stage.hpp"
 #include "stages/encounter_stage.hpp"
+#include "stages/gravity_kernel_check.hpp"
 #include "stages/relax_stage.hpp"
 #include "stages/stretch_stage.hpp"
 
@@ -29,6 +30,7 @@ namespace fs = std::filesystem;
 struct RunContext {
   fs::path status_file;
   bool quiet = false;
+  bool allow_kernel_change = false;
 };
 
 void say(const RunContext& ctx, const std::string& text) {
@@ -118,11 +120,14 @@ std::optional<Checkpoint> instant_stage(const RunContext& ctx, const char* name,
 /// Outputs of a superseded run (final file, diagnostic; when begun anew also the mid-stage
 /// checkpoint and snapshots; and `derived`, e.g. the analysis folder) are removed before the
 /// stage writes anything.
+/// Stepping on under another gravity kernel than the checkpoint's (the parent's, `parent_file`,
+/// or the mid-stage one's) is refused before anything is removed, unless allowed.
 template <typename Begin, typename Run, typename Finish>
 std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
                                          const std::string& fingerprint, const std::string& parent_hash,
-                                         const Config& config, std::int64_t checkpoint_interval, Begin begin,
-                                         Run run, const fs::path& derived, Finish finish) {
+                                         const Config& config, std::int64_t checkpoint_interval,
+                                         const fs::path& parent_file, Begin begin, Run run,
+                                         const fs::path& derived, Finish finish) {
   const auto lock = lock_stage(ctx, name, file, stage_lock_identity(fingerprint, parent_hash));
   if (!lock) return std::nullopt;
   if (auto existing = reusable(file, fingerprint, parent_hash)) {
@@ -134,16 +139,21 @@ std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::strin
   loop.status_file = ctx.status_file;
   loop.quiet = ctx.quiet;
   std::optional<Checkpoint> checkpoint = resumable(loop.mid_checkpoint, fingerprint, parent_hash);
-  remove_stage_outputs(file, checkpoint.has_value());
-  if (!derived.empty()) fs::remove_all(derived);
+  const bool resuming = checkpoint.has_value();
   std::optional<Config> stored;
-  if (checkpoint) {
-    say(ctx, fmt::format("{}: resuming from {} (step {})", name, loop.mid_checkpoint.string(), checkpoint->state.step));
+  if (resuming) {
     stored = parse_config(checkpoint->config_toml, loop.mid_checkpoint.string() + ":/parameters/config");
+    stored->gravity.kernel = config.gravity.kernel;  // the kernel is this run's choice, checked next
   } else {
     checkpoint = begin();
     checkpoint->stage.fingerprint = fingerprint;
   }
+  continue_under_gravity_kernel(*checkpoint, stored ? *stored : config, ctx.allow_kernel_change,
+                                (resuming ? loop.mid_checkpoint : parent_file).string());
+  remove_stage_outputs(file, resuming);
+  if (!derived.empty()) fs::remove_all(derived);
+  if (resuming)
+    say(ctx, fmt::format("{}: resuming from {} (step {})", name, loop.mid_checkpoint.string(), checkpoint->state.step));
   if (run(*checkpoint, stored ? *stored : config, loop, file) == LoopOutcome::interrupted) return std::nullopt;
   write_checkpoint(file, *checkpoint);
   remove_checkpoint_files(loop.mid_checkpoint);
@@ -213,6 +223,7 @@ WorkflowResult interrupted(WorkflowResult& result) {
 WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
   RunContext ctx;
   ctx.quiet = options.quiet;
+  ctx.allow_kernel_change = options.allow_kernel_change;
   const fs::path body_dir = options.root / "body";
   check_same_body(body_dir / "build.h5", config);
   fs::create_directories(body_dir);
@@ -229,7 +240,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   if (!stretched) return interrupted(result);
   const auto relaxed = stepping_stage(
       ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), state_hash(stretched->state), config,
-      config.relax.checkpoint_interval, [&] { return begin_relax(*stretched, config); },
+      config.relax.checkpoint_interval, body_dir / "stretch.h5", [&] { return begin_relax(*stretched, config); },
       [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path&) {
         return run_relax(c, run_config, loop);
       },
@@ -251,7 +262,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
     const fs::path file = dir / "encounter.h5";
     const auto encounter = stepping_stage(
         ctx, "encounter " + spec.name, file, encounter_fingerprint(encounter_config, spec), relaxed_hash,
-        encounter_config, encounter_config.encounter.checkpoint_interval,
+        encounter_config, encounter_config.encounter.checkpoint_interval, body_dir / "relax.h5",
         [&] { return begin_encounter(*relaxed, encounter_config, spec); },
         [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path& out) {
           return run_encounter(c, run_config, loop, out);

@@ -19,6 +19,9 @@ struct WorkflowOptions {
   double dt_factor = 1.0;           ///< encounters run at dt * dt_factor into root/dt<factor>/ when != 1
   std::vector<Encounter> encounters;///< the encounters to run (all of the workflow, or --only)
   bool quiet = false;               ///< no progress lines
+  /// Step on from checkpoints computed by another gravity kernel (recorded in the checkpoint);
+  /// without it that is refused (stages/gravity_kernel_check.hpp).
+  bool allow_kernel_change = false;
 };
 
 /// One finished encounter of a workflow.

@@ -166,7 +166,10 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
       .add("version", c.provenance.version)
       .add("git_commit", c.provenance.git_commit)
       .add("compiler", c.provenance.compiler)
-      .add("build_flags", c.provenance.build_flags);
+      .add("build_flags", c.provenance.build_flags)
+      .add("gravity_kernel", c.stage.gravity_kernel.empty() ? "none recorded" : c.stage.gravity_kernel);
+  if (!c.stage.gravity_kernel_changes.empty())
+    r.sections.back().add("gravity_kernel_changes", c.stage.gravity_kernel_changes);
   r.sections.push_back(counts_section(c));
   r.sections.push_back(derived_section(c, file));
   r.sections.push_back(conservation_section(c));

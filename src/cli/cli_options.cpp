@@ -17,6 +17,27 @@ void add_common_options(cxxopts::Options& options) {
       ("threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))
       ("dt-factor", "scale the time step by this factor", cxxopts::value<double>()->default_value("1.0"))
       ("h,help", "show this help");
+  add_kernel_options(options);
+}
+
+void add_kernel_options(cxxopts::Options& options) {
+  options.add_options("gravity kernel")
+      ("gravity-kernel", "fast or portable (sets gravity.kernel; portable: the same bits on every x86-64 CPU)",
+       cxxopts::value<std::string>())
+      ("allow-kernel-change", "continue a checkpoint computed by another gravity kernel (recorded in the checkpoint)");
+}
+
+KernelOptions read_kernel_options(const cxxopts::ParseResult& parsed) {
+  KernelOptions kernel;
+  if (parsed.count("gravity-kernel")) kernel.gravity_kernel = parsed["gravity-kernel"].as<std::string>();
+  kernel.allow_change = parsed.count("allow-kernel-change") > 0;
+  return kernel;
+}
+
+void KernelOptions::apply(Config& config) const {
+  if (!gravity_kernel) return;
+  config.gravity.kernel = *gravity_kernel;
+  validate(config, "--gravity-kernel");
 }
 
 CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
@@ -26,6 +47,7 @@ CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {
   common.threads = parsed["threads"].as<int>();
   common.dt_factor = parsed["dt-factor"].as<double>();
   common.threads = checked_thread_count(common.threads);
+  common.kernel = read_kernel_options(parsed);
   if (!std::isfinite(common.dt_factor) || common.dt_factor <= 0)
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", common.dt_factor));
   return common;
@@ -71,6 +93,7 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
   for (const auto& assignment : common.overrides) apply_override(config, assignment);
   if (common.dt_factor != 1.0) scale_time_step(config, common.dt_factor);
   validate(config, "--set/--dt-factor");
+  common.kernel.apply(config);
   return config;
 }
 

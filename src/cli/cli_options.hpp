@@ -1,5 +1,6 @@
 #pragma once
-// Options shared by the stage commands: --config, --set, --threads, --dt-factor.
+// Options shared by the stage commands: --config, --set, --threads, --dt-factor, and the gravity
+// kernel's --gravity-kernel and --allow-kernel-change (also on `run`).
 #include <cxxopts.hpp>
 #include <filesystem>
 #include <optional>
@@ -10,11 +11,24 @@
 
 namespace tidalcrust {
 
+/// --gravity-kernel K (sets [gravity] kernel, also when resuming) and --allow-kernel-change (a
+/// stage may step on from a checkpoint computed by another kernel: stages/gravity_kernel_check.hpp).
+struct KernelOptions {
+  std::optional<std::string> gravity_kernel;
+  bool allow_change = false;
+  /// Sets config.gravity.kernel when --gravity-kernel was given; InputError for an unknown name.
+  void apply(Config& config) const;
+};
+
+void add_kernel_options(cxxopts::Options& options);
+KernelOptions read_kernel_options(const cxxopts::ParseResult& parsed);
+
 struct CommonOptions {
   std::optional<std::filesystem::path> config_file;  ///< --config replaces the stored config
   std::vector<std::string> overrides;                ///< --set section.key=value
   int threads = 0;                                   ///< 0: OpenMP default
   double dt_factor = 1.0;                            ///< scales integrator.dt
+  KernelOptions kernel;                              ///< --gravity-kernel, --allow-kernel-change
 };
 
 void add_common_options(cxxopts::Options& options);
@@ -30,7 +44,7 @@ std::vector<std::string> spell_single_letter_long_options(int argc, char** argv)
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
 
 /// The configuration a stage runs with: `stored` (TOML text from the input checkpoint),
-/// replaced by --config when given, then each --set applied, then --dt-factor.
+/// replaced by --config when given, then each --set applied, then --dt-factor and --gravity-kernel.
 Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
                       const CommonOptions& common);
 

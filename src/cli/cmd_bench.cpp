@@ -1,6 +1,6 @@
-// tidalcrust bench: time full integration steps (all forces) of the configured body, and in
-// the same run the textbook step at the same N, so the speed-up is measured under the same
-// machine load.
+// tidalcrust bench: time full integration steps (all forces) of the configured body, with the
+// configured gravity kernel and the other one (fast and portable), and in the same run the
+// textbook step at the same N, so the speed-up is measured under the same machine load.
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -94,6 +94,20 @@ int command_bench(int argc, char** argv) {
   leapfrog.advance(run, 2);  // warm-up: caches, thread pool
   const double ms_per_step = median_ms_per_call(repeats, steps, [&](std::int64_t n) { leapfrog.advance(run, n); });
 
+  // The same steps with the other gravity kernel, for the cost of the portable one.
+  const GravityKernel kernel = gravity_kernel_of(config);
+  const GravityKernel other = kernel == GravityKernel::fast ? GravityKernel::portable : GravityKernel::fast;
+  ForceOptions other_options = force_options(config, config.encounter.damping);
+  other_options.gravity_kernel = other;
+  ForceField other_forces(body.body, other_options);
+  State other_run = state;
+  Leapfrog other_leapfrog(other_forces, body.stage.clock);
+  other_leapfrog.advance(other_run, 2);
+  const double other_ms =
+      median_ms_per_call(repeats, steps, [&](std::int64_t n) { other_leapfrog.advance(other_run, n); });
+  const double fast_ms = kernel == GravityKernel::fast ? ms_per_step : other_ms;
+  const double portable_ms = kernel == GravityKernel::portable ? ms_per_step : other_ms;
+
   // The kernels one by one, for the breakdown.
   Accelerations scratch;
   std::vector<double> gravity(state.position.size());
@@ -129,6 +143,11 @@ int command_bench(int argc, char** argv) {
         {"steps", steps},
         {"repeats", repeats},
         {"ms_per_step", ms_per_step},
+        {"gravity_kernel", gravity_kernel_label(kernel)},
+        {"fast_ms_per_step", fast_ms},
+        {"fast_kernel", gravity_kernel_label(GravityKernel::fast)},
+        {"portable_ms_per_step", portable_ms},
+        {"portable_over_fast", portable_ms / fast_ms},
         {"kernels_ms", {{"springs", springs_ms}, {"hinges", hinges_ms}, {"gravity", gravity_ms}}},
         {"textbook_ms_per_step", textbook_ms},
         {"textbook", "one thread, array of particle structs, pair loop over half the pairs; same forces "
@@ -142,6 +161,9 @@ int command_bench(int argc, char** argv) {
                body.body.spring_count(), body.body.hinge_count(), threads);
     fmt::print("ms_per_step: {:.3f}  (median of {} x {} steps; springs {:.3f}, hinges {:.3f}, gravity {:.3f})\n",
                ms_per_step, repeats, steps, springs_ms, hinges_ms, gravity_ms);
+    fmt::print("gravity kernels: {} {:.3f} ms/step, portable {:.3f} ms/step (x{:.2f}; this run: {})\n",
+               gravity_kernel_label(GravityKernel::fast), fast_ms, portable_ms, portable_ms / fast_ms,
+               gravity_kernel_label(kernel));
     if (textbook_ms > 0) {
       fmt::print("textbook_ms_per_step: {:.3f}  (one thread, particle structs, half-pair loop; same forces)\n",
                  textbook_ms);

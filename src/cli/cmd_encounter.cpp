@@ -9,6 +9,7 @@
 #include "stages/encounter_stage.hpp"
 #include "base/errors.hpp"
 #include "cli/stage_command.hpp"
+#include "stages/gravity_kernel_check.hpp"
 
 namespace tidalcrust {
 
@@ -58,6 +59,7 @@ int command_encounter(int argc, char** argv) {
     validate(checked, "encounter options");  // NaN, negative mass, q inside the body -> exit 2
     checkpoint = begin_encounter(input, config, spec);
   }
+  continue_under_gravity_kernel(checkpoint, config, common.kernel.allow_change, from.string());
   const StageLock lock = lock_output(out, from, resuming);
   StepLoopOptions loop = loop_options_for(parsed, out, "encounter " + checkpoint.stage.as<EncounterRecord>().encounter.name,
                                           config.encounter.checkpoint_interval);

@@ -9,6 +9,7 @@
 #include "base/errors.hpp"
 #include "stages/relax_stage.hpp"
 #include "cli/stage_command.hpp"
+#include "stages/gravity_kernel_check.hpp"
 
 namespace tidalcrust {
 
@@ -25,6 +26,7 @@ int command_relax(int argc, char** argv) {
   Config config = stage_config(input, from, common, resuming);
   apply_thread_count(common.threads);
   Checkpoint checkpoint = resuming ? std::move(input) : begin_relax(input, config);
+  continue_under_gravity_kernel(checkpoint, config, common.kernel.allow_change, from.string());
   const StageLock lock = lock_output(out, from, resuming);
   StepLoopOptions loop = loop_options_for(parsed, out, "relax", config.relax.checkpoint_interval);
   return finish_stage(run_relax(checkpoint, config, loop), checkpoint, out, loop);

@@ -26,6 +26,7 @@ int command_run(int argc, char** argv) {
       "only", "run only this encounter (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "quiet", "no progress lines")("h,help", "show this help");
+  add_kernel_options(options);
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
@@ -37,6 +38,8 @@ int command_run(int argc, char** argv) {
   if (parsed.count("set"))
     for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
   validate(config, "--set");
+  const KernelOptions kernel = read_kernel_options(parsed);
+  kernel.apply(config);
   const double dt_factor = parsed["dt-factor"].as<double>();
   if (!std::isfinite(dt_factor) || dt_factor <= 0)
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
@@ -57,6 +60,7 @@ int command_run(int argc, char** argv) {
                                               : fs::path("checkpoints") / config.workflow.name;
   workflow_options.quiet = parsed.count("quiet") > 0;
   workflow_options.dt_factor = dt_factor;
+  workflow_options.allow_kernel_change = kernel.allow_change;
   workflow_options.encounters = std::move(encounters);
   apply_thread_count(threads);
   const WorkflowResult result = run_workflow(config, workflow_options);

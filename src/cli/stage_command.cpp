@@ -71,7 +71,9 @@ Config stage_config(const Checkpoint& input, const fs::path& from, const CommonO
     if (common.config_file || !common.overrides.empty() || common.dt_factor != 1.0)
       throw InputError(fmt::format("{}: is a mid-stage checkpoint; it resumes with its own configuration "
                                    "(drop --config, --set and --dt-factor)", from.string()));
-    return parse_config(input.config_toml, from.string() + ":/parameters/config");
+    Config stored = parse_config(input.config_toml, from.string() + ":/parameters/config");
+    common.kernel.apply(stored);  // checked against the recorded kernel by continue_under_gravity_kernel
+    return stored;
   }
   return resolve_config(input.config_toml, from.string() + ":/parameters/config", common);
 }

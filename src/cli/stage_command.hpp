@@ -31,7 +31,8 @@ StepLoopOptions loop_options_for(const cxxopts::ParseResult& parsed, const std::
 int finish_stage(LoopOutcome outcome, const Checkpoint& checkpoint, const std::filesystem::path& out,
                  const StepLoopOptions& loop);
 /// The configuration for a stage: from the input checkpoint, --config and --set. A mid-stage
-/// checkpoint resumes with exactly the configuration it started with.
+/// checkpoint resumes with exactly the configuration it started with, except the gravity kernel
+/// (--gravity-kernel, refused by continue_under_gravity_kernel unless it gives the same bits).
 Config stage_config(const Checkpoint& input, const std::filesystem::path& from, const CommonOptions& common,
                     bool resuming);
 /// What a command that continues a checkpoint (stretch, relax, encounter) starts from.

@@ -43,13 +43,18 @@ ForceOptions force_options(const Config& config, double damping) {
   options.cross_nonlinear = config.cross.nonlinear;
   options.cross_strain_scale = config.cross.strain_scale;
   options.cross_min_force_factor = config.cross.min_force_factor;
+  options.gravity_kernel = gravity_kernel_of(config);
   return options;
+}
+
+GravityKernel gravity_kernel_of(const Config& config) {
+  return config.gravity.kernel == "portable" ? GravityKernel::portable : GravityKernel::fast;
 }
 
 ForceField::ForceField(const Body& body, ForceOptions options)
     : body_(body),
       options_(options),
-      gravity_(body.mass, body.softening),
+      gravity_(body.mass, body.softening, options.gravity_kernel),
       cross_{options.cross_strain_scale, options.cross_min_force_factor} {
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
   if (body.spring_kind.size() != ns)

@@ -35,15 +35,19 @@ struct ForceOptions {
   double cross_strain_scale = 0.03;   ///< eps_C
   double cross_min_force_factor = 0.1;///< F_Ck
   bool self_gravity = true;           ///< false only for tests of the other forces
+  GravityKernel gravity_kernel = GravityKernel::fast;  ///< [gravity] kernel (DirectGravity)
   /// A pass with less work than this (N^2/128 + springs + 4 hinges) runs on one thread:
   /// below it the fork/join costs more than it saves, and far more when the cores are
   /// oversubscribed. Results never depend on it (tests set 1 to exercise the threads).
   std::size_t min_parallel_items = 16384;
 };
 
-/// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor) for a
-/// stage that damps its springs at rate `damping` (1/t_grav).
+/// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor; [gravity]
+/// kernel) for a stage that damps its springs at rate `damping` (1/t_grav).
 ForceOptions force_options(const Config& config, double damping);
+
+/// The gravity kernel `[gravity] kernel` names ("fast" or "portable"; validate() checks it).
+GravityKernel gravity_kernel_of(const Config& config);
 
 /// Accelerations of the body particles and of the perturber.
 struct Accelerations {

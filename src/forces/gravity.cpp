@@ -54,8 +54,8 @@ inline __mmask8 partners_after(std::size_t row, std::size_t j) {
 /// acc[row]; the pulls of the rows on j are subtracted from acc[j], row i first. j_begin is a
 /// multiple of `lanes`; lanes with j <= row are masked out. Two rows share every load and
 /// store of the j side (register blocking: ~20% faster than one row).
-void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
-               const double* z, const double* m, double eps2, Accumulator acc) {
+void pair_rows_fast(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
+                    const double* z, const double* m, double eps2, Accumulator acc) {
   const __m512d e2 = _mm512_set1_pd(eps2);
   const __m512d xa = _mm512_set1_pd(x[i]), ya = _mm512_set1_pd(y[i]), za = _mm512_set1_pd(z[i]);
   const __m512d xb = _mm512_set1_pd(x[i + 1]), yb = _mm512_set1_pd(y[i + 1]), zb = _mm512_set1_pd(z[i + 1]);
@@ -91,10 +91,15 @@ void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const doub
   acc.y[i + 1] += lane_sum(syb);
   acc.z[i + 1] += lane_sum(szb);
 }
-#else
-/// pair_rows() without AVX-512: the same pairs, lanes and order of rows, plain arithmetic.
-void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
-               const double* z, const double* m, double eps2, Accumulator acc) {
+#endif
+
+/// The portable kernel: the pairs, lanes and order of rows of pair_rows_fast(), in plain
+/// arithmetic: s = ((dx dx + dy dy) + dz dz) + eps^2, f = 1 / (s sqrt(s)), every product and
+/// sum rounded on its own (-ffp-contract=off). Only correctly rounded IEEE operations (+, -, *,
+/// /, sqrt), so any x86-64 build gives the same bits whether the compiler vectorises it with
+/// SSE2 or AVX-512 (lane l always takes j = l mod lanes).
+void pair_rows_portable(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
+                        const double* z, const double* m, double eps2, Accumulator acc) {
   for (std::size_t row = i; row < i + 2; ++row) {
     const double xi = x[row], yi = y[row], zi = z[row], mi = m[row];
     double sx[lanes] = {}, sy[lanes] = {}, sz[lanes] = {};
@@ -119,7 +124,6 @@ void pair_rows(std::size_t i, std::size_t j_begin, std::size_t j_end, const doub
     }
   }
 }
-#endif
 
 }  // namespace
 
@@ -157,8 +161,24 @@ double self_gravity_energy(const std::vector<double>& mass, double softening, co
   return energy;
 }
 
-DirectGravity::DirectGravity(const std::vector<double>& mass, double softening)
-    : count_(mass.size()),
+const char* gravity_kernel_label(GravityKernel kernel) {
+  if (kernel == GravityKernel::portable) return "portable";
+#if defined(__AVX512F__)
+  return "fast/avx512";
+#else
+  return "fast/generic";
+#endif
+}
+
+bool same_gravity_bits(std::string_view a, std::string_view b) {
+  // Without AVX-512 the fast kernel IS the portable one (pair_rows_portable).
+  auto bits = [](std::string_view label) { return label == "fast/generic" ? std::string_view("portable") : label; };
+  return bits(a) == bits(b);
+}
+
+DirectGravity::DirectGravity(const std::vector<double>& mass, double softening, GravityKernel kernel)
+    : kernel_(kernel),
+      count_(mass.size()),
       padded_((mass.size() + 1 + lanes - 1) / lanes * lanes),  // room for row i+1 of the last pair
       eps2_(softening * softening),
       x_(padded_),
@@ -194,7 +214,14 @@ void DirectGravity::accumulate_block(int block) {
       for (std::size_t pair : {period + b, period + 2 * blocks - 1 - b}) {
         const std::size_t i = 2 * pair;
         if (i >= n || i >= c1) continue;
-        pair_rows(i, std::max(c0, i / lanes * lanes), c1, x, y, z, m, eps2_, acc);
+        const std::size_t j_begin = std::max(c0, i / lanes * lanes);
+#if defined(__AVX512F__)
+        if (kernel_ == GravityKernel::fast) {
+          pair_rows_fast(i, j_begin, c1, x, y, z, m, eps2_, acc);
+          continue;
+        }
+#endif
+        pair_rows_portable(i, j_begin, c1, x, y, z, m, eps2_, acc);
       }
     }
   }

@@ -4,9 +4,30 @@
 // lengths R, accelerations G M/R^2, energies G M^2/R.
 #include <cmath>
 #include <cstddef>
+#include <string_view>
 #include <vector>
 
 namespace tidalcrust {
+
+/// Which code DirectGravity evaluates the pairs with (`[gravity] kernel`, docs/determinism.md).
+/// Both sum the same pairs in the same blocks, lanes and order; they differ in how one pair's
+/// inverse cube and the partial sums are rounded.
+enum class GravityKernel {
+  /// With AVX-512: vrsqrt14pd and two Newton steps, explicit fused multiply-adds (fastest);
+  /// its bits differ from a build without AVX-512. Without AVX-512: the portable code.
+  fast,
+  /// Correctly rounded IEEE sqrt and division, no fused multiply-adds: the same bits in every
+  /// x86-64 build, with or without AVX-512 (tests/forces/test_gravity_kernels.cpp).
+  portable,
+};
+
+/// The kernel as this build computes it, for the checkpoint: "fast/avx512", "fast/generic"
+/// (a build without AVX-512) or "portable".
+const char* gravity_kernel_label(GravityKernel kernel);
+
+/// Whether two kernel labels give the same bits: equal labels, or "fast/generic" and "portable"
+/// (without AVX-512 the fast kernel is the portable code).
+bool same_gravity_bits(std::string_view a, std::string_view b);
 
 /// Plummer-softened inverse cube: 1 / (r^2 + eps^2)^(3/2), for r2 = r^2 and eps2 = eps^2
 /// (R^-3). The pull on i from j is m_j (x_j - x_i) times this.
@@ -45,7 +66,9 @@ struct PlummerPairEvaluator {
 /// -m_i m_j / sqrt(r_ij^2 + eps^2) (G M^2/R): mass [N] in M, softening eps in R, position [N*3]
 /// in R. O(N^2), for diagnostics such as the energy budget's samples, not for every step. Each
 /// row i sums its j > i in 8 SIMD lanes fixed by the indices, the rows run in parallel and are
-/// added in index order: the same bits for any thread count and any run.
+/// added in index order: the same bits for any thread count and any run. Only correctly rounded
+/// operations (no estimates, no fused multiply-adds): the same bits in every x86-64 build, so
+/// it has no fast variant.
 double self_gravity_energy(const std::vector<double>& mass, double softening, const double* position);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2) for every particle.
@@ -57,16 +80,16 @@ double self_gravity_energy(const std::vector<double>& mass, double softening, co
 /// Every particle's sum therefore has one fixed order, whatever the number of threads: the
 /// result is bitwise independent of it.
 ///
-/// With AVX-512 the inverse cube comes from the hardware reciprocal square root estimate
+/// GravityKernel::fast with AVX-512: the inverse cube comes from the hardware reciprocal square root estimate
 /// (vrsqrt14pd, exactly specified, 14 bits) refined by two Newton steps (~1 ulp) instead of a
 /// square root and a division, which share one slow divider unit (that is most of the speed).
-/// Without AVX-512 a portable path computes plummer_inverse_cube(): correct, deterministic, but
-/// divider-bound (about the textbook speed per thread), and its last bits differ from the
-/// AVX-512 build's.
+/// GravityKernel::portable (and fast without AVX-512) computes plummer_inverse_cube(): correct,
+/// the same bits in every build, but divider-bound (bench: `portable_ms_per_step`), and its last
+/// bits differ from the AVX-512 fast kernel's.
 class DirectGravity {
  public:
   /// mass [N] in M; softening eps in R (Body::softening).
-  DirectGravity(const std::vector<double>& mass, double softening);
+  DirectGravity(const std::vector<double>& mass, double softening, GravityKernel kernel = GravityKernel::fast);
 
   /// Writes accelerations [N*3] (G M/R^2) for positions [N*3] (R). `parallel` false keeps
   /// the work on the calling thread (same result).
@@ -86,10 +109,12 @@ class DirectGravity {
   }
 
   std::size_t particle_count() const { return count_; }
+  GravityKernel kernel() const { return kernel_; }
   /// Number of pair blocks (fixed; the unit of parallel work).
   static constexpr int block_count = 16;
 
  private:
+  GravityKernel kernel_;
   std::size_t count_;
   std::size_t padded_;  ///< count_ rounded up to the SIMD width
   double eps2_;

@@ -389,6 +389,8 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
   h5::write_string_attribute(g, "parent_hash", c.stage.parent_hash);
   h5::write_string_attribute(g, "fingerprint", c.stage.fingerprint);
   h5::write_string_attribute(g, "diagnostic", c.stage.diagnostic);
+  h5::write_string_attribute(g, "gravity_kernel", c.stage.gravity_kernel);
+  h5::write_string_attribute(g, "gravity_kernel_changes", c.stage.gravity_kernel_changes);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
   if (c.state.perturber.present) {
@@ -621,6 +623,10 @@ void read_stage_info(hid_t root, Checkpoint& c) {
   c.stage.parent_hash = h5::read_string_attribute(g.get(), "parent_hash");
   c.stage.fingerprint = h5::read_string_attribute(g.get(), "fingerprint");
   c.stage.diagnostic = h5::read_string_attribute(g.get(), "diagnostic");
+  // Absent in files written before the kernel was recorded: unknown, and never refused.
+  for (auto [name, value] : {std::pair{"gravity_kernel", &c.stage.gravity_kernel},
+                             std::pair{"gravity_kernel_changes", &c.stage.gravity_kernel_changes}})
+    if (H5Aexists(g.get(), name) > 0) *value = h5::read_string_attribute(g.get(), name);
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
   h5::Group record = h5::open_group(g.get(), "record");
   std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);

@@ -70,6 +70,14 @@ struct StageInfo {
   std::string parent_hash;     ///< state_hash of the checkpoint the stage started from ("" for build)
   std::string fingerprint;     ///< what the result depends on (model/stage_fingerprint.hpp); "" outside `run`
   std::string diagnostic;      ///< on a diagnostic checkpoint, what went wrong; else ""
+  /// The gravity kernel that computed the state (forces/gravity.hpp: "fast/avx512", "fast/generic"
+  /// or "portable"); "" for a build checkpoint (no forces) and files written before it was
+  /// recorded. A new stage starts with its parent's; a stage that steps on under another kernel
+  /// is refused unless allowed (stages/gravity_kernel_check.hpp).
+  std::string gravity_kernel;
+  /// One line per allowed change of kernel in this stage's history ("step 1200: fast/avx512 ->
+  /// portable (--allow-kernel-change)"), oldest first; "" when the kernel never changed.
+  std::string gravity_kernel_changes;
 
   const char* name() const { return stage_name(record); }
   /// The record as stage R; std::logic_error if the checkpoint is of another stage (callers

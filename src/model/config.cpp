@@ -156,6 +156,10 @@ void visit_keys(C& c, V&& visit) {
   key(c.encounter.relaxation_crossings,
       {"encounter", "relaxation_crossings", "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
+
+  key(c.gravity.kernel,
+      {"gravity", "kernel", "-",
+       "\"fast\" (AVX-512 estimates where available) or \"portable\" (the same bits on every x86-64 CPU)"});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4).
@@ -443,6 +447,7 @@ void validate(const Config& config, const std::string& origin) {
                                  config.relax.settle_duration, config.relax.duration));
   check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
   check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
+  check_choice(config.gravity.kernel, {"fast", "portable"}, fmt::format("{}: gravity.kernel", origin));
   if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",

@@ -101,6 +101,13 @@ struct EncounterDefaults {
   double relaxation_crossings = 2.0;       ///< "local": relaxation interval, in shell crossing times L_S/V_SP
 };
 
+/// Self-gravity (forces/gravity.hpp).
+struct GravityConfig {
+  /// "fast" (AVX-512 estimate and Newton steps where available) or "portable" (correctly rounded
+  /// sqrt and division: the same bits on every x86-64 CPU); docs/determinism.md.
+  std::string kernel = "fast";
+};
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -110,6 +117,7 @@ struct Config {
   StretchConfig stretch;
   RelaxConfig relax;
   EncounterDefaults encounter;
+  GravityConfig gravity;
   std::vector<Encounter> encounters;
 
   /// The encounter with this name; InputError listing the known names otherwise.

@@ -34,6 +34,13 @@ TEST(CmdBench, JsonReportsTheBodyAndTheTimings) {
   EXPECT_GT(json_number(r.out, "ms_per_step"), 0) << r.out;
   EXPECT_GT(json_number(r.out, "textbook_ms_per_step"), 0) << r.out;
   EXPECT_GT(json_number(r.out, "speedup"), 0) << r.out;
+  // Both gravity kernels are timed: the portable one's cost is reported next to the fast one.
+  EXPECT_GT(json_number(r.out, "fast_ms_per_step"), 0) << r.out;
+  EXPECT_GT(json_number(r.out, "portable_ms_per_step"), 0) << r.out;
+  EXPECT_NEAR(json_number(r.out, "portable_over_fast"),
+              json_number(r.out, "portable_ms_per_step") / json_number(r.out, "fast_ms_per_step"), 1e-9)
+      << r.out;
+  EXPECT_NE(r.out.find("\"gravity_kernel\": \"fast/"), std::string::npos) << r.out;
 }
 
 TEST(CmdBench, BadArgumentsAreInputErrors) {
