@@ -17,6 +17,7 @@
 #include "model/derived_quantities.hpp"
 #include "integrate/stability_bound.hpp"
 #include "stages/build_stage.hpp"
+#include "stages/relax_stage.hpp"
 #include "stages/stretch_stage.hpp"
 #include "stages/time_step.hpp"
 #include "support/files.hpp"
@@ -99,6 +100,11 @@ TEST(MaterialBody, ChosenTimeStepIsRecordedAndWithinTheSafeBound) {
   EXPECT_GE(config.integrator.dt, 0.9 * chosen_dt_fraction * bound.safe_dt);  // two digits, rounded down
   EXPECT_NE(note.find("dt: chose"), std::string::npos) << note;
   EXPECT_NE(to_toml(config).find(fmt::format("dt = {}", config.integrator.dt)), std::string::npos);
+  // Recorded: the relax stage's clock (stored as /checkpoint@dt) and its stored configuration.
+  const Checkpoint relax = begin_relax(stretched, config);
+  EXPECT_EQ(relax.stage.clock.dt, config.integrator.dt);
+  EXPECT_EQ(parse_config(relax.config_toml, "stored").integrator.dt, config.integrator.dt);
+  EXPECT_FALSE(parse_config(relax.config_toml, "stored").choose_dt);
 }
 
 TEST(MaterialBody, PaperTTimeStepPassesTheBound) {
