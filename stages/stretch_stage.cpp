@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include "model/center_of_mass.hpp"
@@ -214,15 +215,44 @@ Strengthening strengthen(const Body& body, const std::vector<double>& midpoint_p
   return s;
 }
 
-/// P(r) of section 2.3 at every spring's midpoint radius (e_g).
-std::vector<double> midpoint_pressures(const Body& body, const State& state, const Vec3& centre) {
+/// P(r) of section 2.3 at every spring's midpoint radius (e_g). With a core (issue 12) the
+/// layered body's P(r), and a core spring's value divided by core.modulus_ratio: the even
+/// compression presses the stiffer core modulus_ratio times harder, so its springs need that
+/// much less strengthening.
+std::vector<double> midpoint_pressures(const Body& body, const State& state, const Vec3& centre,
+                                       const Config& config) {
   std::vector<double> p(body.spring_count());
+  const LayeredSphere layered{config.core.radius.value_or(0.0), config.core.density_ratio.value_or(1.0)};
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])) +
                             vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])));
-    p[n] = std::max(0.0, hydrostatic_pressure((mid - centre).norm()));
+    const double r = (mid - centre).norm();
+    if (!config.core.present()) {
+      p[n] = std::max(0.0, hydrostatic_pressure(r));
+      continue;
+    }
+    p[n] = std::max(0.0, layered.pressure(r));
+    if (r < layered.core_radius && body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::interior))
+      p[n] /= config.core.modulus_ratio.value_or(1.0);
   }
   return p;
+}
+
+/// Young's modulus of eq. 15 over the mantle (interior springs with midpoints outside the core,
+/// the volume between core and interior radius); the whole interior without a core.
+double mantle_youngs_modulus(const Body& body, const State& state, const Config& config) {
+  if (!config.core.present()) return derive_quantities(body, state, config.interior.radius).E_I;
+  const double rc = *config.core.radius, ri = config.interior.radius;
+  double sum = 0;
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
+    const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])) +
+                            vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])));
+    if (mid.norm() < rc) continue;
+    const double length = state.springs.rest_length[n];
+    sum += state.springs.stiffness[n] * length * length;
+  }
+  return sum / (6.0 * 4.0 / 3.0 * std::numbers::pi * (ri * ri * ri - rc * rc * rc));
 }
 
 /// Pressure of the interior network when every spring is compressed by the common factor f
@@ -247,8 +277,8 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
 
   const Body& body = built.body;
   StretchTrial trial(built, config);
-  const double young_modulus = derive_quantities(body, built.state, config.interior.radius).E_I;
-  const std::vector<double> pressure = midpoint_pressures(body, built.state, trial.centre());
+  const double young_modulus = mantle_youngs_modulus(body, built.state, config);
+  const std::vector<double> pressure = midpoint_pressures(body, built.state, trial.centre(), config);
   EvaluationBudget budget(config.stretch.max_iterations, config.stretch.tolerance);
 
   // (a) The common factor with the built stiffnesses.

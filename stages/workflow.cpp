@@ -21,6 +21,7 @@
 #include "stages/gravity_kernel_check.hpp"
 #include "stages/relax_stage.hpp"
 #include "stages/stretch_stage.hpp"
+#include "stages/time_step.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -238,9 +239,16 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
       instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), state_hash(built->state),
                     "stretching and strengthening", [&] { return stretch_stage(*built, config); });
   if (!stretched) return interrupted(result);
+  // dt checked against (or, for a [material] body without one, chosen from) the stability bound.
+  Config body_config = config;
+  const std::string dt_note = settle_time_step(body_config, *stretched, (body_dir / "stretch.h5").string());
+  if (!dt_note.empty()) {
+    if (dt_note.starts_with("warning")) fmt::print(stderr, "tidalcrust: {}\n", dt_note);
+    else say(ctx, dt_note);
+  }
   const auto relaxed = stepping_stage(
-      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(config), state_hash(stretched->state), config,
-      config.relax.checkpoint_interval, body_dir / "stretch.h5", [&] { return begin_relax(*stretched, config); },
+      ctx, "relax", body_dir / "relax.h5", relax_fingerprint(body_config), state_hash(stretched->state), body_config,
+      body_config.relax.checkpoint_interval, body_dir / "stretch.h5", [&] { return begin_relax(*stretched, body_config); },
       [&](Checkpoint& c, const Config& run_config, const StepLoopOptions& loop, const fs::path&) {
         return run_relax(c, run_config, loop);
       },
@@ -250,7 +258,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
 
   // Encounters, each branching from the relaxed body, at dt * dt_factor; each encounter's lock
   // also covers its analysis, so processes running different encounters run side by side.
-  Config encounter_config = config;
+  Config encounter_config = body_config;
   if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
   const fs::path encounter_root =
       options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stages/build_stage.hpp"
+#include "stages/time_step.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
@@ -75,12 +76,16 @@ int command_bench(int argc, char** argv) {
   if (steps < 1) throw InputError(fmt::format("--steps must be >= 1, got {}", steps));
   if (repeats < 1) throw InputError(fmt::format("--repeats must be >= 1, got {}", repeats));
   if (textbook_steps < 0) throw InputError(fmt::format("--textbook-steps must be >= 0, got {}", textbook_steps));
-  const Config config = resolve_config("", "", common);
+  Config config = resolve_config("", "", common);
   apply_thread_count(common.threads);
 
   const auto build_start = Clock::now();
   Checkpoint body = build_stage(config);
   const double build_ms = milliseconds_since(build_start);
+  if (config.choose_dt) {  // a [material] body without dt: the step `run` would choose (docs/material.md)
+    settle_time_step(config, body, "bench");
+    body.stage.clock.dt = config.integrator.dt;
+  }
   State& state = body.state;
   // Every force path switched on: encounter damping and a perturber at the start distance.
   state.perturber.present = true;

@@ -15,6 +15,12 @@
 #include "base/errors.hpp"
 #include "io/json.hpp"
 #include "physics/physical_units.hpp"
+#include "physics/hydrostatic_pressure.hpp"
+#include "integrate/stability_bound.hpp"
+#include "model/config.hpp"
+#include "model/derived_quantities.hpp"
+#include "stages/build_stage.hpp"
+#include "stages/stretch_stage.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -118,6 +124,53 @@ void print_table(const std::vector<BodyReport>& reports, const Encounter& g, dou
   }
 }
 
+/// The material equivalents of the body a workflow builds (issue 12), built and stretched here
+/// (nothing is written), in model units and, when `scales` is given, in physical units.
+Json material_json(const Config& config) {
+  const Checkpoint built = build_stage(config);
+  const Checkpoint stretched = stretch_stage(built, config);
+  const DerivedQuantities q = derive_quantities(built.body, built.state, config.interior.radius);
+  const StabilityBound bound = stability_bound(stretched.body, stretched.state);
+  return {{"E_I", q.E_I},   {"E_2D", q.E_2D}, {"h_S", q.h_S},        {"D_F", q.D_F},
+          {"V_IP", q.V_IP}, {"V_SP", q.V_SP}, {"V_Co", q.V_Co},      {"M_S", q.M_S},
+          {"dt", config.choose_dt ? 0.0 : config.integrator.dt},   {"dt_eq13", q.dt_max},
+          {"dt_safe", bound.safe_dt},                               {"dt_unstable", bound.unstable_dt}};
+}
+
+void print_material(const Json& m, const std::string& workflow, const BodyScales* scales) {
+  fmt::print("material equivalents of {} (the built body; G = M = R = 1{})\n", workflow,
+             scales ? ", and in physical units" : "");
+  const double eg = scales ? scales->e_g_GPa : 0, v = scales ? scales->v_c_km_s : 0, t = scales ? scales->t_grav_s : 0;
+  auto line = [&](const char* name, const char* unit, const char* source, double x, double physical, const char* punit) {
+    if (scales && punit[0] != '-') fmt::print("  {:<11} = {:<10.4g} {:<8} = {:.4g} {:<6} ({})\n", name, x, unit, physical, punit, source);
+    else fmt::print("  {:<11} = {:<10.4g} {:<8} ({})\n", name, x, unit, source);
+  };
+  line("E_I", "e_g", "eq. 15", m["E_I"].get<double>(), m["E_I"].get<double>() * eg, "GPa");
+  line("E_2D", "e_g R", "eq. 20", m["E_2D"].get<double>(), 0, "-");
+  line("h_S", "R", "E_2D / E_I", m["h_S"].get<double>(), 0, "-");
+  line("D_F", "e_g R^3", "eq. 23", m["D_F"].get<double>(), 0, "-");
+  line("V_IP", "v_c", "eq. 16", m["V_IP"].get<double>(), m["V_IP"].get<double>() * v, "km/s");
+  line("V_SP", "v_c", "eq. 19", m["V_SP"].get<double>(), m["V_SP"].get<double>() * v, "km/s");
+  line("V_Co", "v_c", "eq. 25", m["V_Co"].get<double>(), m["V_Co"].get<double>() * v, "km/s");
+  line("dt_eq13", "t_grav", "eq. 13, springs only", m["dt_eq13"].get<double>(), m["dt_eq13"].get<double>() * t, "s");
+  line("dt_safe", "t_grav", "stretched body, springs + hinges", m["dt_safe"].get<double>(),
+       m["dt_safe"].get<double>() * t, "s");
+  line("dt_unstable", "t_grav", "unstable above", m["dt_unstable"].get<double>(), m["dt_unstable"].get<double>() * t,
+       "s");
+}
+
+/// Central and core-boundary pressure of the uniform and the layered body (issue 12), e_g.
+Json layered_json(double core_radius, double density_ratio) {
+  const LayeredSphere layered{core_radius, density_ratio};
+  return {{"core_radius", core_radius},
+          {"density_ratio", density_ratio},
+          {"mantle_density", layered.mantle_density()},
+          {"core_density", layered.core_density()},
+          {"central_pressure_uniform", hydrostatic_pressure(0)},
+          {"central_pressure_layered", layered.pressure(0)},
+          {"core_boundary_pressure_layered", layered.pressure(core_radius)}};
+}
+
 }  // namespace
 
 int command_estimate(int argc, char** argv) {
@@ -133,6 +186,12 @@ int command_estimate(int argc, char** argv) {
       ("vq", "speed at pericenter (v_c = sqrt(GM/R); default sqrt(2): parabolic at q = 2, M2 = 1)",
        cxxopts::value<std::string>())
       ("youngs", "Young's modulus of the crust (GPa; default 0.9, Vaughan 1995)", cxxopts::value<std::string>())
+      ("config", "also the material equivalents (E_I, E_2D, h_S, D_F, V_IP, V_SP, V_Co) and time-step bounds of "
+                 "the body this workflow builds", cxxopts::value<std::string>())
+      ("core-radius", "also the hydrostatic pressure of a body with a core of this radius (R)",
+       cxxopts::value<std::string>())
+      ("core-density-ratio", "core density / mantle density, with --core-radius (default 3)",
+       cxxopts::value<std::string>())
       ("json", "print one JSON object")
       ("h,help", "show this help");
   const auto parsed = parse_arguments(options, argc, argv);
@@ -165,8 +224,23 @@ int command_estimate(int argc, char** argv) {
   }
   const bool single = parsed.count("body") || has_mass;
 
+  std::optional<Json> material, layered;
+  if (parsed.count("config")) {
+    const std::string file = parsed["config"].as<std::string>();
+    material = material_json(load_config(file));
+  }
+  if (parsed.count("core-radius")) {
+    const double rc = positive_option(parsed, "core-radius", 0);
+    if (rc >= 1) throw InputError(fmt::format("--core-radius must be < 1 (R), got {}", rc));
+    layered = layered_json(rc, positive_option(parsed, "core-density-ratio", 3.0));
+  } else if (parsed.count("core-density-ratio")) {
+    throw InputError("--core-density-ratio needs --core-radius");
+  }
+
   if (parsed.count("json")) {
     Json json = {{"encounter", inputs_json(geometry, youngs_GPa)}};
+    if (material) json["material"] = *material;
+    if (layered) json["layered"] = *layered;
     if (single) {
       json.update(body_json(reports.front()));
     } else {
@@ -178,6 +252,20 @@ int command_estimate(int argc, char** argv) {
     print_body(reports.front(), geometry, youngs_GPa);
   } else {
     print_table(reports, geometry, youngs_GPa);
+  }
+  if (!parsed.count("json")) {
+    if (material) print_material(*material, parsed["config"].as<std::string>(), single ? &reports.front().scales : nullptr);
+    if (layered) {
+      const Json& l = *layered;
+      fmt::print("layered body (core radius {:g} R, {:g}x the mantle density): central pressure {:.4g} e_g (uniform "
+                 "body {:.4g} e_g), {:.4g} e_g at the core boundary{}\n",
+                 l["core_radius"].get<double>(), l["density_ratio"].get<double>(),
+                 l["central_pressure_layered"].get<double>(), l["central_pressure_uniform"].get<double>(),
+                 l["core_boundary_pressure_layered"].get<double>(),
+                 single ? fmt::format("; central pressure {:.4g} GPa",
+                                      l["central_pressure_layered"].get<double>() * reports.front().scales.e_g_GPa)
+                        : std::string());
+    }
   }
   return exit_ok;
 }

@@ -8,6 +8,7 @@
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 #include "stages/relax_stage.hpp"
+#include "stages/time_step.hpp"
 #include "cli/stage_command.hpp"
 #include "stages/gravity_kernel_check.hpp"
 
@@ -24,6 +25,10 @@ int command_relax(int argc, char** argv) {
   if (resuming && input.stage.complete)
     throw InputError(fmt::format("{}: relaxation is already complete", from.string()));
   Config config = stage_config(input, from, common, resuming);
+  if (!resuming) {  // dt checked against (or chosen from) the stretched body's stability bound
+    const std::string note = settle_time_step(config, input, from.string());
+    if (!note.empty()) fmt::print(stderr, "tidalcrust: {}\n", note);
+  }
   apply_thread_count(common.threads);
   Checkpoint checkpoint = resuming ? std::move(input) : begin_relax(input, config);
   continue_under_gravity_kernel(checkpoint, config, common.kernel.allow_change, from.string());

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <numbers>
 #include <set>
 #include <sstream>
 #include <toml++/toml.h>
@@ -160,6 +161,37 @@ void visit_keys(C& c, V&& visit) {
   key(c.gravity.kernel,
       {"gravity", "kernel", "-",
        "\"fast\" (AVX-512 estimates where available) or \"portable\" (the same bits on every x86-64 CPU)"});
+
+  // issue 12: [material], [resolution], [core] (docs/material.md); all optional.
+  key(c.material.youngs_modulus,
+      {"material", "youngs_modulus", "e_g", "E_I, interior Young's modulus (eq. 15); gives the body by its material", 0,
+       1e6, true});
+  key(c.material.crust_thickness,
+      {"material", "crust_thickness", "R", "h_S, crust thickness: E_2D = E_I h_S (eq. 21)", 0, 0.5, true});
+  key(c.material.crust_modulus_2d,
+      {"material", "crust_modulus_2d", "e_g R", "E_2D, crust 2D Young's modulus (instead of crust_thickness)", 0, 1e6,
+       true});
+  key(c.material.flexural_rigidity,
+      {"material", "flexural_rigidity", "e_g R^3",
+       "D_F, crust flexural rigidity (eq. 23); default E_I h_S^3/(12 (1 - nu^2)), nu = 1/4", 0, 1e6, true});
+  key(c.material.crust_mass, {"material", "crust_mass", "M", "M_S, crust mass", 0, 0.99, true});
+  key(c.material.crust_density,
+      {"material", "crust_density", "M/R^3", "rho_S, crust density (instead of crust_mass): M_S = 4 pi h_S rho_S", 0,
+       100, true});
+  key(c.material.coupling_speed_ratio,
+      {"material", "coupling_speed_ratio", "-", "V_Co / V_IP (eqs. 25, 16); default 1", 0, 100, true});
+  key(c.material.failure_strain,
+      {"material", "failure_strain", "-", "eps_S, tensile strain at which the crust fails", 0, 10, true});
+  key(c.resolution.shell_level, {"resolution", "shell_level", "-", "L, icosahedron level; default 4", 1, 7});
+  key(c.resolution.interior_spacing,
+      {"resolution", "interior_spacing", "R", "d_IS, interior node spacing; default 0.10 * 2^((4 - L)/2)", 1e-3, 0.5});
+  key(c.resolution.interior_count,
+      {"resolution", "interior_count", "-", "N_I; default paper-T's packing of d_IS spheres", 1, 1'000'000});
+  key(c.resolution.cross_per_shell_node,
+      {"resolution", "cross_per_shell_node", "-", "N_C / N_S from d_C; default 2.33 (paper-T)", 0, 12, true});
+  key(c.core.radius, {"core", "radius", "R", "r_c, radius of a denser, stiffer core", 0, 0.95, true});
+  key(c.core.density_ratio, {"core", "density_ratio", "-", "rho_core / rho_mantle; default 1", 0, 100, true});
+  key(c.core.modulus_ratio, {"core", "modulus_ratio", "-", "E_core / E_mantle; default 1", 0, 1000, true});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4).
@@ -405,12 +437,96 @@ std::vector<Encounter> parse_sweep(const toml::node& node, const std::string& or
 std::string section_toml(const Config& config, std::string_view section) {
   std::string out = fmt::format("[{}]\n", section);
   visit_keys(config, [&](const auto& field, const auto& key) {
-    if (key.section == section) out += toml_line(field, key);
+    if (key.section == section && !derived_by_material(config, key.section, key.name) &&
+        !(config.choose_dt && key.section == "integrator" && key.name == "dt"))
+      out += toml_line(field, key);
   });
   return out;
 }
 
+/// The keys a [material] body derives (beyond eps_S, which material.failure_strain derives).
+constexpr std::string_view material_derived_keys[] = {
+    "interior.count", "interior.radius", "interior.min_separation", "interior.spring_distance",
+    "interior.spring_constant", "shell.level", "shell.mass", "shell.spring_constant", "shell.bending_constant",
+    "cross.distance", "cross.spring_constant"};
+
+/// InputError when [material] and a key it derives are both given ("both" names the file).
+void refuse_derived_key(const Config& config, std::string_view section, std::string_view name,
+                        const std::string& origin) {
+  if (derived_by_material(config, section, name))
+    throw InputError(fmt::format("{}: {}.{} is derived from [material]; give either the spring constants or "
+                                 "[material], not both",
+                                 origin, section, name));
+}
+
 }  // namespace
+
+bool derived_by_material(const Config& config, std::string_view section, std::string_view name) {
+  if (!config.from_material()) return false;
+  const std::string full = fmt::format("{}.{}", section, name);
+  if (full == "shell.failure_strain") return config.material.failure_strain.has_value();
+  return std::find(std::begin(material_derived_keys), std::end(material_derived_keys), full) !=
+         std::end(material_derived_keys);
+}
+
+double material_crust_modulus_2d(const MaterialConfig& m) {
+  if (m.crust_modulus_2d) return *m.crust_modulus_2d;
+  return m.youngs_modulus.value_or(0) * m.crust_thickness.value_or(0);
+}
+
+double material_flexural_rigidity(const MaterialConfig& m) {
+  if (m.flexural_rigidity) return *m.flexural_rigidity;
+  const double E = m.youngs_modulus.value_or(0);
+  const double h = m.crust_thickness.value_or(E > 0 ? material_crust_modulus_2d(m) / E : 0.0);
+  const double nu = material_poisson_ratio;
+  return E * h * h * h / (12 * (1 - nu * nu));
+}
+
+void resolve_material(Config& c, const std::string& origin) {
+  if (!c.from_material()) return;
+  // The material's own ranges first: a bad value must be named, not the key derived from it.
+  visit_keys(c, [&](const auto& field, const auto& key) {
+    if (key.section == "material" || key.section == "resolution" || key.section == "core")
+      check_range(field, key, fmt::format("{}: {}.{}", origin, key.section, key.name));
+  });
+  const MaterialConfig& m = c.material;
+  auto need = [&](bool given, const char* what) {
+    if (!given) throw InputError(fmt::format("{}: [material] needs {}", origin, what));
+  };
+  auto refuse_both = [&](bool a, bool b, const char* what) {
+    if (a && b) throw InputError(fmt::format("{}: [material] takes {}, not both", origin, what));
+  };
+  refuse_both(m.crust_thickness.has_value(), m.crust_modulus_2d.has_value(),
+              "material.crust_thickness or material.crust_modulus_2d");
+  refuse_both(m.crust_mass.has_value(), m.crust_density.has_value(), "material.crust_mass or material.crust_density");
+  if (c.shell.enabled) {
+    need(m.crust_thickness || m.crust_modulus_2d, "material.crust_thickness or material.crust_modulus_2d");
+    need(m.crust_mass || m.crust_density, "material.crust_mass or material.crust_density");
+  }
+  // Resolution: paper-T's geometry (d_IS = 0.10 at level 4, d_I = 2.3 d_IS, r_I = 1 - 1.03 d_IS,
+  // N_I filling the ball at its packing fraction 1869 (d_IS/2)^3 / 0.897^3 = 0.324), with the
+  // interior spacing shrinking as the square root of the shell's (docs/material.md).
+  const std::int64_t level = c.resolution.shell_level.value_or(4);
+  const double spacing = c.resolution.interior_spacing.value_or(0.10 * std::pow(2.0, 0.5 * static_cast<double>(4 - level)));
+  constexpr double packing_fraction = 1869 * 0.05 * 0.05 * 0.05 / (0.897 * 0.897 * 0.897);
+  c.shell.level = level;
+  c.interior.min_separation = spacing;
+  c.interior.spring_distance = 2.3 * spacing;
+  c.interior.radius = c.shell.enabled ? 1.0 - 1.03 * spacing : 1.0 - 0.5 * spacing;
+  const double cells = 2 * c.interior.radius / spacing;
+  c.interior.count = c.resolution.interior_count.value_or(std::llround(packing_fraction * cells * cells * cells));
+  // The crust: E_2D = (2/sqrt 3) k_S (eq. 20), resolution-free; M_S; eps_S.
+  const double e2d = material_crust_modulus_2d(m);
+  c.shell.spring_constant = std::sqrt(3.0) / 2.0 * e2d;
+  const double thickness = m.crust_thickness.value_or(e2d / *m.youngs_modulus);
+  c.shell.mass = m.crust_mass ? *m.crust_mass : 4 * std::numbers::pi * thickness * m.crust_density.value_or(0);
+  if (c.shell.enabled && !(c.shell.mass > 0 && c.shell.mass < 0.99))
+    throw InputError(fmt::format("{}: material.crust_density gives a crust mass of {:.4g} M (must be in (0, 0.99))",
+                                 origin, c.shell.mass));
+  if (m.failure_strain) c.shell.failure_strain = *m.failure_strain;
+  // Built from the network by the build stage; these values are placeholders that nothing reads.
+  c.cross.distance = 1.0 - c.interior.radius + c.interior.spring_distance;
+}
 
 const Encounter& Config::find_encounter(const std::string& name) const {
   std::string known;
@@ -435,6 +551,22 @@ void validate(const Config& config, const std::string& origin) {
   visit_keys(config, [&](const auto& field, const auto& key) {
     check_range(field, key, fmt::format("{}: {}.{}", origin, key.section, key.name));
   });
+  if (!config.from_material()) {
+    bool resolution_given = false;
+    visit_keys(config, [&](const auto& field, const auto& key) {
+      if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>)
+        if (field && key.section == "material")
+          throw InputError(fmt::format("{}: material.{} needs material.youngs_modulus", origin, key.name));
+      if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>)
+        if (field && key.section == "resolution") resolution_given = true;
+    });
+    if (resolution_given) throw InputError(fmt::format("{}: [resolution] applies only to a [material] body", origin));
+  }
+  if (config.core.present() && *config.core.radius >= config.interior.radius)
+    throw InputError(fmt::format("{}: core.radius = {} must be smaller than the interior radius {}", origin,
+                                 *config.core.radius, config.interior.radius));
+  if (!config.core.present() && (config.core.density_ratio || config.core.modulus_ratio))
+    throw InputError(fmt::format("{}: [core] needs core.radius", origin));
   if (config.workflow.name.empty())
     throw InputError(fmt::format("{}: workflow.name must not be empty", origin));
   if (config.interior.min_separation >= config.interior.spring_distance)
@@ -495,6 +627,13 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
         throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
                                      known_keys<Config>(section)));
   }
+  if (config.from_material())  // [material] derives these: giving them too is ambiguous
+    for (auto&& [sk, snode] : root)
+      if (auto* table = snode.as_table())
+        for (auto&& [k, unused] : *table) refuse_derived_key(config, sk.str(), k.str(), origin);
+  resolve_material(config, origin);
+  const toml::table* integrator = root["integrator"].as_table();
+  config.choose_dt = config.from_material() && !(integrator && integrator->get("dt") != nullptr);
   validate(config, origin);
   return config;
 }
@@ -531,6 +670,9 @@ void apply_override(Config& config, const std::string& assignment) {
   if (section != "encounters") {
     if (!set_key(config, section, key, node, "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
+    refuse_derived_key(config, section, key, where);
+    if (section == "integrator" && key == "dt") config.choose_dt = false;
+    resolve_material(config, where);
     return;
   }
   const auto dot2 = key.find('.');  // encounters.NAME.key=value
@@ -547,7 +689,11 @@ void apply_override(Config& config, const std::string& assignment) {
 std::vector<std::pair<std::string, std::string>> section_values(const Config& config, std::string_view section) {
   std::vector<std::pair<std::string, std::string>> values;
   visit_keys(config, [&](const auto& field, const auto& key) {
-    if (key.section == section) values.emplace_back(key.name, toml_text(field));
+    if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>) {
+      if (key.section == section && field) values.emplace_back(key.name, toml_text(*field));
+    } else {
+      if (key.section == section) values.emplace_back(key.name, toml_text(field));
+    }
   });
   return values;
 }

@@ -108,6 +108,42 @@ struct GravityConfig {
   std::string kernel = "fast";
 };
 
+// ---- issue 12: a body described by its material, its resolution and a rocky core ----------------
+// docs/material.md. Every key is optional: a workflow without [material] keeps the printed spring
+// constants of [interior], [shell], [cross] bit for bit.
+
+/// The material of the body, apart from resolution (paper eqs. 15-25). Given (youngs_modulus
+/// set), the keys listed by derived_by_material() are derived from it and must not be given.
+struct MaterialConfig {
+  std::optional<double> youngs_modulus;         ///< E_I, interior Young's modulus (eq. 15), e_g
+  std::optional<double> crust_thickness;        ///< h_S (eq. 21: E_2D = E_S h_S, E_S = E_I), R
+  std::optional<double> crust_modulus_2d;       ///< E_2D (instead of h_S), e_g R
+  std::optional<double> flexural_rigidity;      ///< D_F (eq. 23), e_g R^3; default E_I h_S^3/(12 (1 - 1/16))
+  std::optional<double> crust_mass;             ///< M_S, M
+  std::optional<double> crust_density;          ///< rho_S (instead of M_S: M_S = 4 pi R^2 h_S rho_S), M/R^3
+  std::optional<double> coupling_speed_ratio;   ///< V_Co / V_IP (eqs. 25, 16); default 1
+  std::optional<double> failure_strain;         ///< eps_S (becomes shell.failure_strain)
+};
+
+/// How finely a [material] body is resolved (only with [material]).
+struct ResolutionConfig {
+  std::optional<std::int64_t> shell_level;      ///< L; default 4
+  std::optional<double> interior_spacing;       ///< d_IS, R; default 0.10 * 2^((4 - L)/2)
+  std::optional<std::int64_t> interior_count;   ///< N_I; default: paper-T's packing of d_IS spheres
+  std::optional<double> cross_per_shell_node;   ///< N_C / N_S (sets d_C); default 2.33 (paper-T)
+};
+
+/// A denser, stiffer core inside the icy mantle (any body). Interior nodes inside `radius` get
+/// density_ratio times the mass, interior springs whose midpoint lies inside it modulus_ratio
+/// times the stiffness; total mass stays 1.
+struct CoreConfig {
+  std::optional<double> radius;          ///< r_c, R (unset: no core)
+  std::optional<double> density_ratio;   ///< rho_core / rho_mantle; default 1
+  std::optional<double> modulus_ratio;   ///< E_core / E_mantle; default 1
+  bool present() const { return radius.has_value() && *radius > 0; }
+};
+// ---- end of issue 12 ---------------------------------------------------------------------------
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -119,6 +155,15 @@ struct Config {
   EncounterDefaults encounter;
   GravityConfig gravity;
   std::vector<Encounter> encounters;
+  MaterialConfig material;
+  ResolutionConfig resolution;
+  CoreConfig core;
+  /// No integrator.dt given in a [material] workflow: dt is chosen from the stability bound of
+  /// the stretched body (stages/time_step.hpp); to_toml leaves dt out while this is set.
+  bool choose_dt = false;
+
+  /// True when the body is described by [material] (material.youngs_modulus given).
+  bool from_material() const { return material.youngs_modulus.has_value(); }
 
   /// The encounter with this name; InputError listing the known names otherwise.
   const Encounter& find_encounter(const std::string& name) const;
@@ -148,5 +193,19 @@ std::string encounter_toml(const Encounter& encounter);
 void scale_time_step(Config& config, double factor);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
+
+/// Keys that [material] and [resolution] derive ("interior.spring_constant", ...): given together
+/// with [material] they are an error; to_toml leaves them out of a material body's text.
+bool derived_by_material(const Config& config, std::string_view section, std::string_view name);
+/// Fills the keys a [material] body derives before building (geometry from [resolution], shell
+/// mass, k_S = (sqrt 3 / 2) E_2D, eps_S); no-op without [material]. The spring constants that
+/// need the built network (k_I, k_e, k_C, d_C) are derived by the build stage (docs/material.md).
+/// InputError naming the key for a missing or inconsistent material value.
+void resolve_material(Config& config, const std::string& origin);
+/// Poisson ratio of the random isotropic network (Kot 2015), also taken for the crust's D_F.
+inline constexpr double material_poisson_ratio = 0.25;
+/// The crust's E_2D (e_g R) and D_F (e_g R^3) of a [material] body.
+double material_crust_modulus_2d(const MaterialConfig& material);
+double material_flexural_rigidity(const MaterialConfig& material);
 
 }  // namespace tidalcrust

@@ -49,6 +49,11 @@ double stability_bound(const Body& body, const State& state) {
 
 }  // namespace
 
+double p_wave_speed(double youngs_modulus) {
+  const double nu = interior_poisson_ratio;
+  return std::sqrt(youngs_modulus / mean_density) * std::sqrt((1 - nu) / ((1 + nu) * (1 - 2 * nu)));
+}
+
 DerivedQuantities derive_quantities(const Body& body, const State& state, double interior_radius) {
   KindSums sums[3];
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
@@ -78,14 +83,19 @@ DerivedQuantities derive_quantities(const Body& body, const State& state, double
   for (std::size_t i = 0; i < body.particle_count(); ++i)
     if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) q.M_S += body.mass[i];
 
-  const double nu = interior_poisson_ratio;
-  q.V_IP = std::sqrt(q.E_I / mean_density) * std::sqrt((1 - nu) / ((1 + nu) * (1 - 2 * nu)));
+  q.V_IP = p_wave_speed(q.E_I);
   if (q.M_S > 0) {
     q.V_SP = std::sqrt(q.k_S * 4.0 * std::numbers::pi / q.M_S);  // R = 1
     q.V_Co = std::sqrt(q.k_C * static_cast<double>(cross.count) / q.M_S) * q.L_C;
   }
   // E_2D = (2/sqrt 3) k_S = E_S h_S with the shell modulus taken equal to the interior's.
   if (q.E_I > 0 && shell.count > 0) q.h_S = 2.0 / std::sqrt(3.0) * q.k_S / q.E_I;
+  q.E_2D = 2.0 / std::sqrt(3.0) * q.k_S;
+  if (body.hinge_count() > 0) {
+    double sum = 0;
+    for (double k : body.hinge_stiffness) sum += k;
+    q.D_F = sum / static_cast<double>(body.hinge_count()) * q.L_S / 2.0;
+  }
   q.dt_max = stability_bound(body, state);
   return q;
 }

@@ -18,8 +18,14 @@ struct DerivedQuantities {
   double V_SP = 0;  ///< shell P-wave speed, eq. 19: sqrt(k_S 4 pi R^2 / M_S)
   double V_Co = 0;  ///< shell-interior coupling speed, eq. 25: sqrt(k_C N_C / M_S) L_C
   double h_S = 0;   ///< crust thickness from E_2D = (2/sqrt 3) k_S = E_S h_S with E_S = E_I, R
+  double E_2D = 0;  ///< crust 2D Young's modulus, eq. 20: (2/sqrt 3) k_S, e_g R
+  double D_F = 0;   ///< crust flexural rigidity, eq. 23: k_e L_S / 2 (mean hinge k_e), e_g R^3
   double dt_max = 0;  ///< stability bound, eq. 13: min over springs sqrt(mu / (k b)), t_grav
 };
+
+/// P-wave speed of eq. 16 for a Young's modulus E (e_g) at the mean density 3/(4 pi) and Poisson
+/// ratio 1/4, in sqrt(GM/R).
+double p_wave_speed(double youngs_modulus);
 
 /// `interior_radius` is r_I (the volume V of eq. 15 is that of the sphere of radius r_I).
 DerivedQuantities derive_quantities(const Body& body, const State& state, double interior_radius);

@@ -34,6 +34,13 @@ std::string dynamics(const Config& config) {
   return force_law(config) + keys_of(config, "shell", Keys::only, {"failure_strain", "failed_stiffness_factor"});
 }
 
+/// [material], [resolution], [core] (issue 12): only the keys given, so a body without them keeps
+/// its fingerprint.
+std::string material_keys(const Config& config) {
+  return keys_of(config, "material", Keys::all_but, {}) + keys_of(config, "resolution", Keys::all_but, {}) +
+         keys_of(config, "core", Keys::all_but, {});
+}
+
 }  // namespace
 
 // Each later stage also records its parent's state_hash, so a fingerprint only needs what the
@@ -44,11 +51,13 @@ std::string build_fingerprint(const Config& config) {
                      config.integrator.softening_fraction) +
          keys_of(config, "interior", Keys::all_but, {}) +
          keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
-         keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"});
+         keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"}) +
+         material_keys(config);
 }
 
 std::string stretch_fingerprint(const Config& config) {
-  return keys_of(config, "stretch", Keys::all_but, {}) + force_law(config);
+  return keys_of(config, "stretch", Keys::all_but, {}) + force_law(config) +
+         keys_of(config, "core", Keys::all_but, {});  // the layered hydrostatic pressure
 }
 
 std::string relax_fingerprint(const Config& config) {

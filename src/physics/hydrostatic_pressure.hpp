@@ -1,6 +1,7 @@
 #pragma once
-// Pressure of a self-gravitating sphere of uniform density in hydrostatic equilibrium
-// (paper section 2.3, Dobrovolskis 1990 eq. 2), in the units G = M = R = 1.
+// Pressure of a self-gravitating sphere in hydrostatic equilibrium (paper section 2.3,
+// Dobrovolskis 1990 eq. 2), uniform or with a denser core (issue 12), in the units G = M = R = 1.
+#include <cmath>
 #include <numbers>
 
 namespace tidalcrust {
@@ -13,5 +14,35 @@ inline constexpr double mean_body_density = 3.0 / (4.0 * std::numbers::pi);
 inline double hydrostatic_pressure(double r) {
   return 2.0 / 3.0 * std::numbers::pi * mean_body_density * mean_body_density * (1.0 - r * r);
 }
+
+/// A two-layer sphere of mass M = 1 and radius R = 1: a core of radius r_c with density
+/// density_ratio times the mantle's (mantle density 3/(4 pi) / (1 + (q - 1) r_c^3)).
+struct LayeredSphere {
+  double core_radius = 0;    ///< r_c, R
+  double density_ratio = 1;  ///< q = rho_c / rho_m
+
+  double mantle_density() const {
+    return mean_body_density / (1.0 + (density_ratio - 1.0) * core_radius * core_radius * core_radius);
+  }
+  double core_density() const { return density_ratio * mantle_density(); }
+
+  /// P(r) (e_g): the hydrostatic equation dP/dr = -rho(r) G m(r)/r^2 with P(R) = 0, integrated
+  /// in closed form for the two layers (derivation in docs/material.md):
+  ///   mantle r >= r_c: P = rho_m [A (1/r - 1) + (2/3) pi rho_m (1 - r^2)],
+  ///                    A = (4/3) pi r_c^3 (rho_c - rho_m) (the core's excess mass);
+  ///   core   r <  r_c: P = P(r_c) + (2/3) pi rho_c^2 (r_c^2 - r^2).
+  /// With density_ratio = 1 or r_c = 0 this is hydrostatic_pressure(r).
+  double pressure(double r) const {
+    const double pi = std::numbers::pi;
+    const double rho_m = mantle_density(), rho_c = core_density(), rc = core_radius;
+    const double excess = 4.0 / 3.0 * pi * rc * rc * rc * (rho_c - rho_m);
+    auto mantle = [&](double x) {  // the excess term vanishes without a core (also at x = 0)
+      const double core_pull = excess != 0 ? excess * (1.0 / x - 1.0) : 0.0;
+      return rho_m * (core_pull + 2.0 / 3.0 * pi * rho_m * (1.0 - x * x));
+    };
+    if (r >= rc) return mantle(r);
+    return mantle(rc) + 2.0 / 3.0 * pi * rho_c * rho_c * (rc * rc - r * r);
+  }
+};
 
 }  // namespace tidalcrust

@@ -47,6 +47,7 @@ TEST(StageFingerprint, EachValueReachesExactlyTheStagesThatReadIt) {
   EXPECT_EQ(changed_by("encounter.fail_interval=2"), "re");
   EXPECT_EQ(changed_by("encounters.T5.pericenter=1.9"), "e");
   EXPECT_EQ(changed_by("integrator.dt=0.001"), "re");
+  EXPECT_EQ(changed_by("core.radius=0.4"), "bs");  // masses and stiffnesses; the layered pressure
   // Checkpoint intervals and the workflow name change no result.
   EXPECT_EQ(changed_by("relax.checkpoint_interval=100"), "");
   EXPECT_EQ(changed_by("encounter.checkpoint_interval=100"), "");

@@ -1,0 +1,37 @@
+#pragma once
+// What a body described by its material (issue 12, [material] in a workflow) needs from its
+// built geometry: the cross-spring distance d_C that gives a number of cross springs per shell
+// node, and the spring constants that meet the material's targets exactly on this network
+// (docs/material.md). Units: G = M = R = 1.
+#include <vector>
+
+#include "base/vec3.hpp"
+
+namespace tidalcrust {
+
+/// d_C such that round(per_shell_node * N_S) shell-interior pairs lie closer than it: halfway
+/// between that many-th smallest pair distance and the next. interior [N_I], shell [N_S]
+/// positions (R); per_shell_node > 0. Deterministic (a sort of distances).
+double cross_distance_for(const std::vector<Vec3>& interior, const std::vector<Vec3>& shell, double per_shell_node);
+
+/// Spring constant k (G M^2/R^3) that makes eq. 15 exact: E = (1/6V) sum k L^2, so
+/// k = 6 V E / sum L^2, for a modulus E (e_g), volume V (R^3) and the network's sum of squared
+/// rest lengths (R^2).
+inline double spring_constant_for_modulus(double youngs_modulus, double volume, double sum_length2) {
+  return 6.0 * volume * youngs_modulus / sum_length2;
+}
+
+/// Cross-spring constant that makes eq. 25 exact: V_Co = sqrt(k_C N_C / M_S) L_C, so
+/// k_C = (V_Co / L_C)^2 M_S / N_C (G M^2/R^3).
+inline double cross_constant_for_speed(double coupling_speed, double mean_length, double shell_mass,
+                                       double cross_count) {
+  const double ratio = coupling_speed / mean_length;
+  return ratio * ratio * shell_mass / cross_count;
+}
+
+/// Hinge constant from eq. 23: k_e L_S / 2 = D_F, so k_e = 2 D_F / L_S (G M^2/R^2).
+inline double hinge_constant_for_rigidity(double flexural_rigidity, double mean_edge) {
+  return 2.0 * flexural_rigidity / mean_edge;
+}
+
+}  // namespace tidalcrust

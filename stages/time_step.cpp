@@ -1,0 +1,44 @@
+#include "stages/time_step.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "base/errors.hpp"
+#include "integrate/stability_bound.hpp"
+
+namespace tidalcrust {
+
+std::string settle_time_step(Config& config, const Checkpoint& body, const std::string& origin) {
+  const StabilityBound bound = stability_bound(body.body, body.state);
+  if (!(bound.safe_dt > 0)) {
+    config.choose_dt = false;
+    return "";
+  }
+  std::string note;
+  if (config.choose_dt) {
+    // Two significant digits, rounded down: a dt that reads well in file names and logs.
+    const double target = chosen_dt_fraction * bound.safe_dt;
+    const double unit = std::pow(10.0, std::floor(std::log10(target)) - 1);
+    config.integrator.dt = std::floor(target / unit) * unit;
+    config.choose_dt = false;
+    note = fmt::format("dt: chose {:.3g} t_grav ({} x the safe bound {:.4g} t_grav, limited by {})",
+                       config.integrator.dt, chosen_dt_fraction, bound.safe_dt,
+                       bound.safe_limit.describe(body.body, body.state));
+  }
+  const double dt = config.integrator.dt;
+  if (dt > bound.unstable_dt)
+    throw InputError(fmt::format(
+        "{}: integrator.dt = {:.4g} cannot be stable: it exceeds 2/omega = {:.4g} t_grav (omega^2 the stiffness/mass of "
+        "{}; docs/material.md); choose dt <= {:.3g}{}",
+        origin, dt, bound.unstable_dt, bound.unstable_limit.describe(body.body, body.state),
+        chosen_dt_fraction * bound.safe_dt,
+        config.from_material() ? " or leave integrator.dt out to have it chosen" : ""));
+  if (note.empty() && dt > bound.safe_dt)
+    note = fmt::format("warning: integrator.dt = {:.4g} is above the safe stability bound {:.4g} t_grav (below the "
+                       "certain-instability bound {:.4g}; limited by {})",
+                       dt, bound.safe_dt, bound.unstable_dt, bound.safe_limit.describe(body.body, body.state));
+  return note;
+}
+
+}  // namespace tidalcrust
