@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "base/errors.hpp"
@@ -31,6 +32,10 @@ int command_run(int argc, char** argv) {
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
   if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
+
+  // Line-buffered stdout: in a log file (a Slurm job's) the stage lines stay in order with the
+  // progress lines on stderr.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
 
   // Everything is checked before anything is written.
   const fs::path workflow = parsed["workflow"].as<std::string>();

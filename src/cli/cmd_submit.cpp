@@ -124,7 +124,7 @@ std::string array_script(const Submission& s) {
   const std::string throttle = s.max_running ? fmt::format("%{}", *s.max_running) : "";
   return fmt::format(
       "#!/bin/bash\n"
-      "# tidalcrust submit: the {0} encounters of workflow {1}, one per task, named in line\n"
+      "# tidalcrust submit: the {0} encounter{9} of workflow {1}, one per task, named in line\n"
       "# (task index + 1) of {2}.\n"
       "#SBATCH --job-name={1}-encounters\n"
       "#SBATCH --array=0-{3}{4}\n"
@@ -135,7 +135,8 @@ std::string array_script(const Submission& s) {
       "echo \"tidalcrust encounter $name: task $SLURM_ARRAY_TASK_ID of job $SLURM_ARRAY_JOB_ID on $(hostname), restart ${{SLURM_RESTART_COUNT:-0}}, $(date -u +%FT%TZ)\"\n"
       "{8}",
       s.encounters.size(), s.name, s.names_file().string(), s.encounters.size() - 1, throttle, common_directives(s),
-      s.logs().string(), shell_quoted(s.names_file().string()), run_line(s, "--only \"$name\""));
+      s.logs().string(), shell_quoted(s.names_file().string()), run_line(s, "--only \"$name\""),
+      s.encounters.size() == 1 ? "" : "s");
 }
 
 std::optional<fs::path> find_on_path(const std::string& program) {

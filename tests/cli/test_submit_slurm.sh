@@ -72,6 +72,11 @@ for task in "${!names[@]}"; do
   scontrol requeue "${array_job}_${task}" || { kill -CONT "$pid"; on_failure; fail "scontrol requeue ${array_job}_${task} failed"; }
   requeued=$task
   echo "requeued task $task ($name) while its encounter ran (pid $pid)"
+  # Slurm makes a requeued job eligible only after a delay; let it start as soon as it is pending.
+  slurm_wait_for 120 "task $task did not return to the queue" \
+    bash -c "squeue -h -j ${array_job}_${task} -o %T | grep -qx PENDING"
+  echo "requeued task: $(scontrol show job "${array_job}_${task}" | grep -o 'EligibleTime=[^ ]*')"
+  scontrol update JobId="${array_job}_${task}" StartTime=now || fail "cannot reset the start time of task $task"
   break
 done
 [ -n "$requeued" ] || { on_failure; fail "every task had finished its encounter before it could be requeued"; }
@@ -93,7 +98,11 @@ for file in body/build.h5 body/stretch.h5 body/relax.h5 "${names[@]/%//encounter
 done
 log=$work/sweep/slurm/logs/encounter-$requeued.log
 grep -q "restart 1" "$log" || { on_failure; fail "$log shows no second start of the requeued task"; }
-grep -q "resuming from .*encounter.mid.h5" "$log" ||
-  { on_failure; fail "$log: the requeued task did not resume from its mid-stage checkpoint"; }
+# SIGTERM from Slurm: the first attempt stopped at step N and wrote its mid-stage checkpoint there;
+# the second resumed from exactly that step.
+stopped=$(sed -n 's/.*: interrupted at step \([0-9]*\).*/\1/p' "$log" | head -n 1)
+[ -n "$stopped" ] || { on_failure; fail "$log: the requeued task did not stop on Slurm's SIGTERM"; }
+grep -q "resuming from .*/encounter.mid.h5 (step $stopped)" "$log" ||
+  { on_failure; fail "$log: the requeued task did not resume from the checkpoint written at step $stopped"; }
 echo "--- $log"; cat "$log"
 echo "PASS: 4 encounters under Slurm bit-identical to the local run, also the requeued one"
