@@ -25,6 +25,7 @@
 #include "io/atomic_file.hpp"
 #include "io/xxh3_hasher.hpp"
 #include "stages/encounter_stage.hpp"
+#include "stages/workflow.hpp"
 
 extern char** environ;
 
@@ -67,12 +68,15 @@ std::string shell_quoted(const std::string& text) {
 }
 
 /// Seconds of a Slurm time limit (minutes, minutes:seconds, hours:minutes:seconds, days-hours,
-/// days-hours:minutes, days-hours:minutes:seconds); InputError naming --time otherwise.
+/// days-hours:minutes, days-hours:minutes:seconds; -1 for infinite or unlimited); InputError
+/// naming --time otherwise.
 long time_limit_seconds(const std::string& text) {
+  if (text == "infinite" || text == "unlimited" || text == "INFINITE" || text == "UNLIMITED") return -1;
   static const std::regex format(R"(^(?:(\d{1,5})-(\d{1,2})(?::(\d{1,2})(?::(\d{1,2}))?)?|(\d{1,7})(?::(\d{1,2})(?::(\d{1,2}))?)?)$)");
   std::smatch m;
   if (!std::regex_match(text, m, format))
-    throw InputError(fmt::format("--time '{}' is not a Slurm time limit (MM, MM:SS, HH:MM:SS, D-HH, D-HH:MM or D-HH:MM:SS)", text));
+    throw InputError(fmt::format(
+        "--time '{}' is not a Slurm time limit (MM, MM:SS, HH:MM:SS, D-HH, D-HH:MM, D-HH:MM:SS or unlimited)", text));
   const auto number = [&](int i) { return m[i].matched ? std::stol(m[i].str()) : 0L; };
   long seconds = 0;
   if (m[1].matched)
@@ -279,6 +283,8 @@ int command_submit(int argc, char** argv) {
   s.out = fs::absolute(parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
                                            : fs::path("checkpoints") / config.workflow.name)
               .lexically_normal();
+  // A folder of another body would fail the body job and leave the array waiting forever.
+  check_same_body(s.out / "body" / "build.h5", config);
   std::error_code ec;
   s.executable = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw InputError(fmt::format("cannot tell this program's path (/proc/self/exe: {})", ec.message()));

@@ -93,6 +93,14 @@ TEST(CmdSubmit, DryRunPrintsTheBodyJobAndAThrottledRequeueableArrayOfTheExpanded
   const CliResult plain = run_cli(fmt::format("submit {} --slurm --dry-run --out {}", quoted(workflow), quoted(out)));
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_TRUE(contains_line(section(plain.out, "/slurm/encounters.sbatch"), "#SBATCH --array=0-3")) << plain.out;
+
+  // Slurm's forms of a time limit are accepted as written.
+  for (const char* time : {"90", "2:30", "1:00:00", "1-0", "1-12:30", "1-12:30:15", "unlimited"}) {
+    const CliResult r =
+        run_cli(fmt::format("submit {} --slurm --dry-run --time {} --out {}", quoted(workflow), time, quoted(out)));
+    EXPECT_EQ(r.exit_code, 0) << time << ": " << r.err;
+    EXPECT_NE(r.out.find(fmt::format("#SBATCH --time={}\n", time)), std::string::npos) << time;
+  }
 }
 
 TEST(CmdSubmit, BadOptionsAreOneLineErrorsWithExitTwoThatWriteAndSubmitNothing) {
@@ -108,6 +116,7 @@ TEST(CmdSubmit, BadOptionsAreOneLineErrorsWithExitTwoThatWriteAndSubmitNothing) 
       {"--slurm --dry-run --max-running -2", "--max-running must be at least 1, got -2"},
       {"--slurm --dry-run --cpus-per-task 0", "--cpus-per-task must be in 1..256, got 0"},
       {"--slurm --dry-run --time 1h", "--time '1h' is not a Slurm time limit"},
+      {"--slurm --dry-run --time forever", "--time 'forever' is not a Slurm time limit"},
       {"--slurm --dry-run --time 1:2:3:4", "--time '1:2:3:4' is not a Slurm time limit"},
       {"--slurm --dry-run --time 1", "--time '1' is shorter than 120 s"},
       {"--slurm --dry-run --partition 'a b'", "--partition 'a b' is not a Slurm name"},
@@ -131,6 +140,20 @@ TEST(CmdSubmit, BadOptionsAreOneLineErrorsWithExitTwoThatWriteAndSubmitNothing) 
   EXPECT_EQ(count_lines(err), 1) << err;
   EXPECT_NE(err.find("sbatch is not on PATH"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(out));
+  // An output folder that holds another body: the body job would fail and its array never run.
+  const fs::path other = scratch.path / "other";
+  fs::create_directories(other / "body");
+  const CliResult built = run_cli(fmt::format("build --config {} --set workflow.seed=8 --out {}", quoted(workflow),
+                                              quoted(other / "body/build.h5")));
+  ASSERT_EQ(built.exit_code, 0) << built.err;
+  const CliResult other_body =
+      run_cli(fmt::format("submit {} --slurm --out {} --dry-run", quoted(workflow), quoted(other)));
+  EXPECT_EQ(other_body.exit_code, 2);
+  EXPECT_EQ(count_lines(other_body.err), 1) << other_body.err;
+  EXPECT_NE(other_body.err.find("build.h5: the output folder holds checkpoints of a different body"),
+            std::string::npos)
+      << other_body.err;
+  EXPECT_FALSE(fs::exists(other / "slurm"));
   // A workflow error names the file.
   const CliResult missing = run_cli("submit " + quoted(scratch.path / "none.toml") + " --slurm --dry-run");
   EXPECT_EQ(missing.exit_code, 2);
