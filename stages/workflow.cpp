@@ -162,7 +162,8 @@ std::optional<Checkpoint> stepping_stage(const RunContext& ctx, const std::strin
   return checkpoint;
 }
 
-/// Refuses an output folder that holds another body, before anything is written.
+}  // namespace
+
 void check_same_body(const fs::path& build_file, const Config& config) {
   if (!fs::exists(build_file)) return;
   const Checkpoint existing = read_checkpoint(build_file);
@@ -173,6 +174,8 @@ void check_same_body(const fs::path& build_file, const Config& config) {
         build_file.string(),
         existing.stage.fingerprint.empty() ? "no fingerprint" : first_difference(existing.stage.fingerprint, wanted)));
 }
+
+namespace {
 
 void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpoint& encounter, const fs::path& out,
                       const std::string& name) {

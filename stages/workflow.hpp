@@ -38,6 +38,10 @@ struct WorkflowResult {
   std::vector<WorkflowEncounter> encounters;
 };
 
+/// Refuses an output folder whose body/build.h5 (`build_file`) holds another body than `config`
+/// builds: InputError naming the file and the first difference. Nothing when the file is absent.
+void check_same_body(const std::filesystem::path& build_file, const Config& config);
+
 /// Runs (or resumes) the workflow of `config`, which must be validated. InputError before
 /// anything is written if root holds checkpoints of another body; SimulationError on a blow-up
 /// (with a diagnostic checkpoint beside the stage's file).

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "base/errors.hpp"
@@ -24,6 +25,7 @@ int command_run(int argc, char** argv) {
       "dt-factor", "run the encounters at dt times this factor, into a separate folder",
       cxxopts::value<double>()->default_value("1.0"))(
       "only", "run only this encounter (repeatable)", cxxopts::value<std::vector<std::string>>())(
+      "body-only", "run only the body chain (build, stretch, relax), no encounter")(
       "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "quiet", "no progress lines")("h,help", "show this help");
   add_kernel_options(options);
@@ -31,6 +33,10 @@ int command_run(int argc, char** argv) {
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
   if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
+
+  // Line-buffered stdout: in a log file (a Slurm job's) the stage lines stay in order with the
+  // progress lines on stderr.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
 
   // Everything is checked before anything is written.
   const fs::path workflow = parsed["workflow"].as<std::string>();
@@ -45,7 +51,11 @@ int command_run(int argc, char** argv) {
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
   const int threads = checked_thread_count(parsed["threads"].as<int>());
   std::vector<Encounter> encounters = config.encounters;
-  if (parsed.count("only")) {
+  if (parsed.count("body-only")) {
+    // The first job of `submit --slurm`: the shared body, before the encounters' job array.
+    if (parsed.count("only")) throw InputError("--body-only and --only exclude each other");
+    encounters.clear();
+  } else if (parsed.count("only")) {
     encounters.clear();
     for (const auto& name : parsed["only"].as<std::vector<std::string>>())
       encounters.push_back(config.find_encounter(name));

@@ -6,6 +6,7 @@
 namespace tidalcrust {
 
 int command_run(int argc, char** argv);
+int command_submit(int argc, char** argv);
 int command_build(int argc, char** argv);
 int command_stretch(int argc, char** argv);
 int command_relax(int argc, char** argv);
