@@ -29,14 +29,8 @@ int command_run(int argc, char** argv) {
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
-
   // Everything is checked before anything is written.
-  const fs::path workflow = parsed["workflow"].as<std::string>();
-  Config config = load_config(workflow);
-  if (parsed.count("set"))
-    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
-  validate(config, "--set");
+  Config config = workflow_config(parsed);
   const double dt_factor = parsed["dt-factor"].as<double>();
   if (!std::isfinite(dt_factor) || dt_factor <= 0)
     throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
