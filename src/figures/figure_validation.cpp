@@ -9,15 +9,19 @@
 
 namespace tidalcrust {
 
+PlotAxes signal_plot_axes(const std::vector<double>& time, const std::vector<double>& signal) {
+  const auto [lo, hi] = std::minmax_element(signal.begin(), signal.end());
+  const double margin = 0.06 * std::max(*hi - *lo, 1e-300);
+  return PlotAxes(PageRect{84, 48, 520, 280}, time.front(), time.back(), *lo - margin, *hi + margin);
+}
+
 std::vector<std::filesystem::path> write_signal_plot(const std::vector<double>& time, const std::vector<double>& signal,
                                                      const std::vector<TimeMark>& marks, const std::filesystem::path& stem,
                                                      const std::string& title, const std::string& y_label) {
   if (time.size() != signal.size() || time.size() < 2)
     throw InputError(stem.string() + ": a signal plot needs equally many times and values, at least two");
-  const auto [lo, hi] = std::minmax_element(signal.begin(), signal.end());
-  const double margin = 0.06 * std::max(*hi - *lo, 1e-300);
-  const PageRect area{84, 48, 520, 280};
-  const PlotAxes axes(area, time.front(), time.back(), *lo - margin, *hi + margin);
+  const PlotAxes axes = signal_plot_axes(time, signal);
+  const PageRect& area = axes.area();
   return write_figure(stem, 640, 380, [&](cairo_t* cr) {
     cairo_save(cr);
     axes.clip(cr);

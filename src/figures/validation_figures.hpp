@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "figures/plot_axes.hpp"
+
 namespace tidalcrust {
 
 /// A vertical line at time x (t_grav) with a short label; dashed grey for a theory (label at the
@@ -14,6 +16,9 @@ struct TimeMark {
   std::string label;  ///< drawn beside the line (may be empty)
   bool measured = false;
 };
+
+/// Where write_signal_plot puts time (x, t_grav) and signal (y), in points.
+PlotAxes signal_plot_axes(const std::vector<double>& time, const std::vector<double>& signal);
 
 /// Plot of signal[i] against time[i] (same length, >= 2 samples) with the marks; returns the PNG
 /// and SVG paths. InputError naming the file if it cannot be written.
