@@ -209,6 +209,12 @@ LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, cons
   r.incompressible_h2 = incompressible_love_h2(material.youngs_modulus / (2 * (1 + material.poisson_ratio)),
                                                material.density, material.radius);
   r.tidal_strength = surface_displacement / theory.h;
+  const double omega_lamb = 2 * pi / lamb_breathing_period(material.youngs_modulus, material.poisson_ratio,
+                                                           material.density, material.radius);
+  if (damping <= 0) damping = std::min(50.0, 5 * omega_lamb);
+  if (duration <= 0) duration = std::max(3.0, 30 / omega_lamb);
+  r.damping = damping;
+  r.duration = duration;
   const Body& body = relaxed.body;
   const State rest = state_at_rest(relaxed);
   const Vec3 center = body_center_of_mass(body, rest);

@@ -4,11 +4,13 @@
 // <out>/validate/validation.json and figures, and prints a table. docs/validation.md.
 #include <fmt/format.h>
 
-#include <filesystem>
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "analysis/elastic_validation.hpp"
@@ -43,7 +45,7 @@ const Check checks[] = {
     {"love", "Love number h2 in a static tidal field", "degree-2 Love number h2", "",
      "Takeuchi & Saito (1972) eq. 82, static: homogeneous compressible self-gravitating sphere", 0.10},
     {"flexure", "flexural rigidity of the crust lattice", "flexural rigidity D", "G M^2/R",
-     "eq. 23: D_F = k_e L_S / 2; thin plate w0 = q0/(D k^4) (Timoshenko & Woinowsky-Krieger sec. 27)", 0.20},
+     "eq. 23: D_F = k_e L_S / 2; thin plate w0 = q0/(D k^4) (Timoshenko & Woinowsky-Krieger 1959)", 0.20},
     {"p-wave", "P-wave travel time", "P-wave travel time pole to pole", "t_grav", "eq. 16: straight path / V_IP",
      0.10}};
 
@@ -113,7 +115,9 @@ int command_validate(int argc, char** argv) {
   const Checkpoint relaxed = read_checkpoint(relaxed_file);
   const BodyMaterial material = body_material(relaxed, config);
   const fs::path out = workflow_options.root / "validate";
-  fs::create_directories(out);
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(fmt::format("{}: cannot create the folder: {}", out.string(), error.message()));
   std::vector<Row> rows;
   // Whether check `name` was asked for; says so when it starts.
   const auto wanted = [&](const char* name) {
@@ -156,7 +160,8 @@ int command_validate(int argc, char** argv) {
     const LoveResult l = measure_love_h2(relaxed, config, material);
     add("love", l.h2, l.theory_h2);
     details["love"] = Json{{"h2_at_two_thirds", l.h2_early}, {"incompressible_h2", l.incompressible_h2},
-                           {"tidal_strength", l.tidal_strength}, {"shell_radius", l.shell_radius}};
+                           {"tidal_strength", l.tidal_strength}, {"shell_radius", l.shell_radius},
+                           {"damping", l.damping}, {"duration", l.duration}};
   }
   if (wanted("flexure")) {
     if (material.hinge_stiffness > 0) {

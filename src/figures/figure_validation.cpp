@@ -25,6 +25,7 @@ std::vector<std::filesystem::path> write_signal_plot(const std::vector<double>& 
   return write_figure(stem, 640, 380, [&](cairo_t* cr) {
     cairo_save(cr);
     axes.clip(cr);
+    int labelled = 0;  // labels step down the plot one line each, so that close marks stay legible
     for (const auto& mark : marks) {
       cairo_save(cr);
       if (mark.measured) {
@@ -38,10 +39,13 @@ std::vector<std::filesystem::path> write_signal_plot(const std::vector<double>& 
       cairo_move_to(cr, axes.page_x(mark.time), area.top);
       cairo_line_to(cr, axes.page_x(mark.time), area.bottom());
       cairo_stroke(cr);
-      // Theory labels at the top, measured ones at the bottom, so that close marks stay legible.
-      if (!mark.label.empty())
-        draw_text(cr, mark.label, axes.page_x(mark.time) + 3, mark.measured ? area.bottom() - 4 : area.top + 4, 0,
-                  mark.measured ? 1 : 0, tick_font_size);
+      // Theory labels from the top down, measured ones from the bottom up.
+      if (!mark.label.empty()) {
+        const double step = 12.0 * labelled++;
+        draw_text(cr, mark.label, axes.page_x(mark.time) + 3,
+                  mark.measured ? area.bottom() - 4 - step : area.top + 4 + step, 0, mark.measured ? 1 : 0,
+                  tick_font_size);
+      }
       cairo_restore(cr);
     }
     axes.path(cr, time, signal);

@@ -9,8 +9,8 @@
 
 namespace tidalcrust {
 
-/// A vertical line at time x (t_grav) with a short label; dashed grey for a theory (label at the
-/// top), solid red for a measurement (label at the bottom).
+/// A vertical line at time x (t_grav) with a short label; dashed grey for a theory (labels from
+/// the top down), solid red for a measurement (labels from the bottom up), one line per label.
 struct TimeMark {
   double time = 0;
   std::string label;  ///< drawn beside the line (may be empty)

@@ -5,11 +5,12 @@
 //
 //  - Lamb (1882) breathing mode: the fundamental radial vibration of a homogeneous elastic sphere
 //    with a free surface, without self-gravity (Love 1927, "A Treatise on the Mathematical
-//    Theory of Elasticity", sec. 195; Aki & Richards 2002, sec. 8.7).
+//    Theory of Elasticity", sec. 195; also Aki & Richards 2002, "Quantitative Seismology").
 //  - Static degree-n Love numbers of a homogeneous, compressible, self-gravitating elastic
 //    sphere: the spheroidal equations y1..y6 of Takeuchi & Saito (1972, eq. 82) with omega = 0,
 //    integrated with RK4 from the centre; and the incompressible closed form (Love 1911).
-//  - A thin plate under a sinusoidal load (Timoshenko & Woinowsky-Krieger 1959, sec. 27) and
+//  - A thin plate under a sinusoidal load (Timoshenko & Woinowsky-Krieger 1959, "Theory of
+//    Plates and Shells", Navier's solution) and
 //    the flexural rigidity of Bridson's hinges on a triangular lattice.
 namespace tidalcrust {
 
@@ -55,12 +56,13 @@ LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, d
                                             double radius, int steps = 20000);
 
 /// h2 of a homogeneous incompressible self-gravitating sphere (Love 1911; e.g. Murray & Dermott
-/// 1999, sec. 4.9, with k2 = (3/5) h2): h2 = (5/2) / (1 + 19 mu / (2 rho g a)), G = 1.
+/// 1999, "Solar System Dynamics", with k2 = (3/5) h2): h2 = (5/2) / (1 + 19 mu / (2 rho g a)), G = 1.
 double incompressible_love_h2(double shear_modulus, double density, double radius);
 
 /// Amplitude w0 (R) of the deflection w0 sin(k x) of a thin plate of flexural rigidity D
 /// (G M^2/R) under the load q0 sin(k x) per unit area (G M^2/R^3), from D d^4w/dx^4 = q
-/// (Timoshenko & Woinowsky-Krieger sec. 27; also the simply supported strip of length pi/k):
+/// (Timoshenko & Woinowsky-Krieger 1959, Navier's solution; also the simply supported strip of
+/// length pi/k):
 /// w0 = q0 / (D k^4).
 double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, double flexural_rigidity);
 
