@@ -86,6 +86,15 @@ cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char**
   return parsed;
 }
 
+Config workflow_config(const cxxopts::ParseResult& parsed) {
+  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
+  Config config = load_config(std::filesystem::path(parsed["workflow"].as<std::string>()));
+  if (parsed.count("set"))
+    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
+  validate(config, "--set");
+  return config;
+}
+
 Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,
                       const CommonOptions& common) {
   Config config = common.config_file ? load_config(*common.config_file)

@@ -43,6 +43,11 @@ std::vector<std::string> spell_single_letter_long_options(int argc, char** argv)
 /// Single-letter options are accepted as --x (see spell_single_letter_long_options).
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
 
+/// The configuration of the positional "workflow" file of `parsed` (a TOML workflow) with each
+/// --set applied and every range checked, as `run` and `validate` read it. InputError when the
+/// file is not given, unreadable or bad.
+Config workflow_config(const cxxopts::ParseResult& parsed);
+
 /// The configuration a stage runs with: `stored` (TOML text from the input checkpoint),
 /// replaced by --config when given, then each --set applied, then --dt-factor and --gravity-kernel.
 Config resolve_config(const std::string& stored_toml, const std::string& stored_origin,

@@ -32,18 +32,12 @@ int command_run(int argc, char** argv) {
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
-
   // Line-buffered stdout: in a log file (a Slurm job's) the stage lines stay in order with the
   // progress lines on stderr.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
 
   // Everything is checked before anything is written.
-  const fs::path workflow = parsed["workflow"].as<std::string>();
-  Config config = load_config(workflow);
-  if (parsed.count("set"))
-    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
-  validate(config, "--set");
+  Config config = workflow_config(parsed);
   const KernelOptions kernel = read_kernel_options(parsed);
   kernel.apply(config);
   const double dt_factor = parsed["dt-factor"].as<double>();

@@ -27,6 +27,7 @@ void print_usage(std::FILE* to) {
       "  compare A.h5 B.h5 [--json]\n"
       "  estimate [--body NAME | --mass KG --radius KM] [--json]\n"
       "  bench [--config WORKFLOW.toml] [--steps N] [--json]\n"
+      "  validate WORKFLOW.toml [--out DIR] [--measure breathing,love,flexure,p-wave]\n"
       "  --version, --help\n"
       "Each command takes --help.\n",
       to);
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
       {"run", command_run},         {"submit", command_submit},   {"build", command_build},     {"stretch", command_stretch},
       {"relax", command_relax},     {"encounter", command_encounter}, {"analyze", command_analyze},
       {"inspect", command_inspect}, {"compare", command_compare}, {"estimate", command_estimate},
-      {"bench", command_bench}};
+      {"bench", command_bench}, {"validate", command_validate}};
   for (const auto& entry : entries) {
     if (entry.name != name) continue;
     try {

@@ -56,7 +56,8 @@ TEST(CliOptions, EveryCommandRefusesAHugeThreadCount) {
   const std::string out = test_support::quoted(scratch.path / "x.h5");
   for (const std::string& args :
        {"run " + quick + " --out " + test_support::quoted(scratch.path / "run"), "build --config " + quick + " --out " + out,
-        "bench --config " + quick + " --steps 1"}) {
+        "bench --config " + quick + " --steps 1",
+        "validate " + quick + " --out " + test_support::quoted(scratch.path / "validate")}) {
     const auto r = test_support::run_cli(args + " --threads 100000");
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find("--threads must be between 0"), std::string::npos) << r.err;

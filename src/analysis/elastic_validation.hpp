@@ -1,0 +1,111 @@
+#pragma once
+// The measurements of `tidalcrust validate` (docs/validation.md): the relaxed spring network
+// against continuum elasticity (physics/continuum_elasticity.hpp). Each integrates copies of the
+// relaxed state with the project's force field; the checkpoint itself is never changed.
+// Units G = M = R = 1 (times t_grav, moduli e_g, rigidities G M^2/R).
+#include <vector>
+
+#include "base/vec3.hpp"
+#include "model/checkpoint.hpp"
+#include "model/config.hpp"
+
+namespace tidalcrust {
+
+/// The continuum material of a relaxed body, measured on its network.
+struct BodyMaterial {
+  double youngs_modulus = 0;   ///< E_I of eq. 15 from the relaxed state's interior springs, e_g
+  double poisson_ratio = 0.25; ///< of a random isotropic spring network (Kot et al. 2015)
+  double density = 0;          ///< mean density 3/(4 pi radius^3), M/R^3
+  double radius = 0;           ///< R = 1 with a crust; without one the outermost node's distance from the centre of mass
+  double p_wave_speed = 0;     ///< V_IP of eq. 16, sqrt(GM/R)
+  double shell_spacing = 0;    ///< L_S, mean shell rest length, R (0 without a shell)
+  double shell_spring_constant = 0;  ///< k_S, mean shell stiffness, G M^2/R^3
+  double hinge_stiffness = 0;  ///< mean k_e, G M^2/R^2 (0 without hinges)
+};
+
+BodyMaterial body_material(const Checkpoint& relaxed, const Config& config);
+
+/// (a) The fundamental radial mode: positions scaled about the centre of mass by 1 + amplitude,
+/// integrated with Leapfrog (no damping, no perturber) beside an unscaled copy; the signal is the
+/// difference of the two mean particle radii, its period the frequency of the best least-squares
+/// sinusoid. Theory: lamb_breathing_period with the body's E, nu = 1/4, rho, and R = 1.
+struct BreathingResult {
+  double period = 0;         ///< measured, t_grav
+  double lamb_period = 0;    ///< Lamb (1882), t_grav
+  double self_gravitating_period = 0;  ///< the same sphere with self-gravity, t_grav
+  double ratio = 0;          ///< period / lamb_period
+  double amplitude = 0;      ///< fitted amplitude of the mean-radius oscillation, R
+  std::vector<double> time;  ///< t_grav since the start
+  std::vector<double> signal;///< mean radius difference, R
+};
+BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
+                                  double amplitude = 1e-3, double periods = 5);
+
+/// (b) The degree-2 Love number h2: the static tidal potential W = eps r^2 P2(cos theta) (force
+/// +grad W per unit mass, about the centre of mass) applied with spring damping `damping` for
+/// `duration` t_grav, once with +eps and once with -eps; h2 = u_r / (W/g) at the shell from the
+/// least-squares fit u_r = a0 + a2 P2(cos theta) of half the shell nodes' radial displacement
+/// difference, W/g = eps r_s^4 at the mean shell radius r_s. eps is chosen so that theory's
+/// surface displacement is `surface_displacement`. Theory: homogeneous_sphere_love_numbers.
+/// damping = 0 and duration = 0 choose them from the body's Lamb frequency omega_L, so that a
+/// soft body settles as well as a stiff one: gamma = min(50, 5 omega_L), T = max(3, 30/omega_L)
+/// (50 and 3 t_grav for the quick and paper-T bodies, 22 and 6.9 for paper-N).
+struct LoveResult {
+  double h2 = 0;             ///< measured at the end
+  double h2_early = 0;       ///< measured at 2/3 of the duration (how far it has settled)
+  double theory_h2 = 0;      ///< compressible self-gravitating homogeneous sphere (TS72 equations)
+  double incompressible_h2 = 0;  ///< Love's closed form for the same shear modulus (for reference)
+  double ratio = 0;          ///< h2 / theory_h2
+  double tidal_strength = 0; ///< eps, G M / R^3
+  double shell_radius = 0;   ///< r_s, R
+  double damping = 0;        ///< gamma used, 1/t_grav
+  double duration = 0;       ///< t_grav
+};
+LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
+                           double surface_displacement = 1e-3, double damping = 0, double duration = 0);
+
+/// (c) Flexural rigidity of the crust's lattice: a flat periodic equilateral triangular lattice
+/// (spacing L_S, one spring k_S per edge and one hinge k_e per edge, the project's evaluators),
+/// loaded by q0 sin(k x) per unit area with k = 2 pi / (16 L_S), relaxed to static equilibrium;
+/// D = q0 / (w0 k^4) from the fitted deflection amplitude w0 (plate_sinusoidal_deflection).
+struct FlexureResult {
+  double rigidity = 0;          ///< measured D, G M^2/R
+  double paper_rigidity = 0;    ///< eq. 23: D_F = k_e L_S / 2
+  double lattice_rigidity = 0;  ///< hinge_lattice_flexural_rigidity: k_e / 4
+  double early_rigidity = 0;    ///< D measured at 2/3 of the relaxation (how far it has settled)
+  double ratio = 0;             ///< rigidity / paper_rigidity
+  double lattice_ratio = 0;     ///< rigidity / lattice_rigidity
+  double deflection = 0;        ///< w0, R
+  double theory_deflection = 0; ///< q0 / (D_F k^4), R
+  int nodes = 0;
+};
+FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, double spring_constant);
+
+/// Travel time along the z axis from z_from to z_to (about `center`, R) through the interior cut
+/// into `layers` spherical layers, each with its own P-wave speed from eq. 15 and 16 applied to
+/// the interior springs whose midpoints lie in it and the interior mass in it: the stretch stage
+/// strengthens the springs toward the centre, where the pressure is highest, and the interior
+/// nodes are denser than the body's mean 3/(4 pi) (the crust's mass lies outside r_I).
+double layered_p_wave_time(const Checkpoint& relaxed, const Vec3& center, double z_from, double z_to, int layers = 6);
+
+/// (d) P-wave travel time: the particles within `cap` of the top (largest z about the centre of
+/// mass) get the inward velocity `pulse_speed`; beside an unpulsed copy (no damping), the
+/// signal is the mean |velocity difference| (centre-of-mass motion removed) of the particles
+/// within `cap` of the bottom. Arrival: the first time the signal exceeds `threshold_fraction`
+/// of its maximum over the run (2 straight-path P times). Theory: path / V_IP, path = the
+/// distance between the two caps along z.
+struct PWaveResult {
+  double arrival_time = 0;   ///< measured, t_grav
+  double theory_time = 0;    ///< path / V_IP, t_grav
+  double path_length = 0;    ///< R
+  double ratio = 0;          ///< arrival_time / theory_time
+  double layered_time = 0;   ///< layered_p_wave_time along the same path, t_grav
+  double layered_ratio = 0;  ///< arrival_time / layered_time
+  double threshold = 0;      ///< signal level of the arrival, sqrt(GM/R)
+  std::vector<double> time;
+  std::vector<double> signal;
+};
+PWaveResult measure_p_wave(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
+                           double pulse_speed = 1e-2, double cap = 0.15, double threshold_fraction = 0.1);
+
+}  // namespace tidalcrust

@@ -1,0 +1,205 @@
+// `tidalcrust validate WORKFLOW.toml`: runs (or reuses) the workflow's body chain, then measures
+// the relaxed body against continuum elasticity (analysis/elastic_validation.hpp): the breathing
+// period, the Love number h2, the crust's flexural rigidity and the P-wave travel time. Writes
+// <out>/validate/validation.json and figures, and prints a table. docs/validation.md.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "analysis/elastic_validation.hpp"
+#include "base/errors.hpp"
+#include "cli/cli_options.hpp"
+#include "cli/commands.hpp"
+#include "figures/validation_figures.hpp"
+#include "io/atomic_file.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/json.hpp"
+#include "stages/workflow.hpp"
+
+namespace tidalcrust {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// What each check compares, with its published source and the tolerance of its target
+/// (docs/validation.md).
+struct Check {
+  const char* name;
+  const char* doing;  ///< the progress line
+  const char* quantity;
+  const char* unit;
+  const char* source;
+  double tolerance;
+};
+const Check checks[] = {
+    {"breathing", "breathing mode", "period of the fundamental radial mode", "t_grav",
+     "Lamb (1882); Love (1927) sec. 195: homogeneous sphere, E_I (eq. 15), nu = 1/4, rho = 3/(4 pi)", 0.05},
+    {"love", "Love number h2 in a static tidal field", "degree-2 Love number h2", "",
+     "Takeuchi & Saito (1972) eq. 82, static: homogeneous compressible self-gravitating sphere", 0.10},
+    {"flexure", "flexural rigidity of the crust lattice", "flexural rigidity D", "G M^2/R",
+     "eq. 23: D_F = k_e L_S / 2; thin plate w0 = q0/(D k^4) (Timoshenko & Woinowsky-Krieger 1959)", 0.20},
+    {"p-wave", "P-wave travel time", "P-wave travel time pole to pole", "t_grav", "eq. 16: straight path / V_IP",
+     0.10}};
+
+const Check& check_named(const std::string& name) {
+  for (const auto& c : checks)
+    if (name == c.name) return c;
+  throw InputError(fmt::format("--measure: unknown measurement '{}' (known: breathing, love, flexure, p-wave)", name));
+}
+
+/// The measurements named in a comma-separated list; InputError naming an unknown one.
+std::set<std::string> selected_measurements(const std::string& list) {
+  std::set<std::string> chosen;
+  std::stringstream in(list);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    chosen.insert(check_named(name).name);
+  }
+  if (chosen.empty()) throw InputError("--measure: no measurement named");
+  return chosen;
+}
+
+/// One row of the printed table and of the JSON "comparisons" object.
+struct Row {
+  const Check* check;
+  double measured = 0, theory = 0;
+  double ratio() const { return measured / theory; }
+  bool within() const { return std::abs(ratio() - 1) <= check->tolerance; }
+};
+
+Json row_json(const Row& r) {
+  return Json{{"quantity", r.check->quantity}, {"unit", r.check->unit},
+              {"measured", r.measured},        {"theory", r.theory},
+              {"ratio", r.ratio()},            {"tolerance", r.check->tolerance},
+              {"within_tolerance", r.within()}, {"source", r.check->source}};
+}
+
+}  // namespace
+
+int command_validate(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust validate",
+                           "Run (or reuse) the workflow's body chain and compare the relaxed body with continuum "
+                           "elasticity: breathing period, Love number h2, flexural rigidity, P-wave travel time.");
+  options.positional_help("WORKFLOW.toml");
+  options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
+      "out", "output root (default checkpoints/<workflow name>); results in <out>/validate/",
+      cxxopts::value<std::string>())("threads", "number of threads (results do not depend on it)",
+                                     cxxopts::value<int>()->default_value("0"))(
+      "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
+      "quiet", "no progress lines")("h,help", "show this help")(
+      "measure", "comma-separated subset of breathing,love,flexure,p-wave",
+      cxxopts::value<std::string>()->default_value("breathing,love,flexure,p-wave"));
+  options.parse_positional({"workflow"});
+  auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
+  // Everything is checked before anything is written: the measurements, then the workflow.
+  const std::set<std::string> chosen = selected_measurements(parsed["measure"].as<std::string>());
+  Config config = workflow_config(parsed);
+  const int threads = checked_thread_count(parsed["threads"].as<int>());
+  WorkflowOptions workflow_options;
+  workflow_options.root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
+                                              : fs::path("checkpoints") / config.workflow.name;
+  workflow_options.quiet = parsed.count("quiet") > 0;  // no encounters: the body chain alone
+  apply_thread_count(threads);
+  if (run_workflow(config, workflow_options).interrupted) return exit_interrupted;
+
+  const fs::path relaxed_file = workflow_options.root / "body" / "relax.h5";
+  const Checkpoint relaxed = read_checkpoint(relaxed_file);
+  const BodyMaterial material = body_material(relaxed, config);
+  const fs::path out = workflow_options.root / "validate";
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw InputError(fmt::format("{}: cannot create the folder: {}", out.string(), error.message()));
+  std::vector<Row> rows;
+  // Whether check `name` was asked for; says so when it starts.
+  const auto wanted = [&](const char* name) {
+    if (!chosen.count(name)) return false;
+    if (!workflow_options.quiet) fmt::print("validate: {}\n", check_named(name).doing);
+    return true;
+  };
+  const auto add = [&](const char* name, double measured, double theory) {
+    rows.push_back({&check_named(name), measured, theory});
+  };
+
+  Json json;
+  json["workflow"] = config.workflow.name;
+  json["relaxed_body"] = relaxed_file.string();
+  json["material"] = Json{{"youngs_modulus", material.youngs_modulus}, {"poisson_ratio", material.poisson_ratio},
+                          {"density", material.density},               {"radius", material.radius},
+                          {"p_wave_speed", material.p_wave_speed},     {"shell_spacing", material.shell_spacing},
+                          {"shell_spring_constant", material.shell_spring_constant},
+                          {"hinge_stiffness", material.hinge_stiffness}};
+  json["units"] = Json{{"time", "t_grav"}, {"length", "R"}, {"modulus", "e_g"}, {"rigidity", "G M^2/R"},
+                       {"speed", "sqrt(GM/R)"}};
+  Json details;
+  if (wanted("breathing")) {
+    const BreathingResult b = measure_breathing(relaxed, config, material);
+    add("breathing", b.period, b.lamb_period);
+    details["breathing"] = Json{{"self_gravitating_period", b.self_gravitating_period},
+                                {"self_gravitating_ratio", b.period / b.self_gravitating_period},
+                                {"amplitude", b.amplitude}, {"samples", b.time.size()}};
+    std::vector<TimeMark> marks;
+    for (int n = 1; n * b.lamb_period <= b.time.back(); ++n)
+      marks.push_back({n * b.lamb_period, n == 1 ? "Lamb period" : "", false});
+    marks.push_back({b.self_gravitating_period, "", false});  // just after Lamb's first: no label
+    for (int n = 1; n * b.period <= b.time.back(); ++n) marks.push_back({n * b.period, n == 1 ? "measured" : "", true});
+    write_signal_plot(b.time, b.signal, marks, out / "breathing",
+                      fmt::format("Breathing mode of {}\nmeasured period {:.4f}, Lamb {:.4f}, with self-gravity {:.4f} t_grav",
+                                  config.workflow.name, b.period, b.lamb_period, b.self_gravitating_period),
+                      "mean radius change [R]");
+  }
+  if (wanted("love")) {
+    const LoveResult l = measure_love_h2(relaxed, config, material);
+    add("love", l.h2, l.theory_h2);
+    details["love"] = Json{{"h2_at_two_thirds", l.h2_early}, {"incompressible_h2", l.incompressible_h2},
+                           {"tidal_strength", l.tidal_strength}, {"shell_radius", l.shell_radius},
+                           {"damping", l.damping}, {"duration", l.duration}};
+  }
+  if (wanted("flexure")) {
+    if (material.hinge_stiffness > 0) {
+      const FlexureResult f =
+          measure_plate_flexure(material.hinge_stiffness, material.shell_spacing, material.shell_spring_constant);
+      add("flexure", f.rigidity, f.paper_rigidity);
+      details["flexure"] = Json{{"lattice_rigidity", f.lattice_rigidity}, {"lattice_ratio", f.lattice_ratio},
+                                {"rigidity_at_two_thirds", f.early_rigidity}, {"deflection", f.deflection},
+                                {"theory_deflection", f.theory_deflection}, {"nodes", f.nodes}};
+    } else {
+      details["flexure"] = Json{{"skipped", "the body has no crust hinges"}};
+    }
+  }
+  if (wanted("p-wave")) {
+    const PWaveResult p = measure_p_wave(relaxed, config, material);
+    add("p-wave", p.arrival_time, p.theory_time);
+    details["p-wave"] = Json{{"path_length", p.path_length}, {"layered_time", p.layered_time},
+                             {"layered_ratio", p.layered_ratio}, {"threshold", p.threshold}};
+    std::vector<TimeMark> marks = {{p.theory_time, "path / V_IP", false},
+                                   {p.layered_time, "layered", false},
+                                   {p.arrival_time, "arrival", true}};
+    write_signal_plot(p.time, p.signal, marks, out / "p_wave",
+                      fmt::format("P-wave pulse of {}: mean |dv| at the far pole\narrival {:.4f}, path/V_IP {:.4f} t_grav",
+                                  config.workflow.name, p.arrival_time, p.theory_time),
+                      "|dv| [sqrt(GM/R)]");
+  }
+  Json comparisons = Json::object();
+  for (const auto& r : rows) comparisons[r.check->name] = row_json(r);
+  json["comparisons"] = comparisons;
+  json["details"] = details.is_null() ? Json::object() : details;
+  write_file_atomically(out / "validation.json", json_text(json));
+
+  fmt::print("\n{:<10} {:>12} {:>12} {:>8} {:>6}  {}\n", "check", "measured", "theory", "ratio", "tol", "");
+  for (const auto& r : rows)
+    fmt::print("{:<10} {:>12.5g} {:>12.5g} {:>8.4f} {:>5.0f}%  {}\n", r.check->name, r.measured, r.theory, r.ratio(),
+               100 * r.check->tolerance, r.within() ? "ok" : "outside");
+  fmt::print("results: {}\n", (out / "validation.json").string());
+  return exit_ok;
+}
+
+}  // namespace tidalcrust

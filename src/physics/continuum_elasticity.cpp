@@ -1,0 +1,177 @@
+#include "physics/continuum_elasticity.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "base/errors.hpp"
+
+namespace tidalcrust {
+
+namespace {
+
+void check_poisson_ratio(double poisson_ratio, double lowest) {
+  if (!(poisson_ratio > lowest && poisson_ratio < 0.5))
+    throw InputError(fmt::format("Poisson ratio must lie in ({}, 1/2), got {}", lowest, poisson_ratio));
+}
+
+void check_positive(double value, const char* name) {
+  if (!(value > 0 && std::isfinite(value))) throw InputError(fmt::format("{} must be > 0, got {}", name, value));
+}
+
+/// The Lame parameters (lambda, mu) of Young's modulus E and Poisson ratio nu.
+std::array<double, 2> lame_parameters(double youngs_modulus, double poisson_ratio) {
+  const double mu = youngs_modulus / (2 * (1 + poisson_ratio));
+  const double lambda = youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+  return {lambda, mu};
+}
+
+using Y = std::array<double, 6>;  // y1..y6 of Takeuchi & Saito (1972)
+
+/// Right-hand side of TS72 eq. 82 at omega = 0 for a homogeneous layer (lambda, mu, rho) with
+/// g(r) = (4 pi/3) rho r (G = 1); L = n(n+1). y5 is the potential perturbation in the geodesy
+/// sign (force = +grad y5), y6 = y5' - 4 pi rho y1 + (n+1) y5 / r.
+Y spheroidal_rhs(double r, const Y& y, int n, double lambda, double mu, double rho) {
+  const double four_pi_rho = 4 * std::numbers::pi * rho;
+  const double g = four_pi_rho * r / 3;
+  const double rho_g = rho * g;
+  const double L = n * (n + 1.0);
+  const double beta = lambda + 2 * mu;
+  const double inv_r = 1 / r;
+  const double divergence_part = 2 * y[0] - L * y[2];  // r times the horizontal divergence part
+  Y d;
+  d[0] = (y[1] - lambda * divergence_part * inv_r) / beta;
+  d[1] = inv_r * (-2 * rho_g * y[0] - 2 * y[1] + L * y[3] + rho * (n + 1) * y[4] - rho * r * y[5] +
+                  2 * lambda * d[0] + divergence_part * (2 * (lambda + mu) * inv_r - rho_g));
+  d[2] = (y[2] - y[0]) * inv_r + y[3] / mu;
+  d[3] = inv_r * ((rho_g + 2 * mu * inv_r) * y[0] - 2 * mu * inv_r * y[2] - 3 * y[3] - rho * y[4] -
+                  lambda * d[0] - divergence_part * beta * inv_r);
+  d[4] = four_pi_rho * y[0] - (n + 1) * inv_r * y[4] + y[5];
+  d[5] = inv_r * (four_pi_rho * (n - 1) * y[0] + (n - 1) * y[5] + four_pi_rho * divergence_part);
+  return d;
+}
+
+Y axpy(const Y& y, double h, const Y& k) {
+  Y out;
+  for (int i = 0; i < 6; ++i) out[i] = y[i] + h * k[i];
+  return out;
+}
+
+}  // namespace
+
+double p_wave_speed(double youngs_modulus, double poisson_ratio, double density) {
+  check_poisson_ratio(poisson_ratio, -1);
+  check_positive(youngs_modulus, "Young's modulus");
+  check_positive(density, "density");
+  const double nu = poisson_ratio;
+  return std::sqrt(youngs_modulus / density) * std::sqrt((1 - nu) / ((1 + nu) * (1 - 2 * nu)));
+}
+
+double lamb_breathing_root(double poisson_ratio) {
+  check_poisson_ratio(poisson_ratio, -1);
+  const double c = (1 - poisson_ratio) / (2 * (1 - 2 * poisson_ratio));
+  // Multiplied by cos x, the equation has no poles; near 0 it goes as x^3 (1/3 - c).
+  const auto f = [c](double x) { return (1 - c * x * x) * std::sin(x) - x * std::cos(x); };
+  const double step = 1e-3;
+  double lo = step;
+  const double sign_near_zero = f(lo);
+  while (f(lo + step) * sign_near_zero > 0) {
+    lo += step;
+    if (lo > 10) throw InputError(fmt::format("no breathing root below 10 for Poisson ratio {}", poisson_ratio));
+  }
+  double hi = lo + step;
+  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) * sign_near_zero > 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double lamb_breathing_period(double youngs_modulus, double poisson_ratio, double density, double radius) {
+  check_positive(radius, "radius");
+  return 2 * std::numbers::pi * radius /
+         (lamb_breathing_root(poisson_ratio) * p_wave_speed(youngs_modulus, poisson_ratio, density));
+}
+
+double self_gravitating_breathing_period(double youngs_modulus, double poisson_ratio, double density, double radius) {
+  const double omega_lamb = 2 * std::numbers::pi / lamb_breathing_period(youngs_modulus, poisson_ratio, density, radius);
+  const double omega_squared = omega_lamb * omega_lamb - 16 * std::numbers::pi / 3 * density;
+  if (!(omega_squared > 0))
+    throw InputError(fmt::format("a homogeneous sphere of E = {} and density {} collapses under its own gravity",
+                                 youngs_modulus, density));
+  return 2 * std::numbers::pi / std::sqrt(omega_squared);
+}
+
+LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, double poisson_ratio, double density,
+                                            double radius, int steps) {
+  if (degree < 2) throw InputError(fmt::format("Love numbers need degree >= 2, got {}", degree));
+  if (steps < 100) throw InputError(fmt::format("Love number integration needs >= 100 steps, got {}", steps));
+  check_poisson_ratio(poisson_ratio, -1);
+  check_positive(youngs_modulus, "Young's modulus");
+  check_positive(density, "density");
+  check_positive(radius, "radius");
+  const int n = degree;
+  const auto [lambda, mu] = lame_parameters(youngs_modulus, poisson_ratio);
+  const double beta = lambda + 2 * mu;
+  const double L = n * (n + 1.0);
+
+  // Regular solutions near the centre, exact without gravity (whose terms are O(rho^2 r^2/mu)
+  // smaller there): u = grad(r^n Y_n); the r^(n+1) solution of the Navier equation, y1 = r^(n+1),
+  // y3 = b r^(n+1), y2 = c r^n, y4 = d r^n with b, c, d from the equations; and the potential
+  // r^n alone. Any error excites the irregular solutions, which decay outward as (r0/r)^(2n+1).
+  const double r0 = 0.005 * radius;
+  const double b = (2 * mu - lambda * (n + 1) - 2 * beta - (n + 3) * mu) / ((n + 3) * n * mu + 2 * mu - L * beta);
+  const double c = beta * (n + 1) + lambda * (2 - L * b);
+  const double d = mu * (n * b + 1);
+  std::array<Y, 3> solutions;
+  const double p_minus_2 = std::pow(r0, n - 2), p_minus_1 = p_minus_2 * r0, p = p_minus_1 * r0, p_plus_1 = p * r0;
+  solutions[0] = {n * p_minus_1, 2 * mu * n * (n - 1) * p_minus_2, p_minus_1, 2 * mu * (n - 1) * p_minus_2, 0, 0};
+  solutions[1] = {p_plus_1, c * p, b * p_plus_1, d * p, 0, 0};
+  solutions[2] = {0, 0, 0, 0, p, (2 * n + 1) * p_minus_1};
+
+  const double h = (radius - r0) / steps;
+  for (auto& y : solutions) {
+    for (int s = 0; s < steps; ++s) {
+      const double r = r0 + s * h;
+      const Y k1 = spheroidal_rhs(r, y, n, lambda, mu, density);
+      const Y k2 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k1), n, lambda, mu, density);
+      const Y k3 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k2), n, lambda, mu, density);
+      const Y k4 = spheroidal_rhs(r + h, axpy(y, h, k3), n, lambda, mu, density);
+      for (int i = 0; i < 6; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+    }
+  }
+  // Surface: free of traction (y2 = y4 = 0) under a unit external potential (y6 = (2n+1)/a).
+  Eigen::Matrix3d boundary;
+  for (int j = 0; j < 3; ++j) {
+    boundary(0, j) = solutions[j][1];
+    boundary(1, j) = solutions[j][3];
+    boundary(2, j) = solutions[j][5];
+  }
+  const Eigen::Vector3d weights = boundary.fullPivLu().solve(Eigen::Vector3d(0, 0, (2 * n + 1) / radius));
+  Y surface{};
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 6; ++i) surface[i] += weights[j] * solutions[j][i];
+  const double g = 4 * std::numbers::pi / 3 * density * radius;
+  return {g * surface[0], surface[4] - 1, g * surface[2]};
+}
+
+double incompressible_love_h2(double shear_modulus, double density, double radius) {
+  check_positive(shear_modulus, "shear modulus");
+  check_positive(density, "density");
+  check_positive(radius, "radius");
+  const double g = 4 * std::numbers::pi / 3 * density * radius;
+  return 2.5 / (1 + 19 * shear_modulus / (2 * density * g * radius));
+}
+
+double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, double flexural_rigidity) {
+  check_positive(wavenumber, "wavenumber");
+  check_positive(flexural_rigidity, "flexural rigidity");
+  return load_amplitude / (flexural_rigidity * std::pow(wavenumber, 4));
+}
+
+double hinge_lattice_flexural_rigidity(double hinge_stiffness) { return hinge_stiffness / 4; }
+
+}  // namespace tidalcrust

@@ -1,0 +1,81 @@
+#pragma once
+// Continuum-elasticity results that `tidalcrust validate` compares the spring network with
+// (docs/validation.md). Pure functions of the material; units G = M = R = 1 unless a
+// parameter says otherwise (moduli in e_g = GM^2/R^4, densities in M/R^3, times in t_grav).
+//
+//  - Lamb (1882) breathing mode: the fundamental radial vibration of a homogeneous elastic sphere
+//    with a free surface, without self-gravity (Love 1927, "A Treatise on the Mathematical
+//    Theory of Elasticity", sec. 195; also Aki & Richards 2002, "Quantitative Seismology").
+//  - Static degree-n Love numbers of a homogeneous, compressible, self-gravitating elastic
+//    sphere: the spheroidal equations y1..y6 of Takeuchi & Saito (1972, eq. 82) with omega = 0,
+//    integrated with RK4 from the centre; and the incompressible closed form (Love 1911).
+//  - A thin plate under a sinusoidal load (Timoshenko & Woinowsky-Krieger 1959, "Theory of
+//    Plates and Shells", Navier's solution) and
+//    the flexural rigidity of Bridson's hinges on a triangular lattice.
+namespace tidalcrust {
+
+/// P-wave speed sqrt((lambda + 2 mu)/rho) = sqrt(E/rho) sqrt((1-nu)/((1+nu)(1-2nu))) (paper eq. 16)
+/// for Young's modulus E, Poisson ratio nu in (-1, 1/2) and density rho. InputError otherwise.
+double p_wave_speed(double youngs_modulus, double poisson_ratio, double density);
+
+/// The smallest positive root x = omega a / V_P of the frequency equation of the radial (n = 0)
+/// vibrations of a free homogeneous sphere of radius a (Love sec. 195):
+///   tan x / x = 1 / (1 - x^2 (lambda + 2 mu) / (4 mu)),  (lambda + 2 mu)/(4 mu) = (1-nu)/(2(1-2nu)),
+/// solved as (1 - c x^2) sin x - x cos x = 0 by a scan and bisection to ~1e-14.
+/// nu = 1/4 gives x = 0.8160 pi (Love's table). InputError unless -1 < nu < 1/2.
+double lamb_breathing_root(double poisson_ratio);
+
+/// Period 2 pi a / (x V_P) of the fundamental breathing mode (t_grav for a in R, E in e_g, rho in
+/// M/R^3), x = lamb_breathing_root(nu); self-gravity is left out (docs/validation.md says how much
+/// it changes).
+double lamb_breathing_period(double youngs_modulus, double poisson_ratio, double density, double radius);
+
+/// Period of the same mode of a self-gravitating homogeneous sphere (G = 1). For n = 0 the
+/// potential terms of Takeuchi & Saito's equations cancel (y5 = r y6 = 4 pi G rho int_0^r y1), and
+/// what remains of gravity is the constant -4 rho g / r = -(16 pi / 3) G rho^2 in the radial
+/// equation: the eigenfunction is Lamb's and omega^2 = omega_Lamb^2 - (16 pi / 3) G rho. InputError
+/// when that is <= 0 (the sphere is too soft to hold itself up).
+double self_gravitating_breathing_period(double youngs_modulus, double poisson_ratio, double density, double radius);
+
+/// Static Love numbers of one degree n: h (radial displacement u_r = h W / g at the surface),
+/// k (induced potential k W at the surface) and l (Shida: tangential displacement l grad W / g).
+struct LoveNumbers {
+  double h = 0;
+  double k = 0;
+  double l = 0;
+};
+
+/// Static Love numbers of degree n >= 2 of a homogeneous, compressible, self-gravitating elastic
+/// sphere: Young's modulus E (e_g), Poisson ratio nu (-1 < nu < 1/2), density rho and radius a,
+/// with G = 1. The three regular solutions of Takeuchi & Saito's y1..y6 (their eq. 82 at
+/// omega = 0) start at r = 0.005 a from the no-gravity polynomial solutions and are
+/// integrated with `steps` RK4 steps to the surface, where y2 = y4 = 0 and y6 = (2n+1)/a (a
+/// unit external potential W at r = a) fix their combination; h = g y1, k = y5 - 1, l = g y3.
+/// As nu -> 1/2 it tends to incompressible_love_h2 (tests/physics/test_continuum_elasticity.cpp).
+LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, double poisson_ratio, double density,
+                                            double radius, int steps = 20000);
+
+/// h2 of a homogeneous incompressible self-gravitating sphere (Love 1911; e.g. Murray & Dermott
+/// 1999, "Solar System Dynamics", with k2 = (3/5) h2): h2 = (5/2) / (1 + 19 mu / (2 rho g a)), G = 1.
+double incompressible_love_h2(double shear_modulus, double density, double radius);
+
+/// Amplitude w0 (R) of the deflection w0 sin(k x) of a thin plate of flexural rigidity D
+/// (G M^2/R) under the load q0 sin(k x) per unit area (G M^2/R^3), from D d^4w/dx^4 = q
+/// (Timoshenko & Woinowsky-Krieger 1959, Navier's solution; also the simply supported strip of
+/// length pi/k):
+/// w0 = q0 / (D k^4).
+double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, double flexural_rigidity);
+
+/// Flexural rigidity of a flat equilateral triangular lattice with one Bridson hinge of stiffness
+/// k_e per edge (hinge_force.hpp), for small bending. Each hinge stores k_e C theta^2 / 4 with
+/// C = L^2/(|N1| + |N2|) = 1/sqrt(3). Its faces are the linear interpolants of the deflection
+/// w = x.K.x/2, so the dihedral angle is theta = (L/sqrt(3)) (3/2 K_mm - 1/2 K_tt), K_mm the
+/// curvature across the edge and K_tt along it (the wings lie (sqrt(3)/2) L from the edge, whose
+/// chord sits L^2 K_tt / 8 above the surface). For a cylindrical bend of curvature kappa in any
+/// direction the three edge directions of a node give sum theta^2 = (3/4) kappa^2 L^2, i.e. the
+/// energy density k_e kappa^2 / 8 over the node area (sqrt(3)/2) L^2. With D kappa^2 / 2:
+/// D = k_e / 4, isotropic and independent of the spacing L (G M^2/R for k_e in G M^2/R^2, R = 1).
+/// Paper eq. 23 writes D_F = k_e L_S / 2, which is 2 L_S times this (docs/validation.md).
+double hinge_lattice_flexural_rigidity(double hinge_stiffness);
+
+}  // namespace tidalcrust

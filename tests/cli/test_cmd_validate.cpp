@@ -1,0 +1,101 @@
+// `tidalcrust validate` as a user meets it: it runs the body chain of a workflow, writes
+// validation.json with one comparison per check (measured, theory, their ratio, tolerance,
+// source) and the figures; bad input is one line on stderr and exit 2, with nothing written.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "io/json.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A tiny body (shell level 2, 150 interior nodes) with a short relaxation.
+fs::path tiny_workflow(const fs::path& dir) {
+  const auto file = dir / "tiny.toml";
+  std::ofstream(file) << R"([workflow]
+name = "tiny"
+seed = 3
+[interior]
+count = 150
+radius = 0.85
+min_separation = 0.2
+spring_distance = 0.46
+spring_constant = 0.3
+[shell]
+level = 2
+bending_constant = 0.03
+[cross]
+distance = 0.4
+spring_constant = 0.03
+[integrator]
+dt = 0.005
+[relax]
+duration = 0.5
+probe_duration = 0.2
+settle_duration = 0.2
+)";
+  return file;
+}
+
+}  // namespace
+
+TEST(CmdValidate, WritesEveryComparisonWithItsRatioAndTheFigures) {
+  const ScratchFolder scratch("validate_json");
+  const fs::path out = scratch.path / "out";
+  const auto r = run_cli("validate " + quoted(tiny_workflow(scratch.path)) + " --quiet --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("breathing"), std::string::npos);  // the printed table
+  const Json json = Json::parse(read_file(out / "validate" / "validation.json"));
+  EXPECT_EQ(json["workflow"], "tiny");
+  EXPECT_GT(json["material"]["youngs_modulus"].get<double>(), 0);
+  for (const char* name : {"breathing", "love", "flexure", "p-wave"}) {
+    SCOPED_TRACE(name);
+    const Json& c = json["comparisons"][name];
+    ASSERT_TRUE(c.is_object());
+    for (const char* key : {"quantity", "unit", "measured", "theory", "ratio", "tolerance", "within_tolerance", "source"})
+      EXPECT_TRUE(c.contains(key)) << key;
+    const double measured = c["measured"].get<double>(), theory = c["theory"].get<double>();
+    EXPECT_GT(theory, 0);
+    EXPECT_DOUBLE_EQ(c["ratio"].get<double>(), measured / theory);
+    EXPECT_EQ(c["within_tolerance"].get<bool>(), std::abs(measured / theory - 1) <= c["tolerance"].get<double>());
+    EXPECT_FALSE(c["source"].get<std::string>().empty());
+  }
+  EXPECT_NEAR(json["comparisons"]["flexure"]["tolerance"].get<double>(), 0.20, 1e-12);
+  for (const char* figure : {"breathing.png", "breathing.svg", "p_wave.png", "p_wave.svg"})
+    EXPECT_GT(fs::file_size(out / "validate" / figure), 1000u) << figure;
+  // The body chain is reused on a second call: only the selected measurement is redone.
+  const auto again = run_cli("validate " + quoted(tiny_workflow(scratch.path)) + " --measure flexure --out " + quoted(out));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("up to date"), std::string::npos) << again.out;
+  const Json only = Json::parse(read_file(out / "validate" / "validation.json"));
+  EXPECT_EQ(only["comparisons"].size(), 1u);
+}
+
+TEST(CmdValidate, BadInputIsOneLineAndExitTwoWithNothingWritten) {
+  const ScratchFolder scratch("validate_bad");
+  const fs::path out = scratch.path / "out";
+  const fs::path workflow = tiny_workflow(scratch.path);
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c : {Case{"validate " + quoted(scratch.path / "missing.toml") + " --out " + quoted(out), "missing.toml"},
+                        Case{"validate " + quoted(workflow) + " --bogus --out " + quoted(out), "bogus"},
+                        Case{"validate " + quoted(workflow) + " --measure breathing,tides --out " + quoted(out), "tides"},
+                        Case{"validate --out " + quoted(out), "WORKFLOW.toml"}}) {
+    SCOPED_TRACE(c.args);
+    const auto r = run_cli(c.args);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+  }
+}
