@@ -13,7 +13,9 @@
 
 #include "analysis/conservation_drift.hpp"
 #include "analysis/energy_budget.hpp"
+#include "analysis/body_shape.hpp"
 #include "base/errors.hpp"
+#include "figures/figure_body_shape.hpp"
 #include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
 #include "analysis/fracture_analysis.hpp"
@@ -108,6 +110,21 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
                             title(name + ": shell spring failures")));
   add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
                               title(name + ": conservation diagnostics")));
+  // Figure 5 (fig:mush): the body's shape at every snapshot and at the end.
+  std::vector<double> shape_times;
+  std::vector<PrincipalAxes> shapes;
+  for (const auto* c : candidates) {
+    shape_times.push_back(c->state.time - record.pericenter_time);
+    shapes.push_back(principal_axes(c->body.mass, c->state.position));
+  }
+  add(write_body_slices(panels, record.pericenter_time, out / "body_shape",
+                        title(name + ": the body in the orbital plane")));
+  add(write_axis_ratios(shape_times, shapes, out / "axis_ratios", title(name + ": principal axis ratios")));
+  Json shape_list = Json::array();
+  for (std::size_t k = 0; k < shapes.size(); ++k)
+    shape_list.push_back({{"time_from_pericenter", shape_times[k]},
+                          {"b_over_a", shapes[k].b_over_a()},
+                          {"c_over_a", shapes[k].c_over_a()}});
 
   Json failed_springs = {{"spring", Json::array()},
                          {"longitude_deg", Json::array()},
@@ -171,6 +188,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"impulse_estimate_eq4", budget.impulse_estimate},
         {"impulse_estimate_uniform_sphere", budget.impulse_estimate_uniform_sphere}}},
       {"snapshots", snapshot_list},
+      {"principal_axis_ratios", shape_list},
       {"figures", figure_names}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
   // is up to date.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ namespace {
 
 /// Hemisphere-view snapshots one t_grav before and after pericenter (paper Figure 6).
 constexpr double snapshot_offset = 1.0;  // t_grav
+constexpr double body_shape_interval = 0.5;  // t_grav, between the shape snapshots of a body without a crust
 
 /// Perturber relative to the body's centre of mass: distance (R) and speed (sqrt(GM/R)).
 struct Separation {
@@ -42,14 +44,28 @@ Separation separation(const Body& body, const State& state) {
   return {r.norm(), v.norm()};
 }
 
-/// Snapshot steps: one t_grav before pericenter, pericenter, one after, and the end, kept
-/// inside (start_step, end_step] and without duplicates.
+/// Snapshot steps: one t_grav before pericenter, pericenter, one after, and the end; for a body
+/// without a crust (the paper's run N) also every body_shape_interval counted from pericenter,
+/// before and after, for its shape over time (Figure 5, analysis/body_shape.hpp; a snapshot of
+/// run N's 798 particles is ~0.4 MB), except where one of the four lies within half an interval
+/// (+-1 t_grav is not a whole number of intervals in steps: no pairs one step apart). Kept
+/// inside (start_step, end_step], without duplicates.
 std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t pericenter_step,
-                                         std::int64_t end_step, double dt) {
+                                         std::int64_t end_step, double dt, bool interior_only) {
   const std::int64_t offset = steps_for_duration(snapshot_offset, dt);
   std::vector<std::int64_t> steps;
   for (std::int64_t s : {pericenter_step - offset, pericenter_step, pericenter_step + offset, end_step})
     steps.push_back(std::clamp(s, start_step + 1, end_step));
+  if (interior_only) {
+    const std::int64_t interval = std::max<std::int64_t>(1, steps_for_duration(body_shape_interval, dt));
+    const std::vector<std::int64_t> figure6 = steps;
+    auto near_figure6 = [&](std::int64_t s) {
+      return std::any_of(figure6.begin(), figure6.end(), [&](std::int64_t f) { return 2 * std::abs(f - s) < interval; });
+    };
+    for (std::int64_t s = pericenter_step - (pericenter_step - start_step - 1) / interval * interval; s <= end_step;
+         s += interval)
+      if (s > start_step && !near_figure6(s)) steps.push_back(s);
+  }
   std::sort(steps.begin(), steps.end());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
   return steps;
@@ -131,7 +147,9 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.end_distance = end_distance;
   record.pericenter_time = state.time + start.time_to_pericenter;
   record.pericenter_step = state.step + steps_for_duration(start.time_to_pericenter, dt);
-  record.snapshot_steps = plan_snapshots(stage.clock.start_step, record.pericenter_step, stage.end_step, dt);
+  const bool interior_only = c.body.count_species(Species::shell) == 0;
+  record.snapshot_steps =
+      plan_snapshots(stage.clock.start_step, record.pericenter_step, stage.end_step, dt, interior_only);
   record.min_distance = initial.distance;
   record.speed_at_min = initial.speed;
   record.time_of_min = state.time;

@@ -17,19 +17,14 @@
 namespace tidalcrust {
 
 namespace {
-constexpr double panel_size = 220, panel_gap = 12, side_margin = 16;
-constexpr double top_margin = 70, bottom_margin = 34, min_width = 460;
+constexpr double side_margin = 16;
+constexpr PanelRow panel_row{220, 12, side_margin, 70, 460, 34};
 constexpr double view_half_width = 1.45;  ///< R from the centre of mass to the panel edge
 
 const Vec3 toward_viewer{0, 1, 0};              // the viewer sits far out on +y
 const Vec3 light_direction = Vec3(0.35, 0.85, 0.40).normalized();  // upper left, in front
 constexpr Rgb space_color{0.04, 0.04, 0.07};
 constexpr Rgb ice_color{0.93, 0.91, 0.86};
-
-double figure_width(std::size_t panels) {
-  const double n = static_cast<double>(std::max<std::size_t>(panels, 1));
-  return std::max(min_width, 2 * side_margin + n * panel_size + (n - 1) * panel_gap);
-}
 
 double page_of_x(const PlotAxes& axes, const Vec3& p) { return axes.page_x(-p.x()); }
 double page_of_y(const PlotAxes& axes, const Vec3& p) { return axes.page_y(p.z()); }
@@ -153,32 +148,26 @@ std::vector<HemisphereLayer> hemisphere_panel_layers(bool perturber_present, boo
 }
 
 PlotAxes hemisphere_panel_axes(std::size_t index, std::size_t panel_count) {
-  const double n = static_cast<double>(std::max<std::size_t>(panel_count, 1));
-  const double row = n * panel_size + (n - 1) * panel_gap;
-  const double left = 0.5 * (figure_width(panel_count) - row) + static_cast<double>(index) * (panel_size + panel_gap);
-  return PlotAxes({left, top_margin, panel_size, panel_size}, -view_half_width, view_half_width, -view_half_width,
-                  view_half_width);
+  return panel_row.axes(index, panel_count, view_half_width);
 }
 
 FigureFiles write_hemisphere_views(const std::vector<const Checkpoint*>& snapshots, double pericenter_time,
                                    const std::filesystem::path& stem, const std::string& title) {
-  if (snapshots.empty()) throw InputError(fmt::format("{}: no snapshot to draw", stem.string()));
-  const double width = figure_width(snapshots.size());
-  const double height = top_margin + panel_size + bottom_margin;
-  return write_figure(stem, width, height, [&](cairo_t* cr) {
-    for (std::size_t i = 0; i < snapshots.size(); ++i)
-      draw_panel(cr, hemisphere_panel_axes(i, snapshots.size()), *snapshots[i], pericenter_time);
-    cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_title(cr, {0, 46, width, 0}, title);
-    const std::string view = "orthographic; viewer on +y in the orbital plane, facing the subsatellite point; +z up, +x left";
-    const std::string perturber = "magenta: perturber, radius M\u2082^(1/3) R (same density), translucent, cracks drawn over it";
-    if (text_width(cr, view + "; " + perturber, tick_font_size) < width - 2 * side_margin) {
-      draw_text(cr, view + "; " + perturber, 0.5 * width, height - 12, 0.5, 1, tick_font_size);
-    } else {
-      draw_text(cr, view, 0.5 * width, height - 17, 0.5, 1, tick_font_size);
-      draw_text(cr, perturber, 0.5 * width, height - 5, 0.5, 1, tick_font_size);
-    }
-  });
+  return panel_row.write(
+      stem, snapshots.size(), view_half_width, title,
+      [&](cairo_t* cr, const PlotAxes& axes, std::size_t i) { draw_panel(cr, axes, *snapshots[i], pericenter_time); },
+      [](cairo_t* cr, double width, double height) {
+        const std::string view =
+            "orthographic; viewer on +y in the orbital plane, facing the subsatellite point; +z up, +x left";
+        const std::string perturber =
+            "magenta: perturber, radius M\u2082^(1/3) R (same density), translucent, cracks drawn over it";
+        if (text_width(cr, view + "; " + perturber, tick_font_size) < width - 2 * side_margin) {
+          draw_text(cr, view + "; " + perturber, 0.5 * width, height - 12, 0.5, 1, tick_font_size);
+        } else {
+          draw_text(cr, view, 0.5 * width, height - 17, 0.5, 1, tick_font_size);
+          draw_text(cr, perturber, 0.5 * width, height - 5, 0.5, 1, tick_font_size);
+        }
+      });
 }
 
 }  // namespace tidalcrust

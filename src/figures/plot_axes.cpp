@@ -1,10 +1,14 @@
 #include "figures/plot_axes.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "base/errors.hpp"
+#include "figures/figure_output.hpp"
 #include "figures/figure_text.hpp"
 
 namespace tidalcrust {
@@ -71,6 +75,32 @@ std::string tick_label(double value, double step) {
     return fixed_text(value, decimals);
   }
   return general_text(value, 2);
+}
+
+double PanelRow::figure_width(std::size_t panels) const {
+  const double n = static_cast<double>(std::max<std::size_t>(panels, 1));
+  return std::max(min_width, 2 * side_margin + n * panel_size + (n - 1) * gap);
+}
+
+PlotAxes PanelRow::axes(std::size_t index, std::size_t panels, double half_width) const {
+  const double n = static_cast<double>(std::max<std::size_t>(panels, 1));
+  const double row = n * panel_size + (n - 1) * gap;
+  const double left = 0.5 * (figure_width(panels) - row) + static_cast<double>(index) * (panel_size + gap);
+  return PlotAxes({left, top, panel_size, panel_size}, -half_width, half_width, -half_width, half_width);
+}
+
+std::vector<std::filesystem::path> PanelRow::write(
+    const std::filesystem::path& stem, std::size_t panels, double half_width, std::string_view title,
+    const std::function<void(cairo_t* cr, const PlotAxes& axes, std::size_t index)>& draw_panel,
+    const std::function<void(cairo_t* cr, double width, double height)>& legend) const {
+  if (panels == 0) throw InputError(fmt::format("{}: no snapshot to draw", stem.string()));
+  const double width = figure_width(panels), height = figure_height();
+  return write_figure(stem, width, height, [&](cairo_t* cr) {
+    for (std::size_t i = 0; i < panels; ++i) draw_panel(cr, axes(i, panels, half_width), i);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    draw_title(cr, {0, top - 24, width, 0}, title);
+    legend(cr, width, height);
+  });
 }
 
 PlotAxes::PlotAxes(PageRect area, double x_min, double x_max, double y_min, double y_max)

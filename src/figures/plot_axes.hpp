@@ -3,6 +3,9 @@
 // rectangle, a frame with "nice" ticks, axis labels with units, titles and aligned text.
 #include <cairo.h>
 
+#include <cstddef>
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +64,29 @@ class PlotAxes {
  private:
   PageRect area_;
   double x_min_, x_max_, y_min_, y_max_;
+};
+
+/// A row of equal square panels centred in its figure: the layout of the snapshot figures.
+struct PanelRow {
+  double panel_size = 0;   ///< side of a panel, points
+  double gap = 0;          ///< between panels, points
+  double side_margin = 0;  ///< left and right of the row, points
+  double top = 0;          ///< top edge of the panels, points
+  double min_width = 0;    ///< the figure is at least this wide, points
+  double bottom = 0;       ///< below the panels (the legend line), points
+  /// Width of the figure for `panels` panels (at least one), points.
+  double figure_width(std::size_t panels) const;
+  /// Height of the figure: top + panel_size + bottom, points.
+  double figure_height() const { return top + panel_size + bottom; }
+  /// Panel `index` of `panels`, showing [-half_width, half_width] in both directions (data units).
+  PlotAxes axes(std::size_t index, std::size_t panels, double half_width) const;
+  /// Writes <stem>.png and .svg: draw_panel(cr, axes(i, panels, half_width), i) for each panel,
+  /// then `title` above the row and legend(cr, width, height) (points). Returns both paths;
+  /// InputError naming the stem when `panels` is 0 (and as write_figure).
+  std::vector<std::filesystem::path> write(
+      const std::filesystem::path& stem, std::size_t panels, double half_width, std::string_view title,
+      const std::function<void(cairo_t* cr, const PlotAxes& axes, std::size_t index)>& draw_panel,
+      const std::function<void(cairo_t* cr, double width, double height)>& legend) const;
 };
 
 /// Title centred above `area`; text after a '\n' is a second, smaller line (the parameters and

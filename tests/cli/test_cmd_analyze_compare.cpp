@@ -64,7 +64,8 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   const fs::path out = dir / "analysis";
   const auto r = run_cli("analyze --from \"" + encounter.string() + "\" --out \"" + out.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* stem : {"fracture_map", "hemisphere", "orbit", "failures", "conservation"}) {
+  for (const char* stem :
+       {"fracture_map", "hemisphere", "orbit", "failures", "conservation", "body_shape", "axis_ratios"}) {
     const std::string png = read_file(out / (stem + ".png"s));
     EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << stem;
     EXPECT_NE(read_file(out / (stem + ".svg"s)).find("</svg>"), std::string::npos) << stem;
@@ -83,6 +84,18 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   EXPECT_EQ(summary.find("enc.snap-700.h5"), std::string::npos);
   EXPECT_NE(r.err.find("enc.snap-700.h5"), std::string::npos);
   EXPECT_NE(r.out.find("5 failed shell springs"), std::string::npos);
+  // Principal axis ratios at the snapshot (at pericenter) and at the end; the particles did not
+  // move between them, so the ratios agree; a >= b >= c.
+  const Json& shapes = json["principal_axis_ratios"];
+  ASSERT_EQ(shapes.size(), 2u) << summary;
+  EXPECT_EQ(shapes[0]["time_from_pericenter"], 0.0);
+  for (const Json& shape : shapes) {
+    EXPECT_GT(shape["c_over_a"].get<double>(), 0.0);
+    EXPECT_LE(shape["c_over_a"].get<double>(), shape["b_over_a"].get<double>());
+    EXPECT_LE(shape["b_over_a"].get<double>(), 1.0);
+  }
+  EXPECT_EQ(shapes[0]["b_over_a"], shapes[1]["b_over_a"]);
+  EXPECT_EQ(shapes[0]["c_over_a"], shapes[1]["c_over_a"]);
 }
 
 TEST_F(AnalyzeCompareCli, AnalyzeRefusesOtherStagesAndMissingFiles) {

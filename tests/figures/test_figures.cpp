@@ -12,6 +12,9 @@
 
 #include "figures/figure_output.hpp"
 #include "figures/figures.hpp"
+#include "figures/figure_body_shape.hpp"
+#include "base/errors.hpp"
+#include "model/center_of_mass.hpp"
 #include "physics/orbital_frame.hpp"
 #include "support/synthetic_encounter.hpp"
 #include "physics/two_body_orbit.hpp"
@@ -319,4 +322,45 @@ TEST(Figures, HemispherePerturberInFrontIsDrawnUnderTheCracks) {
     EXPECT_LT(static_cast<int>(argb >> 16 & 0xff) - static_cast<int>(argb >> 8 & 0xff), 12);  // red minus green
     EXPECT_LT(png.luminance(axes.page_x(-middle.x()), axes.page_y(middle.z())), 0.2);
   }
+}
+
+TEST(Figures, BodySlicesDrawSpringsAndParticlesOfTheOrbitalPlane) {
+  Checkpoint c = synthetic_encounter(3);
+  Checkpoint stretched = c;
+  for (std::size_t i = 0; i < stretched.body.particle_count(); ++i) stretched.state.position[3 * i] *= 1.3;
+  stretched.state.time = 1.0;
+  const ScratchFolder scratch("figures_body_shape");
+  const auto files = write_body_slices({&c, &stretched}, 0.5, scratch.path / "body_shape", "test slices");
+  expect_png_and_svg(files);
+  const Png png(files[0]);
+  // The centre particle (on the orbital plane, at the centre of mass to within the shell's
+  // asymmetry) is a dark dot; the corner of a panel, outside the body, stays white.
+  for (std::size_t panel = 0; panel < 2; ++panel) {
+    const PlotAxes axes = body_slice_panel_axes(panel, 2);
+    const Vec3 com = body_center_of_mass((panel ? stretched : c).body, (panel ? stretched : c).state);
+    EXPECT_LT(png.luminance(axes.page_x(-com.x()), axes.page_y(-com.y())), 0.5);
+    EXPECT_GT(png.luminance(axes.page_x(-1.4), axes.page_y(1.4)), 0.95);
+  }
+  // The stretched body's outline reaches x = 1.25 R, the round one's does not (grey fill there).
+  const PlotAxes round = body_slice_panel_axes(0, 2), long_body = body_slice_panel_axes(1, 2);
+  EXPECT_GT(png.luminance(round.page_x(1.2), round.page_y(0.0)), 0.95);
+  EXPECT_LT(png.luminance(long_body.page_x(1.2), long_body.page_y(0.0)), 0.95);
+}
+
+TEST(Figures, AxisRatiosArePlottedWhereTheyAre) {
+  std::vector<double> times = {-1.0, 0.0, 1.0, 2.0};
+  std::vector<PrincipalAxes> shapes(4);
+  const double b[] = {1.0, 0.9, 0.8, 0.85}, cc[] = {1.0, 0.95, 0.9, 0.92};
+  for (std::size_t k = 0; k < 4; ++k) shapes[k].semi_axis = {1.0, b[k], cc[k] * b[k]};
+  const ScratchFolder scratch("figures_axis_ratios");
+  const auto files = write_axis_ratios(times, shapes, scratch.path / "axis_ratios", "test ratios");
+  expect_png_and_svg(files);
+  const Png png(files[0]);
+  const PlotAxes axes = axis_ratio_axes(times, shapes);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_LT(png.luminance(axes.page_x(times[k]), axes.page_y(shapes[k].b_over_a())), 0.3);  // a marker
+    EXPECT_LT(png.luminance(axes.page_x(times[k]), axes.page_y(shapes[k].c_over_a())), 0.3);
+  }
+  EXPECT_GT(png.luminance(axes.page_x(1.5), axes.page_y(0.99)), 0.9);  // nothing drawn up there
+  EXPECT_THROW(write_axis_ratios({0.0}, {}, scratch.path / "bad", "bad"), InputError);
 }

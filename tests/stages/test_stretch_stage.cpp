@@ -144,22 +144,7 @@ TEST(StretchStage, UnstretchedBodyShrinksAndRingsTheStretchedOneDoesNot) {
 }
 
 TEST(StretchStage, BodyWithoutShellBalancesItsOuterInteriorNodes) {
-  Config config = parse_config(R"(
-[workflow]
-name = "interior-only"
-seed = 5
-[interior]
-count = 250
-radius = 1.0
-min_separation = 0.17
-spring_distance = 0.4
-spring_constant = 0.02
-[shell]
-enabled = false
-[integrator]
-dt = 0.004
-)",
-                               "interior-only.toml");
+  const Config config = interior_only_config();
   const Checkpoint built = build_stage(config);
   const Checkpoint s = stretch_stage(built, config);
   EXPECT_LT(std::abs(s.stage.as<StretchRecord>().residual_surface_acceleration), config.stretch.tolerance);

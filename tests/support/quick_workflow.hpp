@@ -14,6 +14,26 @@ namespace tidalcrust::test_support {
 
 inline Config quick_config() { return load_config(workflow_file("quick.toml")); }
 
+/// A small body without a crust (250 interior nodes, [shell] enabled = false), like paper-N.
+inline Config interior_only_config() {
+  return parse_config(R"(
+[workflow]
+name = "interior-only"
+seed = 5
+[interior]
+count = 250
+radius = 1.0
+min_separation = 0.17
+spring_distance = 0.4
+spring_constant = 0.02
+[shell]
+enabled = false
+[integrator]
+dt = 0.004
+)",
+                      "interior-only.toml");
+}
+
 /// Step loop options for tests: no progress lines, no checkpoint files.
 inline StepLoopOptions quiet_loop() {
   StepLoopOptions options;
