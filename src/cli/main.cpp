@@ -15,7 +15,8 @@ namespace {
 void print_usage(std::FILE* to) {
   std::fputs(
       "usage: tidalcrust COMMAND [OPTIONS]\n"
-      "  run WORKFLOW.toml [--out DIR] [--threads N] [--dt-factor F] [--only NAME]...\n"
+      "  run WORKFLOW.toml [--out DIR] [--threads N] [--jobs N] [--dt-factor F] [--only NAME]...\n"
+      "  report WORKFLOW.toml [--out DIR] [--dt-factor F]\n"
       "  build     --config WORKFLOW.toml --out BODY.h5\n"
       "  stretch   --from BODY.h5 --out STRETCHED.h5\n"
       "  relax     --from STRETCHED.h5 --out RELAXED.h5\n"
@@ -56,7 +57,7 @@ int main(int argc, char** argv) {
       {"run", command_run},         {"build", command_build},     {"stretch", command_stretch},
       {"relax", command_relax},     {"encounter", command_encounter}, {"analyze", command_analyze},
       {"inspect", command_inspect}, {"compare", command_compare}, {"estimate", command_estimate},
-      {"bench", command_bench}};
+      {"bench", command_bench},     {"report", command_report}};
   for (const auto& entry : entries) {
     if (entry.name != name) continue;
     try {
