@@ -70,7 +70,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
     } else if (fs::exists(mid)) {
       row.status = SweepStatus::unfinished;
       const Checkpoint c = read_checkpoint(mid);
-      row.note = fmt::format("stopped at step {} of {}", c.state.step, c.stage.end_step);
+      row.note = fmt::format("mid-stage checkpoint at step {} of {}", c.state.step, c.stage.end_step);
     }
   } catch (const InputError& err) {
     row.status = row.status == SweepStatus::unfinished ? SweepStatus::unfinished : SweepStatus::unreadable;

@@ -91,6 +91,22 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
   return config;
 }
 
+WorkflowArguments read_workflow_arguments(const cxxopts::ParseResult& parsed) {
+  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
+  WorkflowArguments w;
+  w.file = parsed["workflow"].as<std::string>();
+  w.config = load_config(w.file);
+  if (parsed.count("set")) w.overrides = parsed["set"].as<std::vector<std::string>>();
+  for (const auto& assignment : w.overrides) apply_override(w.config, assignment);
+  validate(w.config, "--set");
+  w.dt_factor = parsed["dt-factor"].as<double>();
+  if (!std::isfinite(w.dt_factor) || w.dt_factor <= 0)
+    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", w.dt_factor));
+  w.root = parsed.count("out") ? std::filesystem::path(parsed["out"].as<std::string>())
+                               : std::filesystem::path("checkpoints") / w.config.workflow.name;
+  return w;
+}
+
 int checked_thread_count(int threads) {
   if (threads < 0 || threads > max_threads)
     throw InputError(fmt::format("--threads must be between 0 (the OpenMP default) and {}, got {}", max_threads,

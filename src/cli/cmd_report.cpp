@@ -48,20 +48,8 @@ int command_report(int argc, char** argv) {
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
-
-  const fs::path workflow = parsed["workflow"].as<std::string>();
-  Config config = load_config(workflow);
-  if (parsed.count("set"))
-    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
-  validate(config, "--set");
-  const double dt_factor = parsed["dt-factor"].as<double>();
-  if (!std::isfinite(dt_factor) || dt_factor <= 0)
-    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
-  const fs::path root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
-                                            : fs::path("checkpoints") / config.workflow.name;
-
-  const SweepReport report = build_sweep_report(config, root, dt_factor);
+  const WorkflowArguments w = read_workflow_arguments(parsed);
+  const SweepReport report = build_sweep_report(w.config, w.root, w.dt_factor);
   const fs::path dir = report.folder / "report";
   std::error_code ec;
   fs::create_directories(dir, ec);

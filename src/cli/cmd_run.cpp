@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -15,6 +16,7 @@
 #include "cli/child_jobs.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
+#include "io/stop_signal.hpp"
 #include "stages/encounter_stage.hpp"
 #include "stages/workflow.hpp"
 
@@ -81,9 +83,12 @@ int run_encounters_in_parallel(const ParallelEncounters& p, const std::vector<En
     const std::string counter = fmt::format("[{}/{}]", finished, names.size());
     if (o.exit_code == exit_ok) {
       if (!p.quiet) fmt::print("{} {}\n", counter, child_summary(o.out, name));
-    } else if (o.exit_code == exit_interrupted) {
+    } else if (o.exit_code == exit_interrupted ||
+               (stop_requested() && (o.exit_code == 128 + SIGTERM || o.exit_code == 128 + SIGINT))) {
+      // A child stopped by the signal before it set up its handlers (still starting) ended
+      // without a checkpoint of its own: nothing of it is lost or damaged, a rerun starts it.
       interrupted = true;
-      if (!p.quiet) fmt::print("{} {}: stopped, mid-stage checkpoint written\n", counter, name);
+      if (!p.quiet) fmt::print("{} {}: stopped (a rerun resumes it)\n", counter, name);
     } else {
       failed.push_back(fmt::format("{} (exit {})", name, o.exit_code));
       bad_input_only = bad_input_only && o.exit_code == exit_bad_input;
@@ -125,19 +130,11 @@ int command_run(int argc, char** argv) {
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
-  if (!parsed.count("workflow")) throw InputError("missing WORKFLOW.toml (see --help)");
 
   // Everything is checked before anything is written.
-  const fs::path workflow = parsed["workflow"].as<std::string>();
-  Config config = load_config(workflow);
-  if (parsed.count("set"))
-    for (const auto& assignment : parsed["set"].as<std::vector<std::string>>()) apply_override(config, assignment);
-  validate(config, "--set");
-  const std::vector<std::string> overrides =
-      parsed.count("set") ? parsed["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  const double dt_factor = parsed["dt-factor"].as<double>();
-  if (!std::isfinite(dt_factor) || dt_factor <= 0)
-    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", dt_factor));
+  const WorkflowArguments w = read_workflow_arguments(parsed);
+  const Config& config = w.config;
+  const double dt_factor = w.dt_factor;
   const int threads = checked_thread_count(parsed["threads"].as<int>());
   const int jobs = parsed["jobs"].as<int>();
   if (jobs < 1 || jobs > max_jobs) throw InputError(fmt::format("--jobs must be between 1 and {}, got {}", max_jobs, jobs));
@@ -153,8 +150,7 @@ int command_run(int argc, char** argv) {
   if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
   for (const auto& spec : encounters) check_encounter(encounter_config, spec);
   WorkflowOptions workflow_options;
-  workflow_options.root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
-                                              : fs::path("checkpoints") / config.workflow.name;
+  workflow_options.root = w.root;
   workflow_options.quiet = parsed.count("quiet") > 0;
   workflow_options.dt_factor = dt_factor;
   workflow_options.encounters = std::move(encounters);
@@ -164,7 +160,7 @@ int command_run(int argc, char** argv) {
     // ends the command here, else the rerun below finds everything up to date and summarises.
     const std::vector<Encounter> wanted = std::exchange(workflow_options.encounters, {});
     if (run_workflow(config, workflow_options).interrupted) return exit_interrupted;
-    ParallelEncounters parallel{workflow, workflow_options.root, dt_factor, overrides, threads, jobs,
+    ParallelEncounters parallel{w.file, workflow_options.root, dt_factor, w.overrides, threads, jobs,
                                 workflow_options.quiet};
     if (const int code = run_encounters_in_parallel(parallel, wanted); code != exit_ok) return code;
     workflow_options.encounters = wanted;

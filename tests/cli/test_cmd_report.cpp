@@ -94,7 +94,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto report = run_cli("report " + quoted(workflow) + " --out " + quoted(out));
   ASSERT_EQ(report.exit_code, 0) << report.err;
   EXPECT_NE(report.out.find("finished: 2"), std::string::npos) << report.out;
-  EXPECT_NE(report.out.find(fmt::format("unfinished: 1: M0.5_q1.9_V1.8 (stopped at step {} of", snapshots.front().step)),
+  EXPECT_NE(report.out.find(fmt::format("unfinished: 1: M0.5_q1.9_V1.8 (mid-stage checkpoint at step {} of", snapshots.front().step)),
             std::string::npos)
       << report.out;
   EXPECT_NE(report.out.find("missing: 1: M1_q1.9_V1.8"), std::string::npos) << report.out;
