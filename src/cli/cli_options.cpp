@@ -76,6 +76,23 @@ cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char**
   cxxopts::ParseResult parsed;
   try {
     parsed = options.parse(static_cast<int>(pointers.size()), pointers.data());
+  } catch (const cxxopts::exceptions::incorrect_argument_type& err) {
+    // cxxopts names the value only ("Argument 'two' failed to parse"): name the option too.
+    const std::string what = err.what();
+    const bool fancy = what.find("\u2018") != std::string::npos;  // cxxopts quotes with 'x' on some systems
+    const std::string left = fancy ? "\u2018" : "'", right = fancy ? "\u2019" : "'";
+    const auto open = what.find(left), close = what.rfind(right);
+    const std::string value = open != std::string::npos && close != std::string::npos && close > open
+                                  ? what.substr(open + left.size(), close - open - left.size())
+                                  : std::string();
+    for (std::size_t i = 1; i < args.size() && !value.empty(); ++i) {
+      const auto eq = args[i].find('=');
+      const bool inline_value = args[i].starts_with("-") && eq != std::string::npos && args[i].substr(eq + 1) == value;
+      if (inline_value || (args[i] == value && args[i - 1].starts_with("-")))
+        throw InputError(fmt::format("{}: '{}' is not a valid value for {} (see --help)", options.program(), value,
+                                     inline_value ? args[i].substr(0, eq) : args[i - 1]));
+    }
+    throw InputError(fmt::format("{}: {} (see --help)", options.program(), what));
   } catch (const cxxopts::exceptions::exception& err) {
     throw InputError(fmt::format("{}: {} (see --help)", options.program(), err.what()));
   }
@@ -104,6 +121,19 @@ Config resolve_config(const std::string& stored_toml, const std::string& stored_
   validate(config, "--set/--dt-factor");
   common.kernel.apply(config);
   return config;
+}
+
+WorkflowArguments read_workflow_arguments(const cxxopts::ParseResult& parsed) {
+  WorkflowArguments w;
+  w.config = workflow_config(parsed);
+  w.file = parsed["workflow"].as<std::string>();
+  if (parsed.count("set")) w.overrides = parsed["set"].as<std::vector<std::string>>();
+  w.dt_factor = parsed["dt-factor"].as<double>();
+  if (!std::isfinite(w.dt_factor) || w.dt_factor <= 0)
+    throw InputError(fmt::format("--dt-factor must be a number > 0, got {}", w.dt_factor));
+  w.root = parsed.count("out") ? std::filesystem::path(parsed["out"].as<std::string>())
+                               : std::filesystem::path("checkpoints") / w.config.workflow.name;
+  return w;
 }
 
 int checked_thread_count(int threads) {

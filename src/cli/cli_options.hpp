@@ -34,6 +34,18 @@ struct CommonOptions {
 void add_common_options(cxxopts::Options& options);
 CommonOptions read_common_options(const cxxopts::ParseResult& parsed);
 
+/// The workflow of `run` and `report`: WORKFLOW.toml (positional "workflow") with each --set
+/// applied and validated, --dt-factor checked, and the output root (--out, default
+/// checkpoints/<workflow name>). InputError when WORKFLOW.toml is missing or any value is bad.
+struct WorkflowArguments {
+  std::filesystem::path file;
+  Config config;
+  std::vector<std::string> overrides;  ///< the --set assignments, as given
+  double dt_factor = 1.0;
+  std::filesystem::path root;
+};
+WorkflowArguments read_workflow_arguments(const cxxopts::ParseResult& parsed);
+
 /// cxxopts 3.1 only accepts long options of two or more letters; the CLI has --q (encounter).
 /// Rewrites "--x" to "-x" and "--x=V" to "-x" "V" for single-letter options (up to a "--").
 std::vector<std::string> spell_single_letter_long_options(int argc, char** argv);

@@ -17,5 +17,6 @@ int command_compare(int argc, char** argv);
 int command_estimate(int argc, char** argv);
 int command_bench(int argc, char** argv);
 int command_validate(int argc, char** argv);
+int command_report(int argc, char** argv);
 
 }  // namespace tidalcrust

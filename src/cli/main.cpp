@@ -15,9 +15,10 @@ namespace {
 void print_usage(std::FILE* to) {
   std::fputs(
       "usage: tidalcrust COMMAND [OPTIONS]\n"
-      "  run WORKFLOW.toml [--out DIR] [--threads N] [--dt-factor F] [--only NAME]... [--body-only]\n"
+      "  run WORKFLOW.toml [--out DIR] [--threads N] [--jobs N] [--dt-factor F] [--only NAME]... [--body-only]\n"
       "  submit WORKFLOW.toml --slurm [--partition P] [--time T] [--cpus-per-task C] [--max-running K]\n"
       "         [--account A] [--out DIR] [--dry-run]\n"
+      "  report WORKFLOW.toml [--out DIR] [--dt-factor F]\n"
       "  build     --config WORKFLOW.toml --out BODY.h5\n"
       "  stretch   --from BODY.h5 --out STRETCHED.h5\n"
       "  relax     --from STRETCHED.h5 --out RELAXED.h5\n"
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
       {"run", command_run},         {"submit", command_submit},   {"build", command_build},     {"stretch", command_stretch},
       {"relax", command_relax},     {"encounter", command_encounter}, {"analyze", command_analyze},
       {"inspect", command_inspect}, {"compare", command_compare}, {"estimate", command_estimate},
-      {"bench", command_bench}, {"validate", command_validate}};
+      {"bench", command_bench}, {"validate", command_validate}, {"report", command_report}};
   for (const auto& entry : entries) {
     if (entry.name != name) continue;
     try {

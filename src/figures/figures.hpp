@@ -8,6 +8,7 @@
 
 #include "model/checkpoint.hpp"
 #include "analysis/fracture_analysis.hpp"
+#include "analysis/sweep_report.hpp"
 #include "figures/plot_axes.hpp"
 
 namespace tidalcrust {
@@ -76,5 +77,19 @@ FigureFiles write_failure_history(const Checkpoint& checkpoint, double pericente
 /// energy, |P - P0| and |L - L0| (body + perturber, about the origin).
 FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericenter_time,
                                     const std::filesystem::path& stem, const std::string& title);
+
+/// Phase diagram of a sweep (`tidalcrust report`): the encounters of `report` with this M2 and
+/// eps_S over pericenter q (x, R) and pericenter speed V_q (y, sqrt(GM/R)); filled circles
+/// coloured by the failed fraction of the shell springs where the crust cracked (colour bar at the
+/// right), open circles where it did not, grey crosses for encounters not finished; the paper's
+/// eq. 5 strain = eps_S line (V_q = M2 / (E^(1/2) q^2 eps_S), E = report.youngs_modulus) in
+/// eq5_line_color, and the crack/no-crack boundary (grid-cell edges between a cracked and an
+/// intact finished neighbour) dashed in boundary_color. InputError if no encounter matches.
+FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass, double failure_strain,
+                                const std::filesystem::path& stem);
+/// Where write_phase_diagram puts q (x) and V_q (y) for these encounters (one M2 and eps_S) and
+/// E = youngs_modulus (e_g), in points: their range, widened to where eq. 5 crosses strain =
+/// eps_S over their speeds (at most to 4x their largest q).
+PlotAxes phase_diagram_axes(const std::vector<const SweepRow*>& rows, double youngs_modulus);
 
 }  // namespace tidalcrust

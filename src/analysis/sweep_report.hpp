@@ -1,0 +1,85 @@
+#pragma once
+// The table of a workflow's encounters (`tidalcrust report`): one row per encounter of the
+// workflow, finished or not, with its inputs, the impulse strain estimate of the paper's eq. 5 and,
+// for a finished encounter, its fracture statistics (fracture_analysis.hpp), the energy it put
+// into the body (energy_budget.hpp) and its state_hash; plus where each (M2, eps_S, V_q) line of
+// the grid switches from crack to no crack, next to where eq. 5 puts the switch. Units:
+// G = M = R = 1 (masses in M, distances in R, speeds in sqrt(GM/R), energies in G M^2/R).
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/json.hpp"
+#include "model/config.hpp"
+
+namespace tidalcrust {
+
+/// Where an encounter of the workflow stands in its output folder.
+enum class SweepStatus {
+  finished,    ///< encounter.h5 complete, of this workflow's values and relaxed body
+  unfinished,  ///< only a mid-stage checkpoint (interrupted, or running now)
+  missing,     ///< nothing yet
+  stale,       ///< encounter.h5 of other values or another relaxed body (rerun to refresh)
+  unreadable,  ///< encounter.h5 that cannot be read (the note says why)
+};
+const char* status_name(SweepStatus status);
+
+struct SweepRow {
+  Encounter encounter;          ///< as the workflow defines it (name, M2, q, V_q)
+  double failure_strain = 0;    ///< eps_S it runs with (its own, else shell.failure_strain)
+  double strain_estimate = 0;   ///< eq. 5 with E = E_I of the relaxed body
+  SweepStatus status = SweepStatus::missing;
+  std::string note;             ///< e.g. "stopped at step 1200 of 5001", an error, a staleness reason
+  // Finished encounters only (NaN / 0 / empty otherwise):
+  std::size_t failures = 0;                     ///< failed shell springs
+  double failed_fraction = 0;                   ///< of the shell springs
+  double hemisphere_fraction = 0;               ///< of the failures on the subsatellite hemisphere; NaN if none
+  double median_angle_deg = 0;                  ///< from the subsatellite point; NaN if none
+  double longest_crack = 0;                     ///< dual-lattice length of the longest crack, R
+  double energy_deposited = 0;                  ///< internal energy after minus before, G M^2/R
+  double energy_dissipated = 0;                 ///< to damping and failures, G M^2/R
+  std::string state_hash;
+  bool cracked() const { return status == SweepStatus::finished && failures > 0; }
+};
+
+/// One line of the grid (fixed M2, eps_S and V_q) along q: where the finished encounters switch
+/// from crack to no crack, and where eq. 5 puts strain = eps_S.
+struct CrackBoundary {
+  double perturber_mass = 0;
+  double failure_strain = 0;
+  double pericenter_speed = 0;
+  double largest_cracked_q = 0;   ///< largest q with a crack; NaN if none cracked
+  double smallest_intact_q = 0;   ///< smallest q above it without a crack; NaN if none
+  double eq5_q = 0;               ///< q where eq. 5 gives strain = eps_S: sqrt(M2 / (E^(1/2) V_q eps_S))
+};
+
+struct SweepReport {
+  std::string workflow;                  ///< the workflow's name
+  std::filesystem::path folder;          ///< where its encounters are (root, or root/dt<factor>)
+  double dt_factor = 1.0;
+  double youngs_modulus = 0;             ///< E_I of the relaxed body (eq. 15), e_g: the E of eq. 5
+  std::vector<SweepRow> rows;            ///< the workflow's encounters, in its order
+  std::vector<CrackBoundary> boundaries; ///< by M2, eps_S, V_q (ascending)
+  std::size_t count(SweepStatus status) const;
+};
+
+/// The report of the encounters of `config` (validated) below `root` (the --out of run; with
+/// dt_factor != 1 the encounters of root/dt<factor>/), read from their checkpoints. InputError
+/// when root/body/relax.h5 is missing or unfinished (nothing has been run: the message says
+/// which command runs it) or cannot be read; an encounter that cannot be read is a row marked
+/// unreadable.
+SweepReport build_sweep_report(const Config& config, const std::filesystem::path& root, double dt_factor);
+
+/// The strain of eq. 5, (e_g/E)^(1/2) (R/q)^2 (M2/M) (v_c/V_q), for E in e_g.
+double eq5_strain(const Encounter& encounter, double youngs_in_e_g);
+
+/// CSV, one header row with the unit of each column in brackets, then one row per encounter;
+/// cells of values an encounter does not have (not finished, NaN) are empty.
+std::string sweep_report_csv(const SweepReport& report);
+
+/// The report as JSON: workflow, folder, dt_factor, youngs_modulus_E_I, counts per status, the
+/// encounters (one object per row, NaN as null) and the crack boundaries.
+Json sweep_report_json(const SweepReport& report);
+
+}  // namespace tidalcrust

@@ -1,0 +1,93 @@
+// `tidalcrust report WORKFLOW.toml`: the table of every encounter of a workflow (CSV and JSON)
+// and its phase diagrams, from the checkpoints `run` wrote (analysis/sweep_report.hpp).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <utility>
+
+#include "analysis/sweep_report.hpp"
+#include "base/errors.hpp"
+#include "cli/cli_options.hpp"
+#include "cli/commands.hpp"
+#include "figures/figures.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json.hpp"
+
+namespace tidalcrust {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A number as it appears in a file name (as in sweep encounter names): shortest form, no '+'.
+std::string file_number(double v) {
+  std::string text = fmt::format("{}", v);
+  std::erase(text, '+');
+  return text;
+}
+
+std::string q_text(double q) { return std::isfinite(q) ? fmt::format("{:g}", q) : "-"; }
+
+}  // namespace
+
+int command_report(int argc, char** argv) {
+  cxxopts::Options options("tidalcrust report",
+                           "Table (CSV, JSON) and phase diagrams of every encounter of a workflow that run has "
+                           "computed; unfinished or missing ones are listed as such.");
+  options.positional_help("WORKFLOW.toml");
+  options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
+      "out", "the output root run used (default checkpoints/<workflow name>)", cxxopts::value<std::string>())(
+      "dt-factor", "report the encounters run at this dt factor (run --dt-factor)",
+      cxxopts::value<double>()->default_value("1.0"))(
+      "set", "override one value as run did: section.key=value (repeatable)",
+      cxxopts::value<std::vector<std::string>>())("h,help", "show this help");
+  options.parse_positional({"workflow"});
+  auto parsed = parse_arguments(options, argc, argv);
+  if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
+  const WorkflowArguments w = read_workflow_arguments(parsed);
+  const SweepReport report = build_sweep_report(w.config, w.root, w.dt_factor);
+  const fs::path dir = report.folder / "report";
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir))
+    throw InputError(fmt::format("{}: cannot create the report folder: {}", dir.string(), ec.message()));
+  write_file_atomically(dir / "sweep.csv", sweep_report_csv(report));
+  write_file_atomically(dir / "sweep.json", json_text(sweep_report_json(report)));
+  // One phase diagram per (M2, eps_S) of the workflow.
+  std::map<std::pair<double, double>, bool> groups;
+  for (const auto& r : report.rows) groups[{r.encounter.perturber_mass, r.failure_strain}] = true;
+  std::vector<std::string> figures;
+  for (const auto& [key, unused] : groups)
+    for (const auto& file : write_phase_diagram(report, key.first, key.second,
+                                                dir / fmt::format("phase_M{}_eps{}", file_number(key.first),
+                                                                  file_number(key.second))))
+      figures.push_back(file.filename().string());
+
+  fmt::print("report of workflow {} ({} encounters in {}):\n", report.workflow, report.rows.size(),
+             report.folder.string());
+  for (const auto status : {SweepStatus::finished, SweepStatus::unfinished, SweepStatus::missing, SweepStatus::stale,
+                            SweepStatus::unreadable}) {
+    std::vector<std::string> names;
+    for (const auto& r : report.rows)
+      if (r.status == status) names.push_back(r.note.empty() ? r.encounter.name : r.encounter.name + " (" + r.note + ")");
+    if (names.empty()) continue;
+    if (status == SweepStatus::finished)
+      fmt::print("  finished: {}\n", names.size());
+    else
+      fmt::print("  {}: {}: {}\n", status_name(status), names.size(), fmt::join(names, ", "));
+  }
+  for (const auto& b : report.boundaries)
+    fmt::print("  M2 = {:g}, eps_S = {:g}, V_q = {:g}: cracked up to q = {}, intact from q = {}; eq. 5 strain = eps_S "
+               "at q = {:.3g}\n",
+               b.perturber_mass, b.failure_strain, b.pericenter_speed, q_text(b.largest_cracked_q),
+               q_text(b.smallest_intact_q), b.eq5_q);
+  fmt::print("table: {}, {}\nphase diagrams: {} in {}\n", (dir / "sweep.csv").string(), (dir / "sweep.json").string(),
+             fmt::join(figures, ", "), dir.string());
+  return exit_ok;
+}
+
+}  // namespace tidalcrust

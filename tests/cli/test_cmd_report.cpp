@@ -1,0 +1,163 @@
+// `tidalcrust report`: on a small sweep with two encounters finished, one stopped part-way and
+// one not started, the CSV and JSON hold one row per encounter with exactly the values of the
+// checkpoints (fracture analysis, energy budget, eq. 5 with the relaxed body's E_I, state_hash),
+// the unfinished and missing ones listed as such; a folder with nothing run is a one-line error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "analysis/energy_budget.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/checkpoint_names.hpp"
+#include "io/json.hpp"
+#include "io/state_hash.hpp"
+#include "model/derived_quantities.hpp"
+#include "physics/encounter_estimates.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A small body and a 2 x 2 sweep: M0.5_q1.6_V1.8, M0.5_q1.9_V1.8, M1_q1.6_V1.8, M1_q1.9_V1.8.
+fs::path sweep_workflow(const fs::path& dir) {
+  const auto file = dir / "sweep.toml";
+  std::ofstream(file) << R"([workflow]
+name = "reported"
+seed = 3
+[interior]
+count = 150
+radius = 0.85
+min_separation = 0.2
+spring_distance = 0.46
+spring_constant = 0.3
+[shell]
+level = 2
+bending_constant = 0.03
+failure_strain = 0.002
+[cross]
+distance = 0.4
+spring_constant = 0.03
+[integrator]
+dt = 0.005
+[relax]
+duration = 0.5
+probe_duration = 0.2
+settle_duration = 0.2
+[encounter]
+start_distance = 2.5
+end_distance = 2.5
+[sweep]
+perturber_mass = [0.5, 1.0]
+pericenter = [1.6, 1.9]
+pericenter_speed = [1.8]
+)";
+  return file;
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
+  const ScratchFolder scratch("report");
+  const auto workflow = sweep_workflow(scratch.path);
+  const auto out = scratch.path / "out";
+  const auto ran = run_cli("run " + quoted(workflow) + " --out " + quoted(out) +
+                           " --quiet --jobs 2 --only M0.5_q1.6_V1.8 --only M1_q1.6_V1.8");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  // M0.5_q1.9_V1.8 stopped part-way: a mid-stage checkpoint only (a snapshot of another one).
+  const auto snapshots = find_snapshots(out / "M1_q1.6_V1.8" / "encounter.h5");
+  ASSERT_FALSE(snapshots.empty());
+  fs::create_directories(out / "M0.5_q1.9_V1.8");
+  fs::copy_file(snapshots.front().file, out / "M0.5_q1.9_V1.8" / "encounter.mid.h5");
+
+  const auto report = run_cli("report " + quoted(workflow) + " --out " + quoted(out));
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_NE(report.out.find("finished: 2"), std::string::npos) << report.out;
+  EXPECT_NE(report.out.find(fmt::format("unfinished: 1: M0.5_q1.9_V1.8 (mid-stage checkpoint at step {} of", snapshots.front().step)),
+            std::string::npos)
+      << report.out;
+  EXPECT_NE(report.out.find("missing: 1: M1_q1.9_V1.8"), std::string::npos) << report.out;
+
+  const Checkpoint relaxed = read_checkpoint(out / "body" / "relax.h5");
+  const double youngs = derive_quantities(relaxed.body, relaxed.state, 0.85).E_I;
+  const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
+  ASSERT_EQ(rows.size(), 5u) << "a header and one row per encounter";
+  const auto& header = rows[0];
+  ASSERT_EQ(header.size(), 16u);
+  EXPECT_EQ(header[3], "q [R]");
+  EXPECT_EQ(header[11], "longest_crack [R]");
+  const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
+  EXPECT_EQ(json["counts"]["finished"], 2);
+  EXPECT_EQ(json["counts"]["unfinished"], 1);
+  EXPECT_EQ(json["counts"]["missing"], 1);
+  ASSERT_EQ(json["encounters"].size(), 4u);
+  EXPECT_DOUBLE_EQ(json["youngs_modulus_E_I"].get<double>(), youngs);
+
+  const std::vector<std::string> names = {"M0.5_q1.6_V1.8", "M0.5_q1.9_V1.8", "M1_q1.6_V1.8", "M1_q1.9_V1.8"};
+  const std::vector<std::string> statuses = {"finished", "unfinished", "finished", "missing"};
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto& row = rows[i + 1];
+    const Json& entry = json["encounters"][i];
+    ASSERT_EQ(row.size(), header.size()) << names[i];
+    EXPECT_EQ(row[0], names[i]);
+    EXPECT_EQ(row[1], statuses[i]);
+    EXPECT_EQ(entry["name"], names[i]);
+    EXPECT_EQ(entry["status"], statuses[i]);
+    const Encounter spec{names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8, {}, {}};
+    EXPECT_EQ(row[5], "0.002");
+    EXPECT_EQ(row[6], fmt::format("{}", estimate_encounter(spec, youngs).strain)) << names[i];
+    if (statuses[i] != "finished") {
+      EXPECT_EQ(row[7], "") << "no results for an encounter that has not finished";
+      EXPECT_TRUE(entry["failures"].is_null());
+      continue;
+    }
+    const Checkpoint c = read_checkpoint(out / names[i] / "encounter.h5");
+    const FractureSummary fractures = analyze_fractures(c.body, c.state);
+    const EnergyBudget budget = energy_budget(c.observables.timeseries, spec);
+    EXPECT_EQ(row[7], std::to_string(fractures.count())) << names[i];
+    EXPECT_EQ(entry["failures"], fractures.count());
+    EXPECT_EQ(row[8], fmt::format("{}", fractures.fraction_shell));
+    EXPECT_EQ(entry["failed_fraction"].get<double>(), fractures.fraction_shell);
+    EXPECT_EQ(row[11], fmt::format("{}", fractures.longest_crack_length));
+    EXPECT_EQ(entry["longest_crack"].get<double>(), fractures.longest_crack_length);
+    EXPECT_EQ(row[12], fmt::format("{}", budget.internal_change));
+    EXPECT_EQ(entry["energy_deposited"].get<double>(), budget.internal_change);
+    EXPECT_EQ(row[14], state_hash(c.state));
+    EXPECT_EQ(entry["state_hash"], state_hash(c.state));
+  }
+  for (const char* figure : {"phase_M0.5_eps0.002.png", "phase_M1_eps0.002.png", "phase_M1_eps0.002.svg"})
+    EXPECT_TRUE(fs::exists(out / "report" / figure)) << figure;
+}
+
+TEST(Report, NothingRunIsOneLineErrorAndWritesNothing) {
+  const ScratchFolder scratch("report_empty");
+  const auto workflow = sweep_workflow(scratch.path);
+  const auto out = scratch.path / "out";
+  const auto result = run_cli("report " + quoted(workflow) + " --out " + quoted(out));
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(count_lines(result.err), 1) << result.err;
+  EXPECT_NE(result.err.find("nothing has been run for workflow 'reported'"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("relax.h5"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(out));
+}

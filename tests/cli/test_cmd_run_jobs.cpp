@@ -1,0 +1,177 @@
+// `tidalcrust run --jobs N`: encounters in child processes, N at once, give the same bits as a
+// sequential run for any split of the threads; --only works with it; a failed encounter makes the
+// command fail naming it while the others finish; SIGTERM stops every child with its mid-stage
+// checkpoint and a rerun resumes bit-identically; bad values are one-line errors.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+
+#include "io/checkpoint_file.hpp"
+#include "io/stage_lock.hpp"
+#include "io/state_hash.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A small body and a 2 x 2 sweep (encounters M0.5_q1.6_V1.8, M0.5_q1.9_V1.8, M1_q1.6_V1.8,
+/// M1_q1.9_V1.8), mid-stage checkpoints every 15 steps.
+fs::path sweep_workflow(const fs::path& dir) {
+  const auto file = dir / "sweep.toml";
+  std::ofstream(file) << R"([workflow]
+name = "jobs"
+seed = 3
+[interior]
+count = 150
+radius = 0.85
+min_separation = 0.2
+spring_distance = 0.46
+spring_constant = 0.3
+[shell]
+level = 2
+bending_constant = 0.03
+[cross]
+distance = 0.4
+spring_constant = 0.03
+[integrator]
+dt = 0.005
+[relax]
+duration = 0.5
+probe_duration = 0.2
+settle_duration = 0.2
+[encounter]
+start_distance = 3.0
+end_distance = 3.0
+checkpoint_interval = 15
+[sweep]
+perturber_mass = [0.5, 1.0]
+pericenter = [1.6, 1.9]
+pericenter_speed = [1.8]
+)";
+  return file;
+}
+
+const std::vector<std::string> sweep_names = {"M0.5_q1.6_V1.8", "M0.5_q1.9_V1.8", "M1_q1.6_V1.8", "M1_q1.9_V1.8"};
+
+/// state_hash of every final checkpoint below root (mid-stage ones skipped), by relative path.
+std::map<std::string, std::string> final_hashes(const fs::path& root) {
+  std::map<std::string, std::string> hashes;
+  for (const auto& entry : fs::recursive_directory_iterator(root)) {
+    if (entry.path().extension() != ".h5" || entry.path().string().find(".mid.") != std::string::npos) continue;
+    hashes[fs::relative(entry.path(), root).string()] = state_hash(read_checkpoint(entry.path()).state);
+  }
+  return hashes;
+}
+
+std::string run_args(const fs::path& workflow, const fs::path& out, const std::string& more) {
+  return "run " + quoted(workflow) + " --out " + quoted(out) + " " + more;
+}
+
+/// The sequential run of the sweep (one thread), computed once.
+const std::map<std::string, std::string>& sequential_hashes() {
+  static const std::map<std::string, std::string> hashes = [] {
+    const ScratchFolder scratch("jobs_sequential");
+    const auto result = run_cli(run_args(sweep_workflow(scratch.path), scratch.path / "out", "--quiet --threads 1"));
+    EXPECT_EQ(result.exit_code, 0) << result.err;
+    return final_hashes(scratch.path / "out");
+  }();
+  return hashes;
+}
+
+}  // namespace
+
+TEST(RunJobs, EncountersInParallelAreBitIdenticalToSequential) {
+  const auto& expected = sequential_hashes();
+  for (const auto& name : sweep_names) ASSERT_TRUE(expected.count(name + "/encounter.h5")) << name;
+  const ScratchFolder scratch("jobs_parallel");
+  const auto workflow = sweep_workflow(scratch.path);
+  // Three threads over two processes: one child runs with 2 threads, the other with 1.
+  const auto result = run_cli(run_args(workflow, scratch.path / "out", "--jobs 2 --threads 3"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("encounters: 4 in 2 processes at once, 1-2 threads each"), std::string::npos) << result.out;
+  for (int k = 1; k <= 4; ++k) EXPECT_NE(result.out.find(fmt::format("[{}/4] M", k)), std::string::npos) << result.out;
+  for (const auto& name : sweep_names)  // the final summary names every encounter, as a sequential run does
+    EXPECT_NE(result.out.find("  " + name + ": "), std::string::npos) << result.out;
+  EXPECT_EQ(final_hashes(scratch.path / "out"), expected);
+}
+
+TEST(RunJobs, OnlyRunsTheNamedEncountersInParallel) {
+  const auto& expected = sequential_hashes();
+  const ScratchFolder scratch("jobs_only");
+  const auto out = scratch.path / "out";
+  const auto result = run_cli(run_args(sweep_workflow(scratch.path), out,
+                                       "--quiet --jobs 3 --only M1_q1.6_V1.8 --only M0.5_q1.9_V1.8"));
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_FALSE(fs::exists(out / "M0.5_q1.6_V1.8"));
+  EXPECT_FALSE(fs::exists(out / "M1_q1.9_V1.8"));
+  const auto hashes = final_hashes(out);
+  for (const auto& name : {"M1_q1.6_V1.8", "M0.5_q1.9_V1.8"}) {
+    const std::string file = std::string(name) + "/encounter.h5";
+    ASSERT_TRUE(hashes.count(file)) << file;
+    EXPECT_EQ(hashes.at(file), expected.at(file)) << file;
+  }
+}
+
+TEST(RunJobs, FailedEncounterIsNamedAndTheOthersFinish) {
+  const ScratchFolder scratch("jobs_failure");
+  const auto workflow = sweep_workflow(scratch.path);
+  const auto out = scratch.path / "out";
+  // This process computes "other values" of one encounter: its child is refused (exit 2).
+  fs::create_directories(out / "M1_q1.6_V1.8");
+  const LockAttempt held = try_lock_stage(out / "M1_q1.6_V1.8" / "encounter.h5", "0123456789abcdef");
+  ASSERT_TRUE(held.lock);
+  const auto result = run_cli(run_args(workflow, out, "--quiet --jobs 2"));
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("[M1_q1.6_V1.8] tidalcrust run: error:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("1 of 4 encounters failed: M1_q1.6_V1.8 (exit 2)"), std::string::npos) << result.err;
+  for (const auto& name : sweep_names)
+    EXPECT_EQ(fs::exists(out / name / "encounter.h5"), name != "M1_q1.6_V1.8") << name;
+}
+
+TEST(RunJobs, SigtermStopsEveryChildAndRerunResumesBitIdentically) {
+  const auto& expected = sequential_hashes();
+  const ScratchFolder scratch("jobs_sigterm");
+  const auto workflow = sweep_workflow(scratch.path);
+  const auto out = scratch.path / "out";
+  BackgroundCli running(run_args(workflow, out, "--quiet --jobs 2 --threads 2"));
+  // Wait until a child has written a mid-stage checkpoint of its encounter, then stop the parent.
+  const auto any_mid = [&] {
+    for (const auto& name : sweep_names)
+      if (fs::exists(out / name / "encounter.mid.h5")) return true;
+    return false;
+  };
+  for (int i = 0; i < 30000 && !any_mid(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ASSERT_TRUE(any_mid());
+  kill(running.pid(), SIGTERM);
+  const auto stopped = running.finish();
+  EXPECT_EQ(stopped.exit_code, 130) << stopped.err;
+  EXPECT_NE(stopped.err.find("rerun the same command to resume"), std::string::npos) << stopped.err;
+  EXPECT_FALSE(fs::exists(out / sweep_names.back() / "encounter.h5")) << "no new encounter starts after the stop";
+  const auto resumed = run_cli(run_args(workflow, out, "--jobs 2"));
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(final_hashes(out), expected);
+}
+
+TEST(RunJobs, BadJobCountIsOneLineErrorAndWritesNothing) {
+  const ScratchFolder scratch("jobs_bad");
+  const auto workflow = sweep_workflow(scratch.path);
+  for (const std::string value : {"0", "-2", "257", "two"}) {
+    const auto result = run_cli(run_args(workflow, scratch.path / "out", "--jobs " + value));
+    EXPECT_EQ(result.exit_code, 2) << value;
+    EXPECT_EQ(count_lines(result.err), 1) << result.err;
+    EXPECT_NE(result.err.find("jobs"), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(scratch.path / "out")) << value;
+  }
+}
