@@ -10,6 +10,7 @@
 #include <xxhash.h>
 
 #include "model/config.hpp"
+#include "forces/tree_gravity.hpp"
 #include "physics/conservation.hpp"
 #include "model/derived_quantities.hpp"
 #include "io/json.hpp"
@@ -51,6 +52,17 @@ ReportSection derived_section(const Checkpoint& c, const std::string& file) {
   s.add("L_C", q.L_C, "R").add("k_C", q.k_C, spring_constant_unit);
   s.add("V_IP", q.V_IP, "sqrt(GM/R)").add("V_SP", q.V_SP, "sqrt(GM/R)").add("V_Co", q.V_Co, "sqrt(GM/R)");
   s.add("h_S", q.h_S, "R").add("dt_max", q.dt_max, "t_grav");
+  return s;
+}
+
+/// How the stage computed self-gravity (a tree gives other bits than the direct sum).
+ReportSection gravity_section(const Checkpoint& c, const std::string& file) {
+  const Config config = parse_config(c.config_toml, file + ":/parameters/config");
+  ReportSection s{"gravity", {}};
+  s.add("method", config.gravity.method);
+  if (config.gravity.method == "tree")
+    s.add("force_error", config.gravity.force_error, "1")
+        .add("opening_angle", opening_angle_for(config.gravity.force_error), "1");
   return s;
 }
 
@@ -169,6 +181,7 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
       .add("build_flags", c.provenance.build_flags);
   r.sections.push_back(counts_section(c));
   r.sections.push_back(derived_section(c, file));
+  r.sections.push_back(gravity_section(c, file));
   r.sections.push_back(conservation_section(c));
   r.sections.push_back(record_section(c));
 

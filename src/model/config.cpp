@@ -156,6 +156,10 @@ void visit_keys(C& c, V&& visit) {
   key(c.encounter.relaxation_crossings,
       {"encounter", "relaxation_crossings", "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
+
+  key(c.gravity.method, {"gravity", "method", "-", "\"direct\" (every pair, the reference) or \"tree\" (octree, quadrupoles)"});
+  key(c.gravity.force_error,
+      {"gravity", "force_error", "-", "tree: target median relative force error per particle", 0, 0.5, true});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4).
@@ -443,6 +447,7 @@ void validate(const Config& config, const std::string& origin) {
                                  config.relax.settle_duration, config.relax.duration));
   check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
   check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
+  check_choice(config.gravity.method, {"direct", "tree"}, fmt::format("{}: gravity.method", origin));
   if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",

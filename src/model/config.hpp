@@ -101,6 +101,14 @@ struct EncounterDefaults {
   double relaxation_crossings = 2.0;       ///< "local": relaxation interval, in shell crossing times L_S/V_SP
 };
 
+/// How self-gravity is computed (docs/architecture.md, "Self-gravity methods").
+struct GravityConfig {
+  /// "direct" (every pair, forces/gravity.hpp: the reference) or "tree" (octree with softened
+  /// quadrupoles, forces/tree_gravity.hpp: for large N).
+  std::string method = "direct";
+  double force_error = 1e-4;  ///< tree: target median relative force error per particle
+};
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -110,6 +118,7 @@ struct Config {
   StretchConfig stretch;
   RelaxConfig relax;
   EncounterDefaults encounter;
+  GravityConfig gravity;
   std::vector<Encounter> encounters;
 
   /// The encounter with this name; InputError listing the known names otherwise.
