@@ -112,6 +112,21 @@ struct Targets {
   }
 };
 
+/// The octupole contractions of a cell at r = x - com: U_i = O_ijk r_j r_k and P = r.U.
+struct Octupole {
+  V ux, uy, uz, p;
+  template <class Cell>
+  Octupole(const Cell& cell, V rx, V ry, V rz) {
+    const double* o = cell.third;  // xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
+    const V xx = rx * rx, yy = ry * ry, zz = rz * rz, two = splat(2.0);
+    const V xy = two * rx * ry, xz = two * rx * rz, yz = two * ry * rz;
+    ux = fma(splat(o[4]), yz, fma(splat(o[2]), xz, fma(splat(o[1]), xy, fma(splat(o[5]), zz, fma(splat(o[3]), yy, splat(o[0]) * xx)))));
+    uy = fma(splat(o[7]), yz, fma(splat(o[4]), xz, fma(splat(o[3]), xy, fma(splat(o[8]), zz, fma(splat(o[6]), yy, splat(o[1]) * xx)))));
+    uz = fma(splat(o[8]), yz, fma(splat(o[5]), xz, fma(splat(o[4]), xy, fma(splat(o[9]), zz, fma(splat(o[7]), yy, splat(o[2]) * xx)))));
+    p = fma(rz, uz, fma(ry, uy, rx * ux));
+  }
+};
+
 }  // namespace
 
 ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::vector<double>& reference) {
@@ -137,7 +152,7 @@ ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::v
 }
 
 double opening_angle_for(double force_error) {
-  return std::clamp(3.2 * std::pow(force_error, 2.0 / 7.0), 0.1, 0.7);
+  return std::clamp(2.55 * std::pow(force_error, 2.0 / 9.0), 0.1, 0.7);
 }
 
 TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, double force_error)
@@ -153,20 +168,18 @@ TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, doub
       m_(mass.size()),
       acceleration_(3 * mass.size(), 0.0) {}
 
-std::uint32_t TreeGravity::build_node(std::uint32_t begin, std::uint32_t end, int level, bool in_group) {
+std::uint32_t TreeGravity::build_node(std::uint32_t begin, std::uint32_t end, int level) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   const bool leaf = end - begin <= leaf_capacity || level > deepest_level;
-  nodes_.push_back(Node{begin, end, 0, leaf, 0, {0, 0, 0}, {0, 0, 0, 0, 0, 0}, 0, 0});
-  if (!in_group && (end - begin <= group_capacity || leaf)) {
-    groups_.push_back(Group{index, {0, 0, 0}, {0, 0, 0}});
-    in_group = true;
-  }
+  Node node{};  // moments: compute_moments()
+  node.begin = begin, node.end = end, node.leaf = leaf;
+  nodes_.push_back(node);
   if (!leaf) {
     for (std::uint32_t b = begin; b < end;) {
       const unsigned o = octant(key_[b], level);
       std::uint32_t e = b + 1;
       while (e < end && octant(key_[e], level) == o) ++e;
-      build_node(b, e, level + 1, in_group);
+      build_node(b, e, level + 1);
       b = e;
     }
   }
@@ -189,19 +202,28 @@ void TreeGravity::compute_moments(std::size_t index) {
   } else {  // massless particles only: no pull, any centre
     node.com[0] = x_[node.begin], node.com[1] = y_[node.begin], node.com[2] = z_[node.begin];
   }
-  double s[6] = {0, 0, 0, 0, 0, 0}, bmax2 = 0;
+  double s[6] = {0, 0, 0, 0, 0, 0}, o[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, bmax2 = 0;
   for (std::uint32_t k = node.begin; k < node.end; ++k) {
-    const double dx = x_[k] - node.com[0], dy = y_[k] - node.com[1], dz = z_[k] - node.com[2];
-    s[0] += m_[k] * dx * dx;
-    s[1] += m_[k] * dx * dy;
-    s[2] += m_[k] * dx * dz;
-    s[3] += m_[k] * dy * dy;
-    s[4] += m_[k] * dy * dz;
-    s[5] += m_[k] * dz * dz;
-    bmax2 = std::max(bmax2, dx * dx + dy * dy + dz * dz);
+    const double d[3] = {x_[k] - node.com[0], y_[k] - node.com[1], z_[k] - node.com[2]};
+    const double m = m_[k];
+    s[0] += m * d[0] * d[0];
+    s[1] += m * d[0] * d[1];
+    s[2] += m * d[0] * d[2];
+    s[3] += m * d[1] * d[1];
+    s[4] += m * d[1] * d[2];
+    s[5] += m * d[2] * d[2];
+    std::size_t c = 0;  // i <= j <= l, in the order of Node::third
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i; j < 3; ++j)
+        for (std::size_t l = j; l < 3; ++l) o[c++] += m * d[i] * d[j] * d[l];
+    bmax2 = std::max(bmax2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   }
   std::copy(s, s + 6, node.second);
   node.trace = s[0] + s[3] + s[5];
+  std::copy(o, o + 10, node.third);
+  node.third_trace[0] = o[0] + o[3] + o[5];  // xxx + xyy + xzz
+  node.third_trace[1] = o[1] + o[6] + o[8];  // xxy + yyy + yzz
+  node.third_trace[2] = o[2] + o[7] + o[9];  // xxz + yyz + zzz
   node.bmax2 = bmax2;
 }
 
@@ -244,15 +266,16 @@ void TreeGravity::build(const double* position) {
     x_[k] = position[3 * i], y_[k] = position[3 * i + 1], z_[k] = position[3 * i + 2];
     m_[k] = mass_[i];
   }
-  build_node(0, static_cast<std::uint32_t>(n), 0, false);
+  build_node(0, static_cast<std::uint32_t>(n), 0);
+  for (std::size_t b = 0; b < n; b += group_size)
+    groups_.push_back(Group{static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(std::min(n, b + group_size)), {}, {}});
   const std::size_t node_total = nodes_.size();
   // Each node's moments from its own particles (O(N depth)): independent, any thread.
 #pragma omp parallel for schedule(dynamic, 32) if (n >= 4096)
   for (std::size_t i = 0; i < node_total; ++i) compute_moments(i);
   for (Group& g : groups_) {
-    const Node& node = nodes_[g.node];
     for (std::size_t k = 0; k < 3; ++k) g.lo[k] = std::numeric_limits<double>::infinity(), g.hi[k] = -g.lo[k];
-    for (std::uint32_t k = node.begin; k < node.end; ++k) {
+    for (std::uint32_t k = g.begin; k < g.end; ++k) {
       const double p[3] = {x_[k], y_[k], z_[k]};
       for (std::size_t a = 0; a < 3; ++a) g.lo[a] = std::min(g.lo[a], p[a]), g.hi[a] = std::max(g.hi[a], p[a]);
     }
@@ -272,8 +295,8 @@ void TreeGravity::interaction_list(const Group& g, std::vector<std::uint32_t>& c
       const double d = std::max({g.lo[k] - node.com[k], node.com[k] - g.hi[k], 0.0});
       d2 += d * d;
     }
-    // An ancestor of the group (or the group itself) never passes: one of its particles lies in
-    // the box, so d <= b_max, and theta < 1.
+    // A node holding a particle of the group never passes: that particle lies in the box, so
+    // d <= b_max, and theta < 1.
     if (node.bmax2 < theta2 * d2) {
       cells.push_back(static_cast<std::uint32_t>(i));
       i = node.next;
@@ -291,14 +314,14 @@ void TreeGravity::interaction_list(const Group& g, std::vector<std::uint32_t>& c
 
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
   std::vector<std::uint32_t> cells, ranges;
-  const V e2 = splat(eps2_), three = splat(3.0), three_halves = splat(1.5), fifteen_halves = splat(7.5);
+  const V e2 = splat(eps2_), three = splat(3.0), three_halves = splat(1.5), fifteen_halves = splat(7.5),
+          thirty_five_halves = splat(17.5);
   const std::size_t last = std::min(groups_.size(), (chunk + 1) * groups_per_chunk);
   for (std::size_t gi = chunk * groups_per_chunk; gi < last; ++gi) {
     const Group& g = groups_[gi];
     interaction_list(g, cells, ranges);
-    const Node& group_node = nodes_[g.node];
-    for (std::uint32_t first = group_node.begin; first < group_node.end; first += lanes) {
-      const Targets t(x_.data(), y_.data(), z_.data(), first, group_node.end);
+    for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
+      const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
       V ax = splat(0.0), ay = ax, az = ax;
       for (const std::uint32_t c : cells) {
         const Node& cell = nodes_[c];
@@ -311,12 +334,19 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
         const V srz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
         const V q = fma(rz, srz, fma(ry, sry, rx * srx));
         // -M/s^3 + (3/2) tr S/s^5 - (15/2) q/s^7 along r, 3/s^5 along S r
+        // Octupole: U = O:rr (U_i = O_ijk r_j r_k), P = r.U, t = O_iik.
+        const Octupole oct(cell, rx, ry, rz);
+        const V y9 = y7 * y2;
+        const V tr = fma(splat(cell.third_trace[2]), rz,
+                         fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx));
+        // monopole and quadrupole: -M/s^3 + (3/2) tr S/s^5 - (15/2) q/s^7 along r, 3/s^5 along S r;
+        // octupole: (15/2) (t.r)/s^7 - (35/2) P/s^9 along r, (15/2)/s^7 along U, -(3/2)/s^5 along t
         const V radial = fma(three_halves * splat(cell.trace), y5, splat(0.0) - splat(cell.mass) * y3) -
-                         fifteen_halves * q * y7;
-        const V along = three * y5;
-        ax = fma(along, srx, fma(radial, rx, ax));
-        ay = fma(along, sry, fma(radial, ry, ay));
-        az = fma(along, srz, fma(radial, rz, az));
+                         fifteen_halves * q * y7 + fifteen_halves * tr * y7 - thirty_five_halves * oct.p * y9;
+        const V along = three * y5, along_u = fifteen_halves * y7, along_t = three_halves * y5;
+        ax = fma(along_u, oct.ux, fma(along, srx, fma(radial, rx, ax))) - along_t * splat(cell.third_trace[0]);
+        ay = fma(along_u, oct.uy, fma(along, sry, fma(radial, ry, ay))) - along_t * splat(cell.third_trace[1]);
+        az = fma(along_u, oct.uz, fma(along, srz, fma(radial, rz, az))) - along_t * splat(cell.third_trace[2]);
       }
       for (std::size_t r = 0; r < ranges.size(); r += 2) {
         for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
@@ -330,7 +360,7 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
       }
       alignas(64) double bx[lanes], by[lanes], bz[lanes];
       store(bx, ax), store(by, ay), store(bz, az);
-      for (std::size_t l = 0; l < lanes && first + l < group_node.end; ++l) {
+      for (std::size_t l = 0; l < lanes && first + l < g.end; ++l) {
         double* a = acceleration_.data() + 3 * static_cast<std::size_t>(order_[first + l]);
         a[0] = bx[l], a[1] = by[l], a[2] = bz[l];
       }
@@ -352,10 +382,10 @@ void TreeGravity::accelerations(const double* position, double* acceleration, bo
 
 void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& ranges) {
   interaction_list(g, cells, ranges);
-  const V e2 = splat(eps2_), half = splat(0.5), three = splat(3.0);
-  const Node& group_node = nodes_[g.node];
-  for (std::uint32_t first = group_node.begin; first < group_node.end; first += lanes) {
-    const Targets t(x_.data(), y_.data(), z_.data(), first, group_node.end);
+  const V e2 = splat(eps2_), half = splat(0.5), three = splat(3.0), sixth = splat(1.0 / 6.0), nine = splat(9.0),
+          fifteen = splat(15.0);
+  for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
+    const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
     V phi = splat(0.0);
     for (const std::uint32_t c : cells) {
       const Node& cell = nodes_[c];
@@ -367,8 +397,12 @@ void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& ce
       const V sry = fma(splat(s[4]), rz, fma(splat(s[3]), ry, splat(s[1]) * rx));
       const V srz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
       const V q = fma(rz, srz, fma(ry, sry, rx * srx));
-      // -M/s - (1/2) (3 q/s^5 - tr S/s^3)
-      phi = phi - splat(cell.mass) * y - half * (three * q * y5 - splat(cell.trace) * y3);
+      const Octupole oct(cell, rx, ry, rz);
+      const V tr = fma(splat(cell.third_trace[2]), rz,
+                       fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx));
+      // -M/s - (1/2) (3 q/s^5 - tr S/s^3) + (1/6) (9 t.r/s^5 - 15 P/s^7)
+      phi = phi - splat(cell.mass) * y - half * (three * q * y5 - splat(cell.trace) * y3) +
+            sixth * (nine * tr * y5 - fifteen * oct.p * y5 * y2);
     }
     for (std::size_t r = 0; r < ranges.size(); r += 2)
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
@@ -378,7 +412,7 @@ void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& ce
       }
     alignas(64) double b[lanes];
     store(b, phi);
-    for (std::size_t l = 0; l < lanes && first + l < group_node.end; ++l) potential_[first + l] = b[l];
+    for (std::size_t l = 0; l < lanes && first + l < g.end; ++l) potential_[first + l] = b[l];
   }
 }
 

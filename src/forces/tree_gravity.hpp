@@ -1,6 +1,6 @@
 #pragma once
-// Self-gravity of the body by a tree code (Barnes & Hut 1986) with quadrupole moments of the
-// Plummer-softened potential, for large N: `[gravity] method = "tree"`. The accuracy is set by a
+// Self-gravity of the body by a tree code (Barnes & Hut 1986) with quadrupole and octupole
+// moments of the Plummer-softened potential, for large N: `[gravity] method = "tree"`. The accuracy is set by a
 // target relative force error (`[gravity] force_error`), turned into an opening angle by a
 // calibration measured on this code (opening_angle_for). Units: G = M = R = 1, masses M, lengths
 // R, accelerations G M/R^2, energies G M^2/R. docs/architecture.md ("Self-gravity methods").
@@ -11,15 +11,15 @@
 namespace tidalcrust {
 
 /// The opening angle theta that gives a median relative force error of about `force_error`
-/// (dimensionless, in (0, 0.5]) with quadrupole moments: theta = 3.2 force_error^(2/7), between
-/// 0.1 and 0.7 (0.23 at 1e-4). A calibration of this code, not a bound: the median error
-/// against direct summation, measured with `tidalcrust bench` on 30,000 random points in a
-/// sphere and on the paper-T body for theta = 0.25 ... 0.75, grows as theta^3.5 (1.7e-4 at
-/// theta = 0.3 on the random sphere, 1.45e-4 on the body; 8.4e-5 at 0.25); theta^3.5 because one
-/// cell's error is the octupole term, O(theta^3) of its pull (Salmon & Warren 1994), and the
-/// errors of the many cells add with random signs. The factor 3.2 keeps the measured median
-/// below the target (12,000 random points need it: their median at 0.245 was 1.1e-4); above
-/// theta = 0.7 the median error (5e-3 at 0.75) no longer follows the power law. The achieved error is measured, not assumed: bench reports median, 99th
+/// (dimensionless, in (0, 0.5]) with moments up to the octupole: theta = 2.55 force_error^(2/9),
+/// between 0.1 and 0.7 (0.33 at 1e-4, 0.55 at 1e-3). A calibration of this code, not a bound:
+/// the median error against direct summation, measured with `tidalcrust bench --random 30000`
+/// (points in a sphere) for theta = 0.23 ... 0.7, grows as theta^4.3 (1.6e-5 at 0.23, 5.8e-5
+/// at 0.315, 2.5e-4 at 0.445, 1.7e-3 at 0.7): one cell's error is its first neglected term, the
+/// hexadecapole, O(theta^4) of its pull (Salmon & Warren 1994), and the errors of the many cells
+/// add with partly random signs. The factor keeps the measured median at about 0.4-0.7 of the
+/// target (4.1e-5 at 1e-4, 4.0e-4 at 1e-3 on 30,000 random points; with quadrupoles only the same
+/// error needed theta = 0.23, three times the near field). The achieved error is measured, not assumed: bench reports median, 99th
 /// percentile and maximum against the direct sum.
 double opening_angle_for(double force_error);
 
@@ -30,15 +30,18 @@ double opening_angle_for(double force_error);
 ///   are a pure function of positions and masses (rebuilt every call, no refit: a resumed run
 ///   rebuilds the same tree). Leaves hold <= leaf_capacity particles.
 /// * Moments of each node about its centre of mass c: mass M, the second moments
-///   S = sum m (x - c)(x - c)^T and b_max = max |x - c|.
+///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
+///   b_max = max |x - c|.
 /// * Far field: a cell is used as a whole for a group of particles when b_max < theta d, d the
 ///   distance from c to the group's bounding box (Salmon & Warren 1994). Its pull is the
-///   Taylor expansion of the SOFTENED kernel to second order: with r = x - c and s^2 = r^2 + eps^2,
-///   a = -M r/s^3 + 3 S r/s^5 - (15/2) (r.S.r) r/s^7 + (3/2) tr(S) r/s^5, exact for the
-///   Plummer law up to third order in (x_j - c)/s (no error from r >> eps assumptions).
+///   Taylor expansion of the SOFTENED kernel to third order: with r = x - c, s^2 = r^2 + eps^2,
+///   a = -M r/s^3 + 3 S r/s^5 - (15/2) (r.S.r) r/s^7 + (3/2) tr(S) r/s^5
+///       + (15/2) U/s^7 - (35/2) P r/s^9 - (3/2) t/s^5 + (15/2) (t.r) r/s^7
+///   (U_i = O_ijk r_j r_k, P = r.U, t_k = O_iik), exact for the Plummer law up to fourth order in
+///   (x_j - c)/s: no r >> eps assumption, the trace terms are what softening adds.
 /// * Near field: particles of opened leaves, the Plummer law pair by pair (exact).
-/// * Groups: the nodes of at most group_capacity particles whose parent has more walk the tree
-///   once for all their particles; each particle then sums its group's interaction list
+/// * Groups: runs of group_size particles consecutive in Morton order (spatially compact, all
+///   vectors full) walk the tree once for all their particles; each particle then sums its group's interaction list
 ///   (cells in walk order, then particles in walk order), 8 particles per SIMD vector. Every
 ///   particle's sum has one fixed order: the same bits for any thread count, no atomics.
 ///
@@ -83,8 +86,8 @@ class TreeGravity {
   std::size_t particle_count() const { return count_; }
   std::size_t node_count() const { return nodes_.size(); }
 
-  static constexpr std::size_t leaf_capacity = 8;
-  static constexpr std::size_t group_capacity = 32;
+  static constexpr std::size_t leaf_capacity = 16;
+  static constexpr std::size_t group_size = 16;
   static constexpr std::size_t groups_per_chunk = 16;
 
  private:
@@ -96,14 +99,17 @@ class TreeGravity {
     double com[3];
     double second[6];  ///< S_xx, S_xy, S_xz, S_yy, S_yz, S_zz about com
     double trace;      ///< tr S
+    /// O_ijk = sum m d_i d_j d_k about com, d = x - com: xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
+    double third[10];
+    double third_trace[3];  ///< t_k = sum_i O_iik
     double bmax2;      ///< b_max^2
   };
   struct Group {
-    std::uint32_t node;
-    double lo[3], hi[3];  ///< bounding box of its particles
+    std::uint32_t begin, end;  ///< particle range in Morton order
+    double lo[3], hi[3];       ///< bounding box of its particles
   };
   /// Appends the node of [begin, end) at depth `level` and its subtree; returns its index.
-  std::uint32_t build_node(std::uint32_t begin, std::uint32_t end, int level, bool in_group);
+  std::uint32_t build_node(std::uint32_t begin, std::uint32_t end, int level);
   void compute_moments(std::size_t node);
   /// Interaction list of group g: accepted cells, and ranges of particles of opened leaves.
   void interaction_list(const Group& g, std::vector<std::uint32_t>& cells,

@@ -78,56 +78,74 @@ TEST(TreeGravity, BuiltBodyMeetsTheTargetError) {
   EXPECT_LE(e.p99, 1e-3);
 }
 
-TEST(TreeGravity, FarParticleFeelsTheClusterAsMonopolePlusQuadrupole) {
-  // 60 particles in [0, 0.1]^3 and one at (10, 10, 10): the cluster's node is one cell for the
-  // far particle (b_max ~ 0.09 << theta d), so its pull is exactly the expansion, unsoftened here.
+TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
+  // 64 particles in [0, 0.1]^3 and one at (10, 10, 10), last in Morton order and so a group of
+  // its own (groups are 16 consecutive particles): the cluster's node is one cell for the far
+  // particle (b_max ~ 0.09 << theta d), so its pull is exactly the expansion to octupole order
+  // about the centre of mass, unsoftened here.
   Random random(9);
   std::vector<double> mass, position;
-  for (int i = 0; i < 60; ++i) {
-    mass.push_back(random.uniform(0.5, 1.5) / 60);
+  for (int i = 0; i < 64; ++i) {
+    mass.push_back(random.uniform(0.5, 1.5) / 64);
     for (int k = 0; k < 3; ++k) position.push_back(random.uniform(0, 0.1));
   }
   mass.push_back(1e-3);
   for (int k = 0; k < 3; ++k) position.push_back(10.0);
-  const std::size_t far = 60;
+  const std::size_t far = 64;
+  static_assert(TreeGravity::group_size == 16);
   const std::vector<double> a = tree(mass, 0.0, 1e-4, position.data());
 
-  // Analytic: a = -M r/r^3 + Q r/r^5 - (5/2) (r.Q.r) r/r^7, Q = sum m (3 d d^T - |d|^2 I) about
-  // the centre of mass c, r = x - c.
+  // Analytic, from the Taylor series of -m/|r - d| (r = x - c, d = x_j - c, c the centre of mass):
+  // a = -M r/r^3 + Q r/r^5 - (5/2) (r.Q.r) r/r^7 with Q = sum m (3 d d^T - |d|^2 I), plus the
+  // octupole (15/2) U/r^7 - (35/2) P r/r^9 - (3/2) t/r^5 + (15/2) (t.r) r/r^7 with
+  // O_ijk = sum m d_i d_j d_k, U_i = O_ijk r_j r_k, P = r.U, t_k = O_iik.
   double m = 0, com[3] = {0, 0, 0};
   for (std::size_t i = 0; i < far; ++i) {
     m += mass[i];
     for (int k = 0; k < 3; ++k) com[k] += mass[i] * position[3 * i + k];
   }
   for (double& v : com) v /= m;
-  double q[3][3] = {};
+  double q[3][3] = {}, o[3][3][3] = {};
   for (std::size_t i = 0; i < far; ++i) {
     double d[3], d2 = 0;
     for (int k = 0; k < 3; ++k) d[k] = position[3 * i + k] - com[k], d2 += d[k] * d[k];
     for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) q[k][l] += mass[i] * (3 * d[k] * d[l] - (k == l ? d2 : 0.0));
+      for (int l = 0; l < 3; ++l) {
+        q[k][l] += mass[i] * (3 * d[k] * d[l] - (k == l ? d2 : 0.0));
+        for (int n = 0; n < 3; ++n) o[k][l][n] += mass[i] * d[k] * d[l] * d[n];
+      }
   }
   double r[3], r2 = 0;
   for (int k = 0; k < 3; ++k) r[k] = 10.0 - com[k], r2 += r[k] * r[k];
   const double rn = std::sqrt(r2);
-  double qr[3] = {0, 0, 0}, rqr = 0;
+  double qr[3] = {0, 0, 0}, rqr = 0, u[3] = {0, 0, 0}, p = 0, t[3] = {0, 0, 0}, tr = 0;
   for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) qr[k] += q[k][l] * r[l];
-  for (int k = 0; k < 3; ++k) rqr += r[k] * qr[k];
+    for (int l = 0; l < 3; ++l) {
+      qr[k] += q[k][l] * r[l];
+      t[k] += o[l][l][k];
+      for (int n = 0; n < 3; ++n) u[k] += o[k][l][n] * r[l] * r[n];
+    }
+  for (int k = 0; k < 3; ++k) rqr += r[k] * qr[k], p += r[k] * u[k], tr += t[k] * r[k];
   const std::vector<double> exact = direct(mass, 0.0, position.data());
-  double expected[3], quadrupole_part = 0, miss = 0, octupole_size = 0;
+  double quadrupole_part = 0, octupole_part = 0, miss = 0, higher_orders = 0;
   for (int k = 0; k < 3; ++k) {
     const double monopole = -m * r[k] / (r2 * rn);
     const double quadrupole = qr[k] / (r2 * r2 * rn) - 2.5 * rqr * r[k] / (r2 * r2 * r2 * rn);
-    expected[k] = monopole + quadrupole;
+    const double octupole = 7.5 * u[k] / std::pow(rn, 7) - 17.5 * p * r[k] / std::pow(rn, 9) -
+                            1.5 * t[k] / std::pow(rn, 5) + 7.5 * tr * r[k] / std::pow(rn, 7);
+    const double expected = monopole + quadrupole + octupole;
     quadrupole_part = std::max(quadrupole_part, std::abs(quadrupole));
-    miss = std::max(miss, std::abs(a[3 * far + k] - expected[k]));
-    octupole_size = std::max(octupole_size, std::abs(exact[3 * far + k] - expected[k]));
+    octupole_part = std::max(octupole_part, std::abs(octupole));
+    miss = std::max(miss, std::abs(a[3 * far + k] - expected));
+    higher_orders = std::max(higher_orders, std::abs(exact[3 * far + k] - expected));
   }
   const double scale = m / r2;
-  EXPECT_LE(miss, 1e-13 * scale);
-  EXPECT_GT(quadrupole_part, 1e-8 * scale);  // the quadrupole term is there and counted
-  EXPECT_GT(octupole_size, 100 * miss);      // and the pair sum differs by the higher orders
+  EXPECT_LE(miss, 1e-14 * scale);
+  EXPECT_GT(quadrupole_part, 1e-8 * scale);  // both terms are there and counted
+  EXPECT_GT(octupole_part, 1e-10 * scale);
+  EXPECT_GT(octupole_part, 100 * miss);
+  // The pair sum differs by the next orders only, each smaller by about b/r ~ 0.005.
+  EXPECT_LT(higher_orders, 0.05 * octupole_part);
 }
 
 TEST(TreeGravity, SameBitsOnOneAndTwoThreads) {
