@@ -127,6 +127,29 @@ struct Octupole {
   }
 };
 
+/// What a cell's pull and potential share at the targets t: r = x - com, y = 1/s (s^2 = r^2 +
+/// eps^2) and its powers, S r, q = r.S.r, the octupole contractions and t.r (t_k = O_iik).
+struct CellTerms {
+  V rx, ry, rz, y, y2, y3, y5, srx, sry, srz, q;
+  Octupole oct;
+  V tr;
+  template <class Cell>
+  CellTerms(const Cell& cell, const Targets& t, V e2)
+      : rx(t.x - splat(cell.com[0])),
+        ry(t.y - splat(cell.com[1])),
+        rz(t.z - splat(cell.com[2])),
+        y(rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))))),
+        y2(y * y),
+        y3(y2 * y),
+        y5(y3 * y2),
+        srx(fma(splat(cell.second[2]), rz, fma(splat(cell.second[1]), ry, splat(cell.second[0]) * rx))),
+        sry(fma(splat(cell.second[4]), rz, fma(splat(cell.second[3]), ry, splat(cell.second[1]) * rx))),
+        srz(fma(splat(cell.second[5]), rz, fma(splat(cell.second[4]), ry, splat(cell.second[2]) * rx))),
+        q(fma(rz, srz, fma(ry, sry, rx * srx))),
+        oct(cell, rx, ry, rz),
+        tr(fma(splat(cell.third_trace[2]), rz, fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx))) {}
+};
+
 }  // namespace
 
 ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::vector<double>& reference) {
@@ -325,20 +348,11 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
       V ax = splat(0.0), ay = ax, az = ax;
       for (const std::uint32_t c : cells) {
         const Node& cell = nodes_[c];
-        const V rx = t.x - splat(cell.com[0]), ry = t.y - splat(cell.com[1]), rz = t.z - splat(cell.com[2]);
-        const V y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))));
-        const V y2 = y * y, y3 = y2 * y, y5 = y3 * y2, y7 = y5 * y2;
-        const double* s = cell.second;
-        const V srx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, splat(s[0]) * rx));
-        const V sry = fma(splat(s[4]), rz, fma(splat(s[3]), ry, splat(s[1]) * rx));
-        const V srz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
-        const V q = fma(rz, srz, fma(ry, sry, rx * srx));
-        // -M/s^3 + (3/2) tr S/s^5 - (15/2) q/s^7 along r, 3/s^5 along S r
-        // Octupole: U = O:rr (U_i = O_ijk r_j r_k), P = r.U, t = O_iik.
-        const Octupole oct(cell, rx, ry, rz);
-        const V y9 = y7 * y2;
-        const V tr = fma(splat(cell.third_trace[2]), rz,
-                         fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx));
+        const CellTerms k(cell, t, e2);
+        const V &rx = k.rx, &ry = k.ry, &rz = k.rz, &y3 = k.y3, &y5 = k.y5, &q = k.q, &tr = k.tr;
+        const V y7 = y5 * k.y2, y9 = y7 * k.y2;
+        const V &srx = k.srx, &sry = k.sry, &srz = k.srz;
+        const Octupole& oct = k.oct;
         // monopole and quadrupole: -M/s^3 + (3/2) tr S/s^5 - (15/2) q/s^7 along r, 3/s^5 along S r;
         // octupole: (15/2) (t.r)/s^7 - (35/2) P/s^9 along r, (15/2)/s^7 along U, -(3/2)/s^5 along t
         const V radial = fma(three_halves * splat(cell.trace), y5, splat(0.0) - splat(cell.mass) * y3) -
@@ -389,17 +403,9 @@ void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& ce
     V phi = splat(0.0);
     for (const std::uint32_t c : cells) {
       const Node& cell = nodes_[c];
-      const V rx = t.x - splat(cell.com[0]), ry = t.y - splat(cell.com[1]), rz = t.z - splat(cell.com[2]);
-      const V y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))));
-      const V y2 = y * y, y3 = y2 * y, y5 = y3 * y2;
-      const double* s = cell.second;
-      const V srx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, splat(s[0]) * rx));
-      const V sry = fma(splat(s[4]), rz, fma(splat(s[3]), ry, splat(s[1]) * rx));
-      const V srz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
-      const V q = fma(rz, srz, fma(ry, sry, rx * srx));
-      const Octupole oct(cell, rx, ry, rz);
-      const V tr = fma(splat(cell.third_trace[2]), rz,
-                       fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx));
+      const CellTerms k(cell, t, e2);
+      const V &y = k.y, &y2 = k.y2, &y3 = k.y3, &y5 = k.y5, &q = k.q, &tr = k.tr;
+      const Octupole& oct = k.oct;
       // -M/s - (1/2) (3 q/s^5 - tr S/s^3) + (1/6) (9 t.r/s^5 - 15 P/s^7)
       phi = phi - splat(cell.mass) * y - half * (three * q * y5 - splat(cell.trace) * y3) +
             sixth * (nine * tr * y5 - fifteen * oct.p * y5 * y2);
