@@ -10,6 +10,7 @@
 #include <xxhash.h>
 
 #include "model/config.hpp"
+#include "forces/tree_gravity.hpp"
 #include "physics/conservation.hpp"
 #include "model/derived_quantities.hpp"
 #include "integrate/stability_bound.hpp"
@@ -54,6 +55,17 @@ ReportSection derived_section(const Checkpoint& c, const std::string& file) {
   s.add("h_S", q.h_S, "R").add("E_2D", q.E_2D, "e_g R").add("D_F", q.D_F, "e_g R^3").add("dt_max", q.dt_max, "t_grav");
   const StabilityBound bound = stability_bound(c.body, c.state);  // springs, hinges, node masses
   s.add("dt_safe", bound.safe_dt, "t_grav").add("dt_unstable", bound.unstable_dt, "t_grav");
+  return s;
+}
+
+/// How the stage computed self-gravity (a tree gives other bits than the direct sum).
+ReportSection gravity_section(const Checkpoint& c, const std::string& file) {
+  const Config config = parse_config(c.config_toml, file + ":/parameters/config");
+  ReportSection s{"gravity", {}};
+  s.add("method", config.gravity.method);
+  if (config.gravity.method == "tree")
+    s.add("force_error", config.gravity.force_error, "1")
+        .add("opening_angle", opening_angle_for(config.gravity.force_error), "1");
   return s;
 }
 
@@ -175,6 +187,7 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
     r.sections.back().add("gravity_kernel_changes", c.stage.gravity_kernel_changes);
   r.sections.push_back(counts_section(c));
   r.sections.push_back(derived_section(c, file));
+  r.sections.push_back(gravity_section(c, file));
   r.sections.push_back(conservation_section(c));
   r.sections.push_back(record_section(c));
 

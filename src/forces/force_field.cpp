@@ -44,6 +44,8 @@ ForceOptions force_options(const Config& config, double damping) {
   options.cross_strain_scale = config.cross.strain_scale;
   options.cross_min_force_factor = config.cross.min_force_factor;
   options.gravity_kernel = gravity_kernel_of(config);
+  options.tree_gravity = config.gravity.method == "tree";
+  options.force_error = config.gravity.force_error;
   return options;
 }
 
@@ -54,8 +56,11 @@ GravityKernel gravity_kernel_of(const Config& config) {
 ForceField::ForceField(const Body& body, ForceOptions options)
     : body_(body),
       options_(options),
-      gravity_(body.mass, body.softening, options.gravity_kernel),
       cross_{options.cross_strain_scale, options.cross_min_force_factor} {
+  if (options.tree_gravity)
+    tree_.emplace(body.mass, body.softening, options.force_error);
+  else
+    gravity_.emplace(body.mass, body.softening, options.gravity_kernel);
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
   if (body.spring_kind.size() != ns)
     throw InputError(fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
@@ -159,7 +164,10 @@ void ForceField::gather(std::size_t p, bool with_gravity, double* acceleration) 
   }
   const double inv_mass = 1.0 / body_.mass[p];
   double g[3] = {0, 0, 0};
-  if (with_gravity) gravity_.sum_blocks(p, g);
+  if (with_gravity) {
+    if (tree_) tree_->acceleration(p, g);
+    else gravity_->sum_blocks(p, g);
+  }
   for (int k = 0; k < 3; ++k) acceleration[3 * p + k] = f[k] * inv_mass + g[k];
 }
 
@@ -217,11 +225,15 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   out.body.resize(3 * n);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
-  if (self_gravity) gravity_.load_positions(position);
+  if (self_gravity) {
+    if (tree_) tree_->build(position);  // the tree, a pure function of the positions
+    else gravity_->load_positions(position);
+  }
 
   // One parallel region per pass: first every independent piece of work (gravity blocks, the
   // largest, then spring and hinge chunks) from one dynamic queue, then the per-particle gather.
-  const std::size_t gravity_items = self_gravity ? static_cast<std::size_t>(DirectGravity::block_count) : 0;
+  const std::size_t gravity_items =
+      !self_gravity ? 0 : tree_ ? tree_->chunk_count() : static_cast<std::size_t>(DirectGravity::block_count);
   const std::size_t spring_items = (ns + spring_chunk - 1) / spring_chunk;
   const std::size_t hinge_items = (nh + hinge_chunk - 1) / hinge_chunk;
   const std::size_t items = gravity_items + spring_items + hinge_items;
@@ -233,7 +245,8 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
 #pragma omp for schedule(dynamic, 1) reduction(min : collapsed)
     for (std::size_t item = 0; item < items; ++item) {
       if (item < gravity_items) {
-        gravity_.accumulate_block(static_cast<int>(item));
+        if (tree_) tree_->accumulate_chunk(item);
+        else gravity_->accumulate_block(static_cast<int>(item));
       } else if (item < gravity_items + spring_items) {
         const std::size_t c = item - gravity_items;
         spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
@@ -275,7 +288,9 @@ Energies ForceField::energies(const double* position, const double* velocity, co
                     e.damping_power += spring.dissipated_power;
                   });
   for_each_hinge(0, body_.hinge_count(), position, [&e](std::size_t, const HingeForces& f) { e.hinge += f.energy; });
-  if (options_.self_gravity) e.self_gravity = self_gravity_energy(body_.mass, body_.softening, position);
+  if (options_.self_gravity)
+    e.self_gravity = tree_ ? tree_->potential_energy(position)
+                           : self_gravity_energy(body_.mass, body_.softening, position);
   e.perturber = perturber_energy(body_.mass, body_.softening, position, perturber);
   return e;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // All accelerations of one step: springs (eqs. 12-14, optional eq. 26 for cross springs),
-// hinges (eq. 22), self-gravity (direct sum, Plummer softening) and the perturber, which
+// hinges (eq. 22), self-gravity (direct sum or tree code, Plummer softening) and the perturber, which
 // pulls every particle and is pulled back; and the potential energy of each of these laws.
 // Units: G = M = R = 1, accelerations G M / R^2, energies G M^2/R.
 //
@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,7 @@
 #include "forces/gravity.hpp"
 #include "forces/hinge_force.hpp"
 #include "forces/spring_force.hpp"
+#include "forces/tree_gravity.hpp"
 #include "model/state.hpp"
 
 namespace tidalcrust {
@@ -36,6 +38,10 @@ struct ForceOptions {
   double cross_min_force_factor = 0.1;///< F_Ck
   bool self_gravity = true;           ///< false only for tests of the other forces
   GravityKernel gravity_kernel = GravityKernel::fast;  ///< [gravity] kernel (DirectGravity)
+  /// Self-gravity by TreeGravity at target relative error `force_error` instead of DirectGravity
+  /// ([gravity] method = "tree").
+  bool tree_gravity = false;
+  double force_error = 1e-4;
   /// A pass with less work than this (N^2/128 + springs + 4 hinges) runs on one thread:
   /// below it the fork/join costs more than it saves, and far more when the cores are
   /// oversubscribed. Results never depend on it (tests set 1 to exercise the threads).
@@ -43,7 +49,7 @@ struct ForceOptions {
 };
 
 /// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor; [gravity]
-/// kernel) for a stage that damps its springs at rate `damping` (1/t_grav).
+/// kernel, method, force_error) for a stage that damps its springs at rate `damping` (1/t_grav).
 ForceOptions force_options(const Config& config, double damping);
 
 /// The gravity kernel `[gravity] kernel` names ("fast" or "portable"; validate() checks it).
@@ -123,7 +129,10 @@ class ForceField {
   /// Fills hinge_forces(): the four forces of each hinge. Returns the lowest collapsed hinge or -1.
   std::int64_t compute_hinge_forces(const double* position, const HingeState& hinges);
   /// Self-gravity accelerations [N*3].
-  void compute_gravity(const double* position, double* acceleration) { gravity_.accelerations(position, acceleration); }
+  void compute_gravity(const double* position, double* acceleration) {
+    if (tree_) tree_->accelerations(position, acceleration);
+    else gravity_->accelerations(position, acceleration);
+  }
 
   /// Springs and hinges per unit of parallel work.
   static constexpr std::size_t spring_chunk = 2048;
@@ -162,7 +171,8 @@ class ForceField {
 
   const Body& body_;
   ForceOptions options_;
-  DirectGravity gravity_;
+  std::optional<DirectGravity> gravity_;  ///< the self-gravity method in use: one of the two
+  std::optional<TreeGravity> tree_;
   std::vector<double> reduced_mass_;    ///< [Ns] m_i m_j/(m_i+m_j)
   std::vector<std::uint8_t> nonlinear_; ///< [Ns] 1 where eq. 26 applies
   CrossSoftening cross_;                ///< eq. 26 parameters

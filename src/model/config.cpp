@@ -161,6 +161,9 @@ void visit_keys(C& c, V&& visit) {
   key(c.gravity.kernel,
       {"gravity", "kernel", "-",
        "\"fast\" (AVX-512 estimates where available) or \"portable\" (the same bits on every x86-64 CPU)"});
+  key(c.gravity.method, {"gravity", "method", "-", "\"direct\" (every pair, the reference) or \"tree\" (octree, quadrupoles)"});
+  key(c.gravity.force_error,
+      {"gravity", "force_error", "-", "tree: target median relative force error per particle", 0, 0.5, true});
 
   // issue 12: [material], [resolution], [core] (docs/material.md); all optional.
   key(c.material.youngs_modulus,
@@ -580,6 +583,7 @@ void validate(const Config& config, const std::string& origin) {
   check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
   check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
   check_choice(config.gravity.kernel, {"fast", "portable"}, fmt::format("{}: gravity.kernel", origin));
+  check_choice(config.gravity.method, {"direct", "tree"}, fmt::format("{}: gravity.method", origin));
   if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",

@@ -101,11 +101,15 @@ struct EncounterDefaults {
   double relaxation_crossings = 2.0;       ///< "local": relaxation interval, in shell crossing times L_S/V_SP
 };
 
-/// Self-gravity (forces/gravity.hpp).
+/// How self-gravity is computed.
 struct GravityConfig {
   /// "fast" (AVX-512 estimate and Newton steps where available) or "portable" (correctly rounded
   /// sqrt and division: the same bits on every x86-64 CPU); docs/determinism.md.
   std::string kernel = "fast";
+  /// "direct" (every pair, forces/gravity.hpp: the reference) or "tree" (octree with softened
+  /// multipoles, forces/tree_gravity.hpp: for large N); docs/architecture.md, "Self-gravity methods".
+  std::string method = "direct";
+  double force_error = 1e-4;  ///< tree: target median relative force error per particle
 };
 
 // ---- issue 12: a body described by its material, its resolution and a rocky core ----------------

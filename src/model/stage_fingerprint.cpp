@@ -24,9 +24,14 @@ std::string keys_of(const Config& config, std::string_view section, Keys mode,
   return out;
 }
 
-/// What the force law reads beyond the stored springs (the optional cross-spring law, eq. 26).
+/// What the force law reads beyond the stored springs (the optional cross-spring law, eq. 26;
+/// the self-gravity method: tree gravity gives other bits than the direct sum, so it is another
+/// stage; written only for the tree, so every fingerprint of a direct run stays as it was).
 std::string force_law(const Config& config) {
-  return keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
+  std::string text = keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
+  if (config.gravity.method != "direct")
+    text += keys_of(config, "gravity", Keys::only, {"method", "force_error"});
+  return text;
 }
 
 /// What the force law and the failure rule read during a time-stepping stage.

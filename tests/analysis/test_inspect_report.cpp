@@ -63,8 +63,21 @@ TEST(InspectReport, CountsAndTotalsAreExact) {
             std::vector<double>(totals.momentum.begin(), totals.momentum.end()));
   EXPECT_EQ(find("derived", "M_S").number, 0.5);
   EXPECT_EQ(find("derived", "k_S").number, 0.06);
+  EXPECT_EQ(find("gravity", "method").text, "direct");  // the default
   EXPECT_EQ(find("perturber", "mass").number, 0.5);
   EXPECT_EQ(find("perturber", "min_distance").number, 1.84);
+}
+
+TEST(InspectReport, TreeGravityShowsItsTargetErrorAndOpeningAngle) {
+  Checkpoint c = synthetic_checkpoint();
+  Config config = parse_config(c.config_toml, "synthetic");
+  config.gravity.method = "tree";
+  config.gravity.force_error = 1e-3;
+  c.config_toml = to_toml(config);
+  const std::string json = inspect_report_json(build_inspect_report(c, "synthetic.h5"));
+  EXPECT_TRUE(contains(json, "\"method\": \"tree\"")) << json;
+  EXPECT_TRUE(contains(json, "\"force_error\": 0.001")) << json;
+  EXPECT_TRUE(contains(json, "\"opening_angle\": ")) << json;
 }
 
 TEST(InspectReport, RelaxedBodyShowsStabilityAndNoPerturber) {

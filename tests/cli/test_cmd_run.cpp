@@ -211,6 +211,12 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
            " --out " + quoted(dir / "fresh"), "encounter 'B'"},
       {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
            " --out " + quoted(dir / "fresh"), "is not resolved by dt = "},
+      // The gravity method (issue 13): unknown method, force_error outside (0, 0.5].
+      {"run " + quoted(workflow) + " --set gravity.method=fmm --out " + quoted(out), "gravity.method = \"fmm\""},
+      {"run " + quoted(workflow) + " --set gravity.force_error=0 --out " + quoted(out), "gravity.force_error = 0"},
+      {"run " + quoted(workflow) + " --set gravity.force_error=1.0 --out " + quoted(out), "gravity.force_error = 1"},
+      {"build --config " + quoted(workflow) + " --set gravity.force_error=-1e-4 --out " + quoted(dir / "fresh.h5"),
+       "gravity.force_error"},
   };
   for (const auto& c : cases) {
     const auto r = run_cli(c.args);
@@ -221,6 +227,7 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   EXPECT_EQ(read_file(out / "body" / "build.h5"), build_bytes);
   EXPECT_FALSE(fs::exists(out / "A"));
   EXPECT_FALSE(fs::exists(dir / "fresh"));
+  EXPECT_FALSE(fs::exists(dir / "fresh.h5"));
 }
 
 // Issue 10 item 2: one interior mass of body/relax.h5 changed with an HDF5 tool kept its

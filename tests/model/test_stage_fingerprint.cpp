@@ -61,3 +61,18 @@ TEST(StageFingerprint, FirstDifferenceNamesTheKey) {
   EXPECT_EQ(first_difference(build_fingerprint(a), build_fingerprint(b)),
             "'interior.count = 1869' -> 'interior.count = 1500'");
 }
+
+TEST(StageFingerprint, TheTreeGravityMethodAndItsErrorAreOtherStages) {
+  // Every stage that computes forces (stretch, relax, encounter) reads the gravity method.
+  EXPECT_EQ(changed_by("gravity.method=\"tree\""), "sre");
+  // The direct sum does not read force_error: a direct run's fingerprints stay as they were.
+  EXPECT_EQ(changed_by("gravity.force_error=0.001"), "");
+  Config tree = load_config(test_support::workflow_file("paper-T.toml"));
+  apply_override(tree, "gravity.method=\"tree\"");
+  Config looser = tree;
+  apply_override(looser, "gravity.force_error=0.001");
+  EXPECT_NE(encounter_fingerprint(tree, tree.find_encounter("T5")),
+            encounter_fingerprint(looser, looser.find_encounter("T5")));
+  EXPECT_NE(relax_fingerprint(tree).find("gravity.method = 'tree'"), std::string::npos) << relax_fingerprint(tree);
+  EXPECT_NE(stretch_fingerprint(looser).find("gravity.force_error = 0.001"), std::string::npos);
+}

@@ -1,0 +1,133 @@
+#pragma once
+// Self-gravity of the body by a tree code (Barnes & Hut 1986) with quadrupole and octupole
+// moments of the Plummer-softened potential, for large N: `[gravity] method = "tree"`. The accuracy is set by a
+// target relative force error (`[gravity] force_error`), turned into an opening angle by a
+// calibration measured on this code (opening_angle_for). Units: G = M = R = 1, masses M, lengths
+// R, accelerations G M/R^2, energies G M^2/R. docs/architecture.md ("Self-gravity methods").
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace tidalcrust {
+
+/// The opening angle theta that gives a median relative force error of about `force_error`
+/// (dimensionless, in (0, 0.5]) with moments up to the octupole: theta = 2.55 force_error^(2/9),
+/// between 0.1 and 0.7 (0.33 at 1e-4, 0.55 at 1e-3). A calibration of this code, not a bound:
+/// the median error against direct summation, measured with `tidalcrust bench --random 30000`
+/// (points in a sphere) for theta = 0.23 ... 0.7, grows as theta^4.3 (1.6e-5 at 0.23, 5.8e-5
+/// at 0.315, 2.5e-4 at 0.445, 1.7e-3 at 0.7): one cell's error is its first neglected term, the
+/// hexadecapole, O(theta^4) of its pull (Salmon & Warren 1994), and the errors of the many cells
+/// add with partly random signs. The factor keeps the measured median at about 0.4-0.7 of the
+/// target (4.1e-5 at 1e-4, 4.0e-4 at 1e-3 on 30,000 random points; with quadrupoles only the same
+/// error needed theta = 0.23, three times the near field). The achieved error is measured, not assumed: bench reports median, 99th
+/// percentile and maximum against the direct sum.
+double opening_angle_for(double force_error);
+
+/// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2), approximated by an octree:
+///
+/// * Tree: Morton keys (21 bits per axis in the particles' bounding cube) sorted with the
+///   particle index breaking ties, so the order, the nodes, their moments and everything below
+///   are a pure function of positions and masses (rebuilt every call, no refit: a resumed run
+///   rebuilds the same tree). Leaves hold <= leaf_capacity particles.
+/// * Moments of each node about its centre of mass c: mass M, the second moments
+///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
+///   b_max = max |x - c|.
+/// * Far field: a cell is used as a whole for a group of particles when b_max < theta d, d the
+///   distance from c to the group's bounding box (Salmon & Warren 1994). Its pull is the
+///   Taylor expansion of the SOFTENED kernel to third order: with r = x - c, s^2 = r^2 + eps^2,
+///   a = -M r/s^3 + 3 S r/s^5 - (15/2) (r.S.r) r/s^7 + (3/2) tr(S) r/s^5
+///       + (15/2) U/s^7 - (35/2) P r/s^9 - (3/2) t/s^5 + (15/2) (t.r) r/s^7
+///   (U_i = O_ijk r_j r_k, P = r.U, t_k = O_iik), exact for the Plummer law up to fourth order in
+///   (x_j - c)/s: no r >> eps assumption, the trace terms are what softening adds.
+/// * Near field: particles of opened leaves, the Plummer law pair by pair (exact).
+/// * Groups: runs of group_size particles consecutive in Morton order (spatially compact, all
+///   vectors full) walk the tree once for all their particles; each particle then sums its group's interaction list
+///   (cells in walk order, then particles in walk order), 8 particles per SIMD vector. Every
+///   particle's sum has one fixed order: the same bits for any thread count, no atomics.
+///
+/// Usage: build(position), then accumulate_chunk(c) for every chunk (any order, any threads),
+/// then acceleration(i) for every particle; or accelerations() for all of it.
+/// The relative error per particle |a_i - b_i| / |b_i| of accelerations a against a reference b
+/// (both [N*3]): its median, 99th percentile (the value below which 99% of the particles lie)
+/// and maximum. Particles with b_i = 0 are skipped. Measures TreeGravity against DirectGravity.
+struct ForceErrorStats {
+  double median = 0, p99 = 0, max = 0;
+  std::size_t particles = 0;  ///< how many particles were compared
+};
+ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::vector<double>& reference);
+
+class TreeGravity {
+ public:
+  /// mass [N] in M; softening eps in R (Body::softening); force_error in (0, 1).
+  TreeGravity(const std::vector<double>& mass, double softening, double force_error);
+
+  /// Builds the tree for positions [N*3] (R).
+  void build(const double* position);
+  /// Number of independent units of work of accumulate_chunk after build().
+  std::size_t chunk_count() const { return (groups_.size() + groups_per_chunk - 1) / groups_per_chunk; }
+  /// Accelerations of the particles of one chunk of groups (into the internal buffer).
+  void accumulate_chunk(std::size_t chunk);
+  /// a[3] = acceleration (G M/R^2) of particle i (original index) after every chunk ran.
+  void acceleration(std::size_t i, double* a) const {
+    for (std::size_t k = 0; k < 3; ++k) a[k] = acceleration_[3 * i + k];
+  }
+
+  /// Writes accelerations [N*3] (G M/R^2) for positions [N*3] (R); `parallel` false keeps the
+  /// work on the calling thread (same result).
+  void accelerations(const double* position, double* acceleration, bool parallel = true);
+
+  /// Potential energy of the self-gravity, (1/2) sum_i m_i phi_i with phi_i from the same tree
+  /// and expansion as the forces (G M^2/R), for positions [N*3] (R); the self-pair is excluded
+  /// like in self_gravity_energy. Deterministic (per-particle sums in a fixed order, added in
+  /// index order).
+  double potential_energy(const double* position);
+
+  double opening_angle() const { return theta_; }
+  std::size_t particle_count() const { return count_; }
+  std::size_t node_count() const { return nodes_.size(); }
+
+  static constexpr std::size_t leaf_capacity = 16;
+  static constexpr std::size_t group_size = 16;
+  static constexpr std::size_t groups_per_chunk = 16;
+
+ private:
+  struct Node {
+    std::uint32_t begin, end;  ///< particle range in Morton order
+    std::uint32_t next;        ///< the node after this one's subtree (pre-order)
+    bool leaf;
+    double mass;
+    double com[3];
+    double second[6];  ///< S_xx, S_xy, S_xz, S_yy, S_yz, S_zz about com
+    double trace;      ///< tr S
+    /// O_ijk = sum m d_i d_j d_k about com, d = x - com: xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
+    double third[10];
+    double third_trace[3];  ///< t_k = sum_i O_iik
+    double bmax2;      ///< b_max^2
+  };
+  struct Group {
+    std::uint32_t begin, end;  ///< particle range in Morton order
+    double lo[3], hi[3];       ///< bounding box of its particles
+  };
+  /// Appends the node of [begin, end) at depth `level` and its subtree; returns its index.
+  std::uint32_t build_node(std::uint32_t begin, std::uint32_t end, int level);
+  void compute_moments(std::size_t node);
+  /// Interaction list of group g: accepted cells, and ranges of particles of opened leaves.
+  void interaction_list(const Group& g, std::vector<std::uint32_t>& cells,
+                        std::vector<std::uint32_t>& ranges) const;
+  /// phi (potential per unit mass) of the particles of group g, into potential_ (Morton order).
+  void group_potential(const Group& g, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& ranges);
+
+  std::size_t count_;
+  double eps2_;
+  double theta_;
+  std::vector<double> mass_;
+  std::vector<std::uint64_t> key_;
+  std::vector<std::uint32_t> order_;  ///< order_[k] = original index of the k-th particle in Morton order
+  std::vector<double> x_, y_, z_, m_; ///< positions and masses in Morton order
+  std::vector<Node> nodes_;
+  std::vector<Group> groups_;
+  std::vector<double> acceleration_;  ///< [N*3] by original index
+  std::vector<double> potential_;     ///< [N] in Morton order (potential_energy)
+};
+
+}  // namespace tidalcrust
