@@ -206,6 +206,9 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
 }
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {
+  // No failure: no hemisphere, angle or crack to speak of (and no "nan deg").
+  if (fractures.count() == 0)
+    return fmt::format("{}: no failed shell springs (0 of {})", name, fractures.shell_springs);
   return fmt::format("{}: {} failed shell springs ({} of {}), {} on the subsatellite hemisphere, "
                      "median angle from it {:.0f} deg, {} cracks, longest {:.2f} R",
                      name, fractures.count(), percent(fractures.fraction_shell), fractures.shell_springs,

@@ -4,6 +4,7 @@
 # tests/support/sweep-small.toml; every checkpoint must have the state_hash of a local
 # sequential `run`. One encounter task is requeued (scontrol requeue) while it computes its
 # encounter: it must write its mid-stage checkpoint, resume from it and still end bit-identical.
+# Then the 40 encounters of workflows/sweep-quick.toml through Slurm against `run --jobs 2`.
 # Usage: test_submit_slurm.sh TIDALCRUST_EXE SOURCE_DIR. Exit 77 (skipped) when not root.
 set -uo pipefail
 exe=$1
@@ -105,4 +106,29 @@ stopped=$(sed -n 's/.*: interrupted at step \([0-9]*\).*/\1/p' "$log" | head -n 
 grep -q "resuming from .*/encounter.mid.h5 (step $stopped)" "$log" ||
   { on_failure; fail "$log: the requeued task did not resume from the checkpoint written at step $stopped"; }
 echo "--- $log"; cat "$log"
-echo "PASS: 4 encounters under Slurm bit-identical to the local run, also the requeued one"
+echo "4 encounters under Slurm bit-identical to the local run, also the requeued one"
+
+# The whole 40-encounter sweep of workflows/sweep-quick.toml (2 x 5 x 4) through Slurm, two tasks
+# at a time, against `run --jobs 2` on this machine: every checkpoint has the same state_hash.
+sweep=$source_dir/workflows/sweep-quick.toml
+submitted=$("$exe" submit "$sweep" --slurm --out "$work/sweep40" --max-running 2 --cpus-per-task 1 --time 30:00) ||
+  { on_failure; fail "submit of sweep-quick exited $?: $submitted"; }
+body_job=$(sed -n 's/^body chain: job \([0-9]*\).*/\1/p' <<<"$submitted")
+array_job=$(sed -n 's/^encounters: job array \([0-9]*\).*/\1/p' <<<"$submitted")
+[ -n "$body_job" ] && [ -n "$array_job" ] || fail "submit of sweep-quick did not report the job ids"
+"$exe" run "$sweep" --out "$work/jobs40" --jobs 2 --quiet >"$work/jobs40.log" 2>&1 ||
+  { cat "$work/jobs40.log"; fail "run --jobs 2 of sweep-quick failed"; }
+deadline=$((SECONDS + 900))
+while [ -n "$(squeue -h -j "$body_job,$array_job" 2>/dev/null)" ]; do
+  ((SECONDS < deadline)) || { squeue; on_failure; fail "the sweep-quick jobs did not finish within 900 s"; }
+  sleep 1
+done
+mapfile -t names < <("$exe" submit "$sweep" --slurm --dry-run --out "$work/sweep40" |
+  sed -n '/encounters-.*\.txt <==$/,/^# ==>/p' | grep -v '^#')
+((${#names[@]} == 40)) || fail "expected 40 sweep-quick encounters, got ${#names[*]}"
+for file in body/relax.h5 "${names[@]/%//encounter.h5}"; do
+  [ -f "$work/sweep40/$file" ] || { on_failure; fail "Slurm did not write sweep-quick's $file"; }
+  a=$(state_hash "$work/jobs40/$file") b=$(state_hash "$work/sweep40/$file")
+  [ -n "$a" ] && [ "$a" = "$b" ] || { on_failure; fail "sweep-quick $file: state_hash $b under Slurm, $a with --jobs 2"; }
+done
+echo "PASS: 4 encounters (one requeued) and the 40 of sweep-quick under Slurm bit-identical to local runs"

@@ -17,6 +17,7 @@
 #include "model/config.hpp"
 #include "physics/conservation.hpp"
 #include "io/checkpoint_names.hpp"
+#include "stages/analysis_stage.hpp"
 #include "stages/encounter_stage.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_analysis.hpp"
@@ -449,6 +450,31 @@ TEST(EncounterStage, PaperAndQuickEncountersAreResolved) {
   EXPECT_EQ(rejection(parent, quick, strong), "");
   const Checkpoint begun = begin_encounter(parent, quick, strong);
   EXPECT_GT(begun.stage.end_step - begun.stage.clock.start_step, 500);  // 918
+}
+
+// The one-line summary `run` prints per encounter (stages/analysis_stage.hpp).
+TEST(FractureSummaryLine, NoFailureSaysSoWithoutNotANumber) {
+  FractureSummary none;
+  none.shell_springs = 7680;
+  none.hemisphere_fraction = NAN;
+  none.median_angle_from_subsatellite_deg = NAN;
+  const std::string line = fracture_summary_line("M0.1_q2_V1.4", none);
+  EXPECT_EQ(line, "M0.1_q2_V1.4: no failed shell springs (0 of 7680)");
+  EXPECT_EQ(line.find("nan"), std::string::npos);
+}
+
+TEST(FractureSummaryLine, FailuresGiveTheirStatistics) {
+  FractureSummary some;
+  some.shell_springs = 100;
+  some.failed.resize(5);
+  some.fraction_shell = 0.05;
+  some.hemisphere_fraction = 0.8;
+  some.median_angle_from_subsatellite_deg = 42.4;
+  some.longest_crack_length = 0.25;
+  const std::string line = fracture_summary_line("T5", some);
+  EXPECT_NE(line.find("T5: 5 failed shell springs"), std::string::npos) << line;
+  EXPECT_NE(line.find("median angle from it 42 deg"), std::string::npos) << line;
+  EXPECT_NE(line.find("longest 0.25 R"), std::string::npos) << line;
 }
 
 }  // namespace
