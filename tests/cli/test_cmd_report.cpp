@@ -18,6 +18,7 @@
 #include "io/state_hash.hpp"
 #include "model/derived_quantities.hpp"
 #include "physics/encounter_estimates.hpp"
+#include "support/quick_workflow.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -30,29 +31,7 @@ namespace {
 /// A small body and a 2 x 2 sweep: M0.5_q1.6_V1.8, M0.5_q1.9_V1.8, M1_q1.6_V1.8, M1_q1.9_V1.8.
 fs::path sweep_workflow(const fs::path& dir) {
   const auto file = dir / "sweep.toml";
-  std::ofstream(file) << R"([workflow]
-name = "reported"
-seed = 3
-[interior]
-count = 150
-radius = 0.85
-min_separation = 0.2
-spring_distance = 0.46
-spring_constant = 0.3
-[shell]
-level = 2
-bending_constant = 0.03
-failure_strain = 0.002
-[cross]
-distance = 0.4
-spring_constant = 0.03
-[integrator]
-dt = 0.005
-[relax]
-duration = 0.5
-probe_duration = 0.2
-settle_duration = 0.2
-[encounter]
+  std::ofstream(file) << small_body_toml("reported", "failure_strain = 0.002\n") << R"([encounter]
 start_distance = 2.5
 end_distance = 2.5
 [sweep]

@@ -17,6 +17,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/stage_lock.hpp"
 #include "io/state_hash.hpp"
+#include "support/quick_workflow.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -30,28 +31,7 @@ namespace {
 /// M1_q1.9_V1.8), mid-stage checkpoints every 15 steps.
 fs::path sweep_workflow(const fs::path& dir) {
   const auto file = dir / "sweep.toml";
-  std::ofstream(file) << R"([workflow]
-name = "jobs"
-seed = 3
-[interior]
-count = 150
-radius = 0.85
-min_separation = 0.2
-spring_distance = 0.46
-spring_constant = 0.3
-[shell]
-level = 2
-bending_constant = 0.03
-[cross]
-distance = 0.4
-spring_constant = 0.03
-[integrator]
-dt = 0.005
-[relax]
-duration = 0.5
-probe_duration = 0.2
-settle_duration = 0.2
-[encounter]
+  std::ofstream(file) << small_body_toml("jobs") << R"([encounter]
 start_distance = 3.0
 end_distance = 3.0
 checkpoint_interval = 15

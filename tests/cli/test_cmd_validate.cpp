@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/json.hpp"
+#include "support/quick_workflow.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -21,28 +22,7 @@ namespace {
 /// A tiny body (shell level 2, 150 interior nodes) with a short relaxation.
 fs::path tiny_workflow(const fs::path& dir) {
   const auto file = dir / "tiny.toml";
-  std::ofstream(file) << R"([workflow]
-name = "tiny"
-seed = 3
-[interior]
-count = 150
-radius = 0.85
-min_separation = 0.2
-spring_distance = 0.46
-spring_constant = 0.3
-[shell]
-level = 2
-bending_constant = 0.03
-[cross]
-distance = 0.4
-spring_constant = 0.03
-[integrator]
-dt = 0.005
-[relax]
-duration = 0.5
-probe_duration = 0.2
-settle_duration = 0.2
-)";
+  std::ofstream(file) << small_body_toml("tiny");
   return file;
 }
 

@@ -12,6 +12,7 @@
 
 #include "forces/gravity.hpp"
 #include "io/checkpoint_file.hpp"
+#include "support/quick_workflow.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 
@@ -34,28 +35,7 @@ bool names_both_kernels(const std::string& err) {
 /// A small body with short stages and frequent mid-stage checkpoints.
 fs::path small_workflow(const fs::path& dir) {
   const auto file = dir / "small.toml";
-  std::ofstream(file) << R"([workflow]
-name = "small"
-seed = 3
-[interior]
-count = 150
-radius = 0.85
-min_separation = 0.2
-spring_distance = 0.46
-spring_constant = 0.3
-[shell]
-level = 2
-bending_constant = 0.03
-[cross]
-distance = 0.4
-spring_constant = 0.03
-[integrator]
-dt = 0.005
-[relax]
-duration = 0.5
-probe_duration = 0.2
-settle_duration = 0.2
-checkpoint_interval = 15
+  std::ofstream(file) << small_body_toml("small") << R"(checkpoint_interval = 15
 [encounter]
 start_distance = 2.2
 end_distance = 2.2

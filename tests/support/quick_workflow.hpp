@@ -1,6 +1,7 @@
 #pragma once
 // The quick workflow (workflows/quick.toml): its config, its body built, stretched, relaxed once.
 #include <stdexcept>
+#include <string>
 
 #include "model/checkpoint.hpp"
 #include "model/config.hpp"
@@ -11,6 +12,33 @@
 #include "support/files.hpp"
 
 namespace tidalcrust::test_support {
+
+/// The small body of the command-line tests (shell level 2, 150 interior nodes, dt 0.005, a short
+/// relax): the TOML from [workflow] (named `name`) through [relax]; `shell_extra` lines go into
+/// [shell]. Callers append their [relax] keys, [encounter] and encounters.
+inline std::string small_body_toml(const std::string& name, const std::string& shell_extra = "") {
+  return "[workflow]\nname = \"" + name + R"("
+seed = 3
+[interior]
+count = 150
+radius = 0.85
+min_separation = 0.2
+spring_distance = 0.46
+spring_constant = 0.3
+[shell]
+level = 2
+bending_constant = 0.03
+)" + shell_extra + R"([cross]
+distance = 0.4
+spring_constant = 0.03
+[integrator]
+dt = 0.005
+[relax]
+duration = 0.5
+probe_duration = 0.2
+settle_duration = 0.2
+)";
+}
 
 inline Config quick_config() { return load_config(workflow_file("quick.toml")); }
 
