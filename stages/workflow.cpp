@@ -43,8 +43,9 @@ constexpr auto lock_poll_interval = std::chrono::milliseconds(100);
 
 /// Locks the stage `file` for computing the version `identity`: at once when it is free (taking
 /// over, and saying so, the lock of a process that died); after waiting when another process
-/// computes the same version (one line says whom it waits for); InputError naming the holder when
-/// another process computes another version. Nothing when SIGINT/SIGTERM arrive while waiting.
+/// computes the same version (one line says whom it waits for) or briefly checks the folder (empty
+/// identity: remove_superseded_encounters); InputError naming the holder when another process
+/// computes another version. Nothing when SIGINT/SIGTERM arrive while waiting.
 std::optional<StageLock> lock_stage(const RunContext& ctx, const std::string& name, const fs::path& file,
                                     const std::string& identity) {
   for (bool waiting = false;; std::this_thread::sleep_for(lock_poll_interval)) {
@@ -54,7 +55,9 @@ std::optional<StageLock> lock_stage(const RunContext& ctx, const std::string& na
       return std::move(attempt.lock);
     }
     const LockHolder& holder = *attempt.holder;
-    if (holder.pid > 0 && holder.identity != identity)
+    // An empty identity is another process's check for superseded encounters (it holds the lock
+    // for a moment, never computes): wait for it like for the same version.
+    if (holder.pid > 0 && holder.identity != identity && !holder.identity.empty())
       throw InputError(fmt::format(
           "{}: {} is being computed with other values by {} (lock {}); wait for it to finish or use another --out",
           file.string(), name, holder.describe(), lock_path(file).string()));

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
@@ -69,6 +70,29 @@ void expect_consistent_encounter(const fs::path& dir) {
   }
   EXPECT_FALSE(fs::exists(dir / "encounter.mid.h5"));
   EXPECT_FALSE(fs::exists(lock_path(file)));
+}
+
+// Every `run` (each `--jobs` child, each Slurm task) first checks the encounter folders for
+// ones branched from another body, holding each one's lock for a moment with an empty identity.
+// A sibling starting that encounter meanwhile waits for it instead of calling it "other values"
+// (seen in a 60-encounter `--jobs 2` sweep before the fix).
+TEST(RunLocking, AnotherProcessCheckingTheFolderIsWaitedFor) {
+  const ScratchFolder scratch("lock_scan");
+  const fs::path out = scratch.path / "out";
+  ASSERT_EQ(run_cli(quick_run(out) + " --quiet --body-only").exit_code, 0);
+  const fs::path encounter = out / "strong" / "encounter.h5";
+  fs::create_directories(encounter.parent_path());
+  LockAttempt scan = try_lock_stage(encounter, "");
+  ASSERT_TRUE(scan.lock);
+  std::thread release([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    scan.lock.reset();
+  });
+  const CliResult run = run_cli(quick_run(out) + " --quiet --only strong");
+  release.join();
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(run.err.find("other values"), std::string::npos) << run.err;
+  EXPECT_TRUE(fs::exists(encounter));
 }
 
 }  // namespace
