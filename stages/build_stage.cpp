@@ -116,11 +116,7 @@ Checkpoint build_stage(const Config& config) {
     if (config.shell.enabled) {
       k.cross_distance =
           cross_distance_for(interior.nodes, shell.nodes, config.resolution.cross_per_shell_node.value_or(2.33));
-      double edges = 0;
-      for (const auto& [i, j] : shell.edges)
-        edges += (shell.nodes[static_cast<std::size_t>(i)] - shell.nodes[static_cast<std::size_t>(j)]).norm();
-      k.bending = hinge_constant_for_rigidity(material_flexural_rigidity(config.material),
-                                              edges / static_cast<double>(shell.edges.size()));
+      k.bending = hinge_constant_for_rigidity(material_flexural_rigidity(config.material));
     }
   }
 

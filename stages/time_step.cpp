@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "base/errors.hpp"
@@ -9,8 +10,13 @@
 
 namespace tidalcrust {
 
+double strongest_damping(const Config& config) {
+  return std::max({config.relax.damping, config.relax.probe_damping, config.encounter.damping});
+}
+
 std::string settle_time_step(Config& config, const Checkpoint& body, const std::string& origin) {
-  const StabilityBound bound = stability_bound(body.body, body.state);
+  // One dt for relax and encounters: safe under the strongest damping any of them applies.
+  const StabilityBound bound = stability_bound(body.body, body.state, strongest_damping(config));
   if (!(bound.safe_dt > 0)) {
     config.choose_dt = false;
     return "";
@@ -22,8 +28,9 @@ std::string settle_time_step(Config& config, const Checkpoint& body, const std::
     const double unit = std::pow(10.0, std::floor(std::log10(target)) - 1);
     config.integrator.dt = std::floor(target / unit) * unit;
     config.choose_dt = false;
-    note = fmt::format("dt: chose {:.3g} t_grav ({} x the safe bound {:.4g} t_grav, limited by {})",
-                       config.integrator.dt, chosen_dt_fraction, bound.safe_dt,
+    note = fmt::format("dt: chose {:.3g} t_grav ({} x the safe bound {:.4g} t_grav with damping gamma = {:g}, "
+                       "limited by {})",
+                       config.integrator.dt, chosen_dt_fraction, bound.safe_dt, bound.damping,
                        bound.safe_limit.describe(body.body, body.state));
   }
   const double dt = config.integrator.dt;
@@ -35,9 +42,10 @@ std::string settle_time_step(Config& config, const Checkpoint& body, const std::
         chosen_dt_fraction * bound.safe_dt,
         config.from_material() ? " or leave integrator.dt out to have it chosen" : ""));
   if (note.empty() && dt > bound.safe_dt)
-    note = fmt::format("warning: integrator.dt = {:.4g} is above the safe stability bound {:.4g} t_grav (below the "
-                       "certain-instability bound {:.4g}; limited by {})",
-                       dt, bound.safe_dt, bound.unstable_dt, bound.safe_limit.describe(body.body, body.state));
+    note = fmt::format("warning: integrator.dt = {:.4g} is above the safe stability bound {:.4g} t_grav (damping "
+                       "gamma = {:g}; below the certain-instability bound {:.4g}; limited by {})",
+                       dt, bound.safe_dt, bound.damping, bound.unstable_dt,
+                       bound.safe_limit.describe(body.body, body.state));
   return note;
 }
 

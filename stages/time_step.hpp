@@ -10,6 +10,10 @@
 
 namespace tidalcrust {
 
+/// The largest spring damping rate gamma (1/t_grav) of the relax, its probe and the encounters:
+/// the one dt of a body must be stable under each.
+double strongest_damping(const Config& config);
+
 /// Sets config.integrator.dt when config.choose_dt (chosen_dt_fraction of the safe bound, two
 /// significant digits, rounded down) and clears choose_dt; then checks it: InputError (exit 2,
 /// one line naming the bound and the limiting node) when dt exceeds the bound above which

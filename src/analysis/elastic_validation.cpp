@@ -11,6 +11,7 @@
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
 #include "forces/hinge_force.hpp"
+#include "model/derived_quantities.hpp"
 #include "forces/hinge_geometry.hpp"
 #include "forces/spring_force.hpp"
 #include "integrate/leapfrog.hpp"

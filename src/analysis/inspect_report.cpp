@@ -52,7 +52,7 @@ ReportSection derived_section(const Checkpoint& c, const std::string& file) {
   s.add("L_S", q.L_S, "R").add("k_S", q.k_S, spring_constant_unit).add("M_S", q.M_S, "M");
   s.add("L_C", q.L_C, "R").add("k_C", q.k_C, spring_constant_unit);
   s.add("V_IP", q.V_IP, "sqrt(GM/R)").add("V_SP", q.V_SP, "sqrt(GM/R)").add("V_Co", q.V_Co, "sqrt(GM/R)");
-  s.add("h_S", q.h_S, "R").add("E_2D", q.E_2D, "e_g R").add("D_F", q.D_F, "e_g R^3").add("dt_max", q.dt_max, "t_grav");
+  s.add("h_S", q.h_S, "R").add("E_2D", q.E_2D, "e_g R").add("D_F", q.D_F, "e_g R^3").add("D_F_eq23", q.D_F_eq23, "e_g R^3").add("dt_max", q.dt_max, "t_grav");
   const StabilityBound bound = stability_bound(c.body, c.state);  // springs, hinges, node masses
   s.add("dt_safe", bound.safe_dt, "t_grav").add("dt_unstable", bound.unstable_dt, "t_grav");
   return s;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "base/vec3.hpp"
+#include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
 
@@ -29,9 +30,10 @@ inline double cross_constant_for_speed(double coupling_speed, double mean_length
   return ratio * ratio * shell_mass / cross_count;
 }
 
-/// Hinge constant from eq. 23: k_e L_S / 2 = D_F, so k_e = 2 D_F / L_S (G M^2/R^2).
-inline double hinge_constant_for_rigidity(double flexural_rigidity, double mean_edge) {
-  return 2.0 * flexural_rigidity / mean_edge;
-}
+/// Hinge constant whose lattice has the flexural rigidity D_F (e_g R^3): k_e = 4 D_F (G M^2/R^2),
+/// the inverse of hinge_lattice_flexural_rigidity, the same at every shell level. Not eq. 23's
+/// k_e = 2 D_F / L_S, which gives a lattice 1 / (2 L_S) times too stiff in bending (6.6x at
+/// level 4, doubling per level; measured by `validate`, docs/validation.md).
+inline double hinge_constant_for_rigidity(double flexural_rigidity) { return 4.0 * flexural_rigidity; }
 
 }  // namespace tidalcrust

@@ -21,6 +21,7 @@
 #include "model/derived_quantities.hpp"
 #include "stages/build_stage.hpp"
 #include "stages/stretch_stage.hpp"
+#include "stages/time_step.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -130,8 +131,8 @@ Json material_json(const Config& config) {
   const Checkpoint built = build_stage(config);
   const Checkpoint stretched = stretch_stage(built, config);
   const DerivedQuantities q = derive_quantities(built.body, built.state, config.interior.radius);
-  const StabilityBound bound = stability_bound(stretched.body, stretched.state);
-  return {{"E_I", q.E_I},   {"E_2D", q.E_2D}, {"h_S", q.h_S},        {"D_F", q.D_F},
+  const StabilityBound bound = stability_bound(stretched.body, stretched.state, strongest_damping(config));
+  return {{"E_I", q.E_I},   {"E_2D", q.E_2D}, {"h_S", q.h_S},        {"D_F", q.D_F}, {"D_F_eq23", q.D_F_eq23},
           {"V_IP", q.V_IP}, {"V_SP", q.V_SP}, {"V_Co", q.V_Co},      {"M_S", q.M_S},
           {"dt", config.choose_dt ? 0.0 : config.integrator.dt},   {"dt_eq13", q.dt_max},
           {"dt_safe", bound.safe_dt},                               {"dt_unstable", bound.unstable_dt}};
@@ -148,12 +149,13 @@ void print_material(const Json& m, const std::string& workflow, const BodyScales
   line("E_I", "e_g", "eq. 15", m["E_I"].get<double>(), m["E_I"].get<double>() * eg, "GPa");
   line("E_2D", "e_g R", "eq. 20", m["E_2D"].get<double>(), 0, "-");
   line("h_S", "R", "E_2D / E_I", m["h_S"].get<double>(), 0, "-");
-  line("D_F", "e_g R^3", "eq. 23", m["D_F"].get<double>(), 0, "-");
+  line("D_F", "e_g R^3", "hinge lattice, k_e / 4", m["D_F"].get<double>(), 0, "-");
+  line("D_F_eq23", "e_g R^3", "eq. 23, k_e L_S / 2", m["D_F_eq23"].get<double>(), 0, "-");
   line("V_IP", "v_c", "eq. 16", m["V_IP"].get<double>(), m["V_IP"].get<double>() * v, "km/s");
   line("V_SP", "v_c", "eq. 19", m["V_SP"].get<double>(), m["V_SP"].get<double>() * v, "km/s");
   line("V_Co", "v_c", "eq. 25", m["V_Co"].get<double>(), m["V_Co"].get<double>() * v, "km/s");
   line("dt_eq13", "t_grav", "eq. 13, springs only", m["dt_eq13"].get<double>(), m["dt_eq13"].get<double>() * t, "s");
-  line("dt_safe", "t_grav", "stretched body, springs + hinges", m["dt_safe"].get<double>(),
+  line("dt_safe", "t_grav", "stretched body, springs + hinges + damping", m["dt_safe"].get<double>(),
        m["dt_safe"].get<double>() * t, "s");
   line("dt_unstable", "t_grav", "unstable above", m["dt_unstable"].get<double>(), m["dt_unstable"].get<double>() * t,
        "s");

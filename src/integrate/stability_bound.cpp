@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -17,6 +18,7 @@ namespace {
 /// Per node: the Gershgorin row sum by element kind and the diagonal 3x3 block.
 struct NodeStiffness {
   double row_springs = 0, row_cross = 0, row_hinges = 0;  ///< sum ||K_ij|| / sqrt(m_i m_j)
+  double row_damping = 0;  ///< sum ||C_ij|| / sqrt(m_i m_j), 1/t_grav
   double diag_springs = 0, diag_cross = 0, diag_hinges = 0;  ///< trace shares of K_ii / m_i
   Eigen::Matrix3d diagonal = Eigen::Matrix3d::Zero();     ///< K_ii, G M^2/R^3
 };
@@ -46,6 +48,12 @@ HingeGradients hinge_gradients(const Vec3& x1, const Vec3& x2, const Vec3& x3, c
 
 double bound_dt(double omega2) { return omega2 > 0 ? 2.0 / std::sqrt(omega2) : 0.0; }
 
+/// The largest dt with omega2 dt^2 + 2 c dt <= 4 (both >= 0); 2/omega without damping. Written as
+/// 4 / (c + sqrt(c^2 + 4 omega2)) so that c = 0 gives exactly 2/sqrt(omega2).
+double damped_bound_dt(double omega2, double c) {
+  return omega2 > 0 ? 4.0 / (c + std::sqrt(c * c + 4.0 * omega2)) : 0.0;
+}
+
 }  // namespace
 
 std::string LimitingNode::describe(const Body& body, const State& state) const {
@@ -55,15 +63,21 @@ std::string LimitingNode::describe(const Body& body, const State& state) const {
                      100 * springs, 100 * cross);
 }
 
-StabilityBound stability_bound(const Body& body, const State& state) {
+StabilityBound stability_bound(const Body& body, const State& state, double damping) {
   const std::size_t n = body.particle_count();
   std::vector<NodeStiffness> nodes(n);
   const auto& m = body.mass;
   for (std::size_t s = 0; s < body.spring_count(); ++s) {
-    const double k = state.springs.stiffness[s];
-    if (!(k > 0)) continue;
     const auto i = static_cast<std::size_t>(body.springs[s][0]);
     const auto j = static_cast<std::size_t>(body.springs[s][1]);
+    if (damping > 0) {  // every spring, failed or not, damps with gamma mu (force_field.cpp)
+      const double c = damping * m[i] * m[j] / (m[i] + m[j]);
+      const double cross_term = c / std::sqrt(m[i] * m[j]);
+      nodes[i].row_damping += c / m[i] + cross_term;
+      nodes[j].row_damping += c / m[j] + cross_term;
+    }
+    const double k = state.springs.stiffness[s];
+    if (!(k > 0)) continue;
     const Vec3 d = vec3_at(state.position, i) - vec3_at(state.position, j);
     const double len = d.norm();
     const Vec3 u = len > 0 ? Vec3(d / len) : Vec3(1, 0, 0);
@@ -93,8 +107,10 @@ StabilityBound stability_bound(const Body& body, const State& state) {
     }
   }
   StabilityBound bound;
+  bound.damping = damping;
   for (std::size_t i = 0; i < n; ++i) {
     const NodeStiffness& node = nodes[i];
+    bound.damping_rate = std::max(bound.damping_rate, node.row_damping);
     const double row = node.row_springs + node.row_cross + node.row_hinges;
     if (row > bound.safe_limit.omega2 && row > 0)
       bound.safe_limit = {i, row, node.row_springs / row, node.row_cross / row, node.row_hinges / row};
@@ -105,7 +121,7 @@ StabilityBound stability_bound(const Body& body, const State& state) {
       bound.unstable_limit = {i, quotient, node.diag_springs / trace, node.diag_cross / trace,
                               node.diag_hinges / trace};
   }
-  bound.safe_dt = bound_dt(bound.safe_limit.omega2);
+  bound.safe_dt = damped_bound_dt(bound.safe_limit.omega2, bound.damping_rate);
   bound.unstable_dt = bound_dt(bound.unstable_limit.omega2);
   return bound;
 }

@@ -11,8 +11,16 @@
 //              it is stable. Exact for two equal masses on one spring (2 k/m).
 //  - unstable: a Rayleigh quotient of B on one node, lambda_max(B) >= lambda_max(K_ii) / m_i:
 //              every dt > 2/sqrt(max_i lambda_max(K_ii)/m_i) is certainly unstable.
+// Damping: each spring's Kelvin-Voigt term (paper eq. 14) damps the relative motion of its ends
+// along it at the rate gamma, i.e. adds the block gamma mu n n^T (mu the reduced mass) to a damping
+// matrix C built like K. For one mode x'' = -omega^2 x - c x', this drift-kick-drift (kick with
+// the start-of-step velocity) is stable iff omega^2 dt^2 + 2 c dt <= 4 (amplification matrix;
+// docs/material.md), so with Gershgorin bounds lambda_K and lambda_C on B and on
+// M^{-1/2} C M^{-1/2}: safe dt = (sqrt(lambda_C^2 + 4 lambda_K) - lambda_C) / lambda_K. At
+// gamma = 50 and a spring-limited step this is several times below the undamped bound (a
+// material-L4 relax at 0.8 x the undamped bound blew up at step 12).
 // Left out: self-gravity (G m / r^3, orders of magnitude below the springs), tension's
-// geometric stiffness (T/L, strains ~1e-3), damping (gamma dt << 1 at the paper's values).
+// geometric stiffness (T/L, strains ~1e-3).
 // Units: t_grav.
 #include <cstddef>
 #include <string>
@@ -34,18 +42,22 @@ struct LimitingNode {
 };
 
 struct StabilityBound {
-  double safe_dt = 0;      ///< 2 / sqrt(Gershgorin bound): leapfrog is stable below it, t_grav
+  double safe_dt = 0;      ///< Gershgorin bound with damping (2 / sqrt(lambda_K) without): stable below it, t_grav
+  double damping = 0;      ///< the spring damping rate gamma it was computed for, 1/t_grav
+  double damping_rate = 0; ///< lambda_C, the Gershgorin bound of M^{-1/2} C M^{-1/2}, 1/t_grav
   double unstable_dt = 0;  ///< 2 / sqrt(largest one-node Rayleigh quotient): unstable above it, t_grav
   LimitingNode safe_limit;      ///< the node of the Gershgorin maximum
   LimitingNode unstable_limit;  ///< the node of the largest one-node quotient
 };
 
-/// Both bounds at the state's positions and stiffnesses (failed springs with their reduced k).
-/// 0 for a body without springs or hinges.
-StabilityBound stability_bound(const Body& body, const State& state);
+/// Both bounds at the state's positions and stiffnesses (failed springs with their reduced k),
+/// the safe one for springs damped at the rate `damping` (gamma, 1/t_grav, >= 0; the unstable
+/// one is undamped: damping only shrinks the stable region). 0 for a body without springs or
+/// hinges.
+StabilityBound stability_bound(const Body& body, const State& state, double damping = 0.0);
 
 /// The time step chosen when a workflow gives none: this fraction of the safe bound (room for
-/// the hinges' stiffening under strain and for damping; docs/material.md).
+/// the hinges' stiffening under strain; docs/material.md).
 inline constexpr double chosen_dt_fraction = 0.8;
 
 }  // namespace tidalcrust

@@ -94,7 +94,9 @@ DerivedQuantities derive_quantities(const Body& body, const State& state, double
   if (body.hinge_count() > 0) {
     double sum = 0;
     for (double k : body.hinge_stiffness) sum += k;
-    q.D_F = sum / static_cast<double>(body.hinge_count()) * q.L_S / 2.0;
+    const double mean_hinge = sum / static_cast<double>(body.hinge_count());
+    q.D_F = hinge_lattice_flexural_rigidity(mean_hinge);
+    q.D_F_eq23 = mean_hinge * q.L_S / 2.0;
   }
   q.dt_max = stability_bound(body, state);
   return q;

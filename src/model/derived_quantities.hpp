@@ -19,9 +19,23 @@ struct DerivedQuantities {
   double V_Co = 0;  ///< shell-interior coupling speed, eq. 25: sqrt(k_C N_C / M_S) L_C
   double h_S = 0;   ///< crust thickness from E_2D = (2/sqrt 3) k_S = E_S h_S with E_S = E_I, R
   double E_2D = 0;  ///< crust 2D Young's modulus, eq. 20: (2/sqrt 3) k_S, e_g R
-  double D_F = 0;   ///< crust flexural rigidity, eq. 23: k_e L_S / 2 (mean hinge k_e), e_g R^3
+  double D_F = 0;   ///< crust flexural rigidity of the hinge lattice: k_e / 4 (mean hinge k_e), e_g R^3
+  double D_F_eq23 = 0;  ///< what paper eq. 23 gives, k_e L_S / 2 (not the lattice's bending: D_F), e_g R^3
   double dt_max = 0;  ///< stability bound, eq. 13: min over springs sqrt(mu / (k b)), t_grav
 };
+
+/// Flexural rigidity of a flat equilateral triangular lattice with one Bridson hinge of stiffness
+/// k_e per edge (hinge_force.hpp), for small bending. Each hinge stores k_e C theta^2 / 4 with
+/// C = L^2/(|N1| + |N2|) = 1/sqrt(3). Its faces are the linear interpolants of the deflection
+/// w = x.K.x/2, so the dihedral angle is theta = (L/sqrt(3)) (3/2 K_mm - 1/2 K_tt), K_mm the
+/// curvature across the edge and K_tt along it (the wings lie (sqrt(3)/2) L from the edge, whose
+/// chord sits L^2 K_tt / 8 above the surface). For a cylindrical bend of curvature kappa in any
+/// direction the three edge directions of a node give sum theta^2 = (3/4) kappa^2 L^2, i.e. the
+/// energy density k_e kappa^2 / 8 over the node area (sqrt(3)/2) L^2. With D kappa^2 / 2:
+/// D = k_e / 4, isotropic and independent of the spacing L (G M^2/R for k_e in G M^2/R^2, R = 1).
+/// Paper eq. 23 writes D_F = k_e L_S / 2, which is 2 L_S times this; `validate` measures k_e / 4 on a
+/// loaded lattice (docs/validation.md, flexure).
+inline double hinge_lattice_flexural_rigidity(double hinge_stiffness) { return hinge_stiffness / 4; }
 
 /// P-wave speed of eq. 16 for a Young's modulus E (e_g) at the mean density 3/(4 pi) and Poisson
 /// ratio 1/4, in sqrt(GM/R).

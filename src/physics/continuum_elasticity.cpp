@@ -172,6 +172,5 @@ double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, dou
   return load_amplitude / (flexural_rigidity * std::pow(wavenumber, 4));
 }
 
-double hinge_lattice_flexural_rigidity(double hinge_stiffness) { return hinge_stiffness / 4; }
 
 }  // namespace tidalcrust

@@ -66,16 +66,5 @@ double incompressible_love_h2(double shear_modulus, double density, double radiu
 /// w0 = q0 / (D k^4).
 double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, double flexural_rigidity);
 
-/// Flexural rigidity of a flat equilateral triangular lattice with one Bridson hinge of stiffness
-/// k_e per edge (hinge_force.hpp), for small bending. Each hinge stores k_e C theta^2 / 4 with
-/// C = L^2/(|N1| + |N2|) = 1/sqrt(3). Its faces are the linear interpolants of the deflection
-/// w = x.K.x/2, so the dihedral angle is theta = (L/sqrt(3)) (3/2 K_mm - 1/2 K_tt), K_mm the
-/// curvature across the edge and K_tt along it (the wings lie (sqrt(3)/2) L from the edge, whose
-/// chord sits L^2 K_tt / 8 above the surface). For a cylindrical bend of curvature kappa in any
-/// direction the three edge directions of a node give sum theta^2 = (3/4) kappa^2 L^2, i.e. the
-/// energy density k_e kappa^2 / 8 over the node area (sqrt(3)/2) L^2. With D kappa^2 / 2:
-/// D = k_e / 4, isotropic and independent of the spacing L (G M^2/R for k_e in G M^2/R^2, R = 1).
-/// Paper eq. 23 writes D_F = k_e L_S / 2, which is 2 L_S times this (docs/validation.md).
-double hinge_lattice_flexural_rigidity(double hinge_stiffness);
 
 }  // namespace tidalcrust

@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
+#include "base/errors.hpp"
+#include "forces/force_field.hpp"
+#include "integrate/leapfrog.hpp"
 #include "integrate/stability_bound.hpp"
 #include "model/body.hpp"
 #include "model/state.hpp"
@@ -37,6 +41,42 @@ TEST(StabilityBound, TwoEqualMassesOnOneSpringGiveTheAnalyticTwoOverOmega) {
   // The one-node Rayleigh quotient k/m is half of omega^2: unstable above sqrt(2) * 2/omega.
   EXPECT_NEAR(bound.unstable_dt, std::sqrt(2.0) * 2.0 / omega, 1e-15);
   EXPECT_DOUBLE_EQ(bound.safe_limit.springs, 1.0);
+}
+
+TEST(StabilityBound, DampingShrinksTheBoundToTheLeapfrogsExactLimit) {
+  // One mode: relative coordinate r'' = -omega^2 r - gamma r' (reduced mass m/2). Our
+  // drift-kick-drift is stable iff omega^2 dt^2 + 2 gamma dt <= 4, and the Gershgorin sums are
+  // exact here, so the bound is that limit: 4 / (gamma + sqrt(gamma^2 + 4 omega^2)).
+  Body body;
+  State state;
+  const double m = 0.003, k = 0.076, gamma = 50.0;
+  two_node_spring(body, state, m, m, k);
+  const double omega2 = k / (m / 2);
+  const StabilityBound bound = stability_bound(body, state, gamma);
+  const double limit = 4.0 / (gamma + std::sqrt(gamma * gamma + 4 * omega2));
+  EXPECT_NEAR(bound.safe_dt, limit, 1e-15);
+  EXPECT_LT(bound.safe_dt, 0.2 * stability_bound(body, state).safe_dt);  // damping-limited here
+  EXPECT_DOUBLE_EQ(bound.damping_rate, gamma);
+  EXPECT_DOUBLE_EQ(stability_bound(body, state, gamma).unstable_dt, stability_bound(body, state).unstable_dt);
+
+  // The project's integrator with the project's damped spring: 2% below the limit a stretch
+  // decays, 2% above it grows (or is caught as a blow-up).
+  ForceOptions options;
+  options.damping = gamma;
+  options.self_gravity = false;
+  ForceField field(body, options);
+  auto stretch_after = [&](double dt) {
+    State s = state;
+    s.position[3] += 1e-3;
+    try {
+      Leapfrog(field, StepClock{0.0, 0, dt}).advance(s, 400);
+    } catch (const SimulationError&) {
+      return std::numeric_limits<double>::infinity();
+    }
+    return std::abs(s.position[3] - s.position[0] - 0.1);
+  };
+  EXPECT_LT(stretch_after(0.98 * limit), 1e-4);
+  EXPECT_GT(stretch_after(1.02 * limit), 1e-2);
 }
 
 TEST(StabilityBound, UnequalMassesStayBelowTheTrueLimit) {

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "base/errors.hpp"
+#include "model/derived_quantities.hpp"
 #include "physics/continuum_elasticity.hpp"
 
 using namespace tidalcrust;
