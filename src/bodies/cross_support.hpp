@@ -26,6 +26,9 @@ inline constexpr double min_direction_support = 0.05;
 /// (distance, then index) that are not yet joined to it are added until it has `minimum`
 /// springs and, if minimum >= 3, their directions reach min_direction_support; at most 12 per
 /// node. Returns the added (interior index, shell index) pairs in that order. Deterministic.
+/// The nearest nodes come from a NeighborGrid in rings of doubling radius, each sorted by
+/// (squared distance, index): the same order as sorting all N_I nodes, at a cost that grows
+/// with how far a node must look, not with N_I (a level-6 body builds in under a second).
 std::vector<std::array<std::int32_t, 2>> supplementary_cross_springs(
     const std::vector<Vec3>& interior, const std::vector<Vec3>& shell,
     const std::vector<std::array<std::int32_t, 2>>& existing, int minimum);
