@@ -93,9 +93,80 @@ inline V keep_lanes(V a, unsigned keep) {
 }
 #endif
 
+// One vector of 2 * lanes floats (the near field of a whole group): single precision, on
+// positions relative to the group's first particle (so the differences keep ~1e-7 relative
+// accuracy), summed in float and added to the double far field at the end.
+#if defined(__AVX512F__)
+struct F {
+  __m512 v;
+};
+inline F splat_f(float a) { return {_mm512_set1_ps(a)}; }
+inline F load_f(const float* p) { return {_mm512_loadu_ps(p)}; }
+inline F operator+(F a, F b) { return {_mm512_add_ps(a.v, b.v)}; }
+inline F operator-(F a, F b) { return {_mm512_sub_ps(a.v, b.v)}; }
+inline F operator*(F a, F b) { return {_mm512_mul_ps(a.v, b.v)}; }
+inline F fma(F a, F b, F c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
+/// 1/sqrt(s): the 14-bit estimate and one Newton step (~1 float ulp).
+inline F rsqrt(F s) {
+  const __m512 y = _mm512_maskz_rsqrt14_ps(0xFFFF, s.v);  // maskz: no GCC 12 false warning
+  const __m512 half_s = _mm512_mul_ps(_mm512_set1_ps(0.5f), s.v);
+  return {_mm512_mul_ps(y, _mm512_fnmadd_ps(half_s, _mm512_mul_ps(y, y), _mm512_set1_ps(1.5f)))};
+}
+inline F keep_lanes(F a, unsigned keep) { return {_mm512_maskz_mov_ps(static_cast<__mmask16>(keep), a.v)}; }
+/// The first (half 0) or last (half 1) `lanes` floats of a, widened to doubles.
+inline V widen(F a, int half) {
+  alignas(64) float b[2 * lanes];  // through memory: the 256-bit casts trip GCC 12's warnings
+  _mm512_store_ps(b, a.v);
+  return {_mm512_maskz_cvtps_pd(0xFF, _mm256_load_ps(b + half * lanes))};
+}
+#else
+struct F {
+  float v[2 * lanes];
+};
+inline F splat_f(float a) {
+  F r;
+  for (float& x : r.v) x = a;
+  return r;
+}
+inline F load_f(const float* p) {
+  F r;
+  for (std::size_t l = 0; l < 2 * lanes; ++l) r.v[l] = p[l];
+  return r;
+}
+#define TIDALCRUST_LANEWISE_F(op)                                        \
+  inline F operator op(F a, F b) {                                       \
+    for (std::size_t l = 0; l < 2 * lanes; ++l) a.v[l] = a.v[l] op b.v[l]; \
+    return a;                                                            \
+  }
+TIDALCRUST_LANEWISE_F(+)
+TIDALCRUST_LANEWISE_F(-)
+TIDALCRUST_LANEWISE_F(*)
+#undef TIDALCRUST_LANEWISE_F
+inline F fma(F a, F b, F c) { return a * b + c; }
+inline F rsqrt(F s) {
+  for (float& x : s.v) x = 1.0f / std::sqrt(x);
+  return s;
+}
+inline F keep_lanes(F a, unsigned keep) {
+  for (std::size_t l = 0; l < 2 * lanes; ++l)
+    if (!((keep >> l) & 1u)) a.v[l] = 0.0f;
+  return a;
+}
+inline V widen(F a, int half) {
+  V r;
+  for (std::size_t l = 0; l < lanes; ++l) r.v[l] = static_cast<double>(a.v[half * lanes + l]);
+  return r;
+}
+#endif
+
 /// Lanes of the vector of particles [first, first + lanes) other than particle j (self-pair).
 inline unsigned all_but_self(std::uint32_t first, std::uint32_t j) {
   return j >= first && j < first + lanes ? 0xFFu & ~(1u << (j - first)) : 0xFFu;
+}
+
+/// Lanes of the group's 2 * lanes particles [first, first + 2 lanes) other than particle j.
+inline unsigned all_but_self_group(std::uint32_t first, std::uint32_t j) {
+  return j >= first && j < first + 2 * lanes ? 0xFFFFu & ~(1u << (j - first)) : 0xFFFFu;
 }
 
 /// Positions of the group's particles [first, first + lanes) (Morton order), the last valid one
@@ -370,6 +441,7 @@ template <class Expansion>
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
   std::vector<std::uint32_t> cells, ranges;
   const V e2 = splat(eps2_);
+  const F e2f = splat_f(static_cast<float>(eps2_));
   const auto store_accelerations = [&](std::uint32_t first, std::uint32_t end, const V* a) {
     alignas(64) double b[3][lanes];
     for (std::size_t k = 0; k < 3; ++k) store(b[k], a[k]);
@@ -380,29 +452,34 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
   for (std::size_t gi = chunk * groups_per_chunk; gi < last; ++gi) {
     const Group& g = groups_[gi];
     interaction_list(g, cells, ranges);
-    // The group's two vectors of targets: the far field one vector at a time (registers), the
-    // near field both at once (each source particle loaded once).
+    // The group's two vectors of targets: the far field one vector of doubles at a time (in
+    // registers), then the near field for all 16 at once in single precision.
     static_assert(group_size == 2 * lanes);
     const std::uint32_t second = g.begin + lanes;
     const Targets t0(x_.data(), y_.data(), z_.data(), g.begin, g.end), t1(x_.data(), y_.data(), z_.data(), second, g.end);
     V a0[3], a1[3];
     sum_cells(cells, expansion_.data(), t0, e2, a0);
     sum_cells(cells, expansion_.data(), t1, e2, a1);
-    V ax0 = a0[0], ay0 = a0[1], az0 = a0[2], ax1 = a1[0], ay1 = a1[1], az1 = a1[2];  // in registers
+    // Near field: all 16 targets in one float vector, about the group's first particle c.
+    const double cx = x_[g.begin], cy = y_[g.begin], cz = z_[g.begin];
+    alignas(64) float ox[2 * lanes], oy[2 * lanes], oz[2 * lanes];
+    for (std::size_t l = 0; l < 2 * lanes; ++l) {
+      const std::size_t k = std::min<std::size_t>(g.begin + l, g.end - 1);
+      ox[l] = static_cast<float>(x_[k] - cx), oy[l] = static_cast<float>(y_[k] - cy), oz[l] = static_cast<float>(z_[k] - cz);
+    }
+    const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
+    F ax = splat_f(0.0f), ay = ax, az = ax;
     for (std::size_t r = 0; r < ranges.size(); r += 2) {
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
-        const V xj = splat(x_[j]), yj = splat(y_[j]), zj = splat(z_[j]), mj = splat(m_[j]);
-        const V dx0 = xj - t0.x, dy0 = yj - t0.y, dz0 = zj - t0.z;
-        const V dx1 = xj - t1.x, dy1 = yj - t1.y, dz1 = zj - t1.z;
-        const V y0 = rsqrt(fma(dz0, dz0, fma(dy0, dy0, fma(dx0, dx0, e2))));
-        const V y1 = rsqrt(fma(dz1, dz1, fma(dy1, dy1, fma(dx1, dx1, e2))));
-        const V f0 = keep_lanes(mj * (y0 * y0 * y0), all_but_self(g.begin, j));
-        const V f1 = keep_lanes(mj * (y1 * y1 * y1), all_but_self(second, j));
-        ax0 = fma(f0, dx0, ax0), ay0 = fma(f0, dy0, ay0), az0 = fma(f0, dz0, az0);
-        ax1 = fma(f1, dx1, ax1), ay1 = fma(f1, dy1, ay1), az1 = fma(f1, dz1, az1);
+        const F dx = splat_f(static_cast<float>(x_[j] - cx)) - tx, dy = splat_f(static_cast<float>(y_[j] - cy)) - ty,
+                dz = splat_f(static_cast<float>(z_[j] - cz)) - tz;
+        const F y = rsqrt(fma(dz, dz, fma(dy, dy, fma(dx, dx, e2f))));
+        const F f = keep_lanes(splat_f(static_cast<float>(m_[j])) * (y * y * y), all_but_self_group(g.begin, j));
+        ax = fma(f, dx, ax), ay = fma(f, dy, ay), az = fma(f, dz, az);
       }
     }
-    a0[0] = ax0, a0[1] = ay0, a0[2] = az0, a1[0] = ax1, a1[1] = ay1, a1[2] = az1;
+    a0[0] = a0[0] + widen(ax, 0), a0[1] = a0[1] + widen(ay, 0), a0[2] = a0[2] + widen(az, 0);
+    a1[0] = a1[0] + widen(ax, 1), a1[1] = a1[1] + widen(ay, 1), a1[2] = a1[2] + widen(az, 1);
     store_accelerations(g.begin, g.end, a0);
     store_accelerations(second, g.end, a1);
   }
