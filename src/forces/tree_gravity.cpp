@@ -93,9 +93,80 @@ inline V keep_lanes(V a, unsigned keep) {
 }
 #endif
 
+// One vector of 2 * lanes floats (the near field of a whole group): single precision, on
+// positions relative to the group's first particle (so the differences keep ~1e-7 relative
+// accuracy), summed in float and added to the double far field at the end.
+#if defined(__AVX512F__)
+struct F {
+  __m512 v;
+};
+inline F splat_f(float a) { return {_mm512_set1_ps(a)}; }
+inline F load_f(const float* p) { return {_mm512_loadu_ps(p)}; }
+inline F operator+(F a, F b) { return {_mm512_add_ps(a.v, b.v)}; }
+inline F operator-(F a, F b) { return {_mm512_sub_ps(a.v, b.v)}; }
+inline F operator*(F a, F b) { return {_mm512_mul_ps(a.v, b.v)}; }
+inline F fma(F a, F b, F c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
+/// 1/sqrt(s): the 14-bit estimate and one Newton step (~1 float ulp).
+inline F rsqrt(F s) {
+  const __m512 y = _mm512_maskz_rsqrt14_ps(0xFFFF, s.v);  // maskz: no GCC 12 false warning
+  const __m512 half_s = _mm512_mul_ps(_mm512_set1_ps(0.5f), s.v);
+  return {_mm512_mul_ps(y, _mm512_fnmadd_ps(half_s, _mm512_mul_ps(y, y), _mm512_set1_ps(1.5f)))};
+}
+inline F keep_lanes(F a, unsigned keep) { return {_mm512_maskz_mov_ps(static_cast<__mmask16>(keep), a.v)}; }
+/// The first (half 0) or last (half 1) `lanes` floats of a, widened to doubles.
+inline V widen(F a, int half) {
+  alignas(64) float b[2 * lanes];  // through memory: the 256-bit casts trip GCC 12's warnings
+  _mm512_store_ps(b, a.v);
+  return {_mm512_maskz_cvtps_pd(0xFF, _mm256_load_ps(b + half * lanes))};
+}
+#else
+struct F {
+  float v[2 * lanes];
+};
+inline F splat_f(float a) {
+  F r;
+  for (float& x : r.v) x = a;
+  return r;
+}
+inline F load_f(const float* p) {
+  F r;
+  for (std::size_t l = 0; l < 2 * lanes; ++l) r.v[l] = p[l];
+  return r;
+}
+#define TIDALCRUST_LANEWISE_F(op)                                        \
+  inline F operator op(F a, F b) {                                       \
+    for (std::size_t l = 0; l < 2 * lanes; ++l) a.v[l] = a.v[l] op b.v[l]; \
+    return a;                                                            \
+  }
+TIDALCRUST_LANEWISE_F(+)
+TIDALCRUST_LANEWISE_F(-)
+TIDALCRUST_LANEWISE_F(*)
+#undef TIDALCRUST_LANEWISE_F
+inline F fma(F a, F b, F c) { return a * b + c; }
+inline F rsqrt(F s) {
+  for (float& x : s.v) x = 1.0f / std::sqrt(x);
+  return s;
+}
+inline F keep_lanes(F a, unsigned keep) {
+  for (std::size_t l = 0; l < 2 * lanes; ++l)
+    if (!((keep >> l) & 1u)) a.v[l] = 0.0f;
+  return a;
+}
+inline V widen(F a, int half) {
+  V r;
+  for (std::size_t l = 0; l < lanes; ++l) r.v[l] = static_cast<double>(a.v[half * lanes + l]);
+  return r;
+}
+#endif
+
 /// Lanes of the vector of particles [first, first + lanes) other than particle j (self-pair).
 inline unsigned all_but_self(std::uint32_t first, std::uint32_t j) {
   return j >= first && j < first + lanes ? 0xFFu & ~(1u << (j - first)) : 0xFFu;
+}
+
+/// Lanes of the group's 2 * lanes particles [first, first + 2 lanes) other than particle j.
+inline unsigned all_but_self_group(std::uint32_t first, std::uint32_t j) {
+  return j >= first && j < first + 2 * lanes ? 0xFFFFu & ~(1u << (j - first)) : 0xFFFFu;
 }
 
 /// Positions of the group's particles [first, first + lanes) (Morton order), the last valid one
@@ -112,42 +183,30 @@ struct Targets {
   }
 };
 
-/// The octupole contractions of a cell at r = x - com: U_i = O_ijk r_j r_k and P = r.U.
-struct Octupole {
-  V ux, uy, uz, p;
-  template <class Cell>
-  Octupole(const Cell& cell, V rx, V ry, V rz) {
-    const double* o = cell.third;  // xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
-    const V xx = rx * rx, yy = ry * ry, zz = rz * rz, two = splat(2.0);
-    const V xy = two * rx * ry, xz = two * rx * rz, yz = two * ry * rz;
-    ux = fma(splat(o[4]), yz, fma(splat(o[2]), xz, fma(splat(o[1]), xy, fma(splat(o[5]), zz, fma(splat(o[3]), yy, splat(o[0]) * xx)))));
-    uy = fma(splat(o[7]), yz, fma(splat(o[4]), xz, fma(splat(o[3]), xy, fma(splat(o[8]), zz, fma(splat(o[6]), yy, splat(o[1]) * xx)))));
-    uz = fma(splat(o[8]), yz, fma(splat(o[5]), xz, fma(splat(o[4]), xy, fma(splat(o[9]), zz, fma(splat(o[7]), yy, splat(o[2]) * xx)))));
+/// What a cell's pull and potential share at the targets t (TreeGravity::Expansion e): r = x - c,
+/// y = 1/s (s^2 = r^2 + eps^2), y2 = y^2, v = 3 S r - (3/2) t, U' = (15/2) U (U_i = O_ijk r_j r_k),
+/// P' = r.U' and w = (15/2) (t.r - r.S.r). Inlined by force: a call per cell spills it all.
+struct CellTerms {
+  V rx, ry, rz, y, y2, vx, vy, vz, ux, uy, uz, p, w;
+  template <class Expansion>
+  [[gnu::always_inline]] CellTerms(const Expansion& e, const Targets& t, V e2)
+      : rx(t.x - splat(e.com[0])), ry(t.y - splat(e.com[1])), rz(t.z - splat(e.com[2])) {
+    y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))));
+    y2 = y * y;
+    const double* s = e.s3;  // 3 S: xx, xy, xz, yy, yz, zz
+    vx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, fma(splat(s[0]), rx, splat(e.mt15[0]))));
+    vy = fma(splat(s[4]), rz, fma(splat(s[3]), ry, fma(splat(s[1]), rx, splat(e.mt15[1]))));
+    vz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, fma(splat(s[2]), rx, splat(e.mt15[2]))));
+    // r.v + r.(-(3/2) t) = 3 r.S.r - 3 t.r
+    const V qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, splat(e.mt15[2]), fma(ry, splat(e.mt15[1]), rx * splat(e.mt15[0]))))));
+    w = splat(-2.5) * qt;
+    const V xx = rx * rx, yy = ry * ry, zz = rz * rz, xy = rx * ry, xz = rx * rz, yz = ry * rz;
+    const double* o = e.u;  // per component, the coefficients of xx, yy, zz, xy, xz, yz
+    ux = fma(splat(o[5]), yz, fma(splat(o[4]), xz, fma(splat(o[3]), xy, fma(splat(o[2]), zz, fma(splat(o[1]), yy, splat(o[0]) * xx)))));
+    uy = fma(splat(o[11]), yz, fma(splat(o[10]), xz, fma(splat(o[9]), xy, fma(splat(o[8]), zz, fma(splat(o[7]), yy, splat(o[6]) * xx)))));
+    uz = fma(splat(o[17]), yz, fma(splat(o[16]), xz, fma(splat(o[15]), xy, fma(splat(o[14]), zz, fma(splat(o[13]), yy, splat(o[12]) * xx)))));
     p = fma(rz, uz, fma(ry, uy, rx * ux));
   }
-};
-
-/// What a cell's pull and potential share at the targets t: r = x - com, y = 1/s (s^2 = r^2 +
-/// eps^2) and its powers, S r, q = r.S.r, the octupole contractions and t.r (t_k = O_iik).
-struct CellTerms {
-  V rx, ry, rz, y, y2, y3, y5, srx, sry, srz, q;
-  Octupole oct;
-  V tr;
-  template <class Cell>
-  CellTerms(const Cell& cell, const Targets& t, V e2)
-      : rx(t.x - splat(cell.com[0])),
-        ry(t.y - splat(cell.com[1])),
-        rz(t.z - splat(cell.com[2])),
-        y(rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))))),
-        y2(y * y),
-        y3(y2 * y),
-        y5(y3 * y2),
-        srx(fma(splat(cell.second[2]), rz, fma(splat(cell.second[1]), ry, splat(cell.second[0]) * rx))),
-        sry(fma(splat(cell.second[4]), rz, fma(splat(cell.second[3]), ry, splat(cell.second[1]) * rx))),
-        srz(fma(splat(cell.second[5]), rz, fma(splat(cell.second[4]), ry, splat(cell.second[2]) * rx))),
-        q(fma(rz, srz, fma(ry, sry, rx * srx))),
-        oct(cell, rx, ry, rz),
-        tr(fma(splat(cell.third_trace[2]), rz, fma(splat(cell.third_trace[1]), ry, splat(cell.third_trace[0]) * rx))) {}
 };
 
 }  // namespace
@@ -175,7 +234,7 @@ ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::v
 }
 
 double opening_angle_for(double force_error) {
-  return std::clamp(2.55 * std::pow(force_error, 2.0 / 9.0), 0.1, 0.7);
+  return std::clamp(3.0 * std::pow(force_error, 2.0 / 9.0), 0.1, 0.7);
 }
 
 TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, double force_error)
@@ -219,7 +278,6 @@ void TreeGravity::compute_moments(std::size_t index) {
     my += m_[k] * y_[k];
     mz += m_[k] * z_[k];
   }
-  node.mass = mass;
   if (mass > 0) {
     node.com[0] = mx / mass, node.com[1] = my / mass, node.com[2] = mz / mass;
   } else {  // massless particles only: no pull, any centre
@@ -235,19 +293,25 @@ void TreeGravity::compute_moments(std::size_t index) {
     s[3] += m * d[1] * d[1];
     s[4] += m * d[1] * d[2];
     s[5] += m * d[2] * d[2];
-    std::size_t c = 0;  // i <= j <= l, in the order of Node::third
+    std::size_t c = 0;  // i <= j <= l: xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
     for (std::size_t i = 0; i < 3; ++i)
       for (std::size_t j = i; j < 3; ++j)
         for (std::size_t l = j; l < 3; ++l) o[c++] += m * d[i] * d[j] * d[l];
     bmax2 = std::max(bmax2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   }
-  std::copy(s, s + 6, node.second);
-  node.trace = s[0] + s[3] + s[5];
-  std::copy(o, o + 10, node.third);
-  node.third_trace[0] = o[0] + o[3] + o[5];  // xxx + xyy + xzz
-  node.third_trace[1] = o[1] + o[6] + o[8];  // xxy + yyy + yzz
-  node.third_trace[2] = o[2] + o[7] + o[9];  // xxz + yyz + zzz
   node.bmax2 = bmax2;
+  Expansion& e = expansion_[index];
+  std::copy(node.com, node.com + 3, e.com);
+  e.neg_mass = -mass;
+  e.t15 = 1.5 * (s[0] + s[3] + s[5]);
+  for (std::size_t k = 0; k < 6; ++k) e.s3[k] = 3.0 * s[k];
+  e.mt15[0] = -1.5 * (o[0] + o[3] + o[5]);  // xxx + xyy + xzz
+  e.mt15[1] = -1.5 * (o[1] + o[6] + o[8]);  // xxy + yyy + yzz
+  e.mt15[2] = -1.5 * (o[2] + o[7] + o[9]);  // xxz + yyz + zzz
+  // U_i = O_ijk r_j r_k: the O entries of r_x^2, r_y^2, r_z^2, 2 r_x r_y, 2 r_x r_z, 2 r_y r_z
+  constexpr int of_u[3][6] = {{0, 3, 5, 1, 2, 4}, {1, 6, 8, 3, 4, 7}, {2, 7, 9, 4, 5, 8}};
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t k = 0; k < 6; ++k) e.u[6 * i + k] = (k < 3 ? 7.5 : 15.0) * o[of_u[i][k]];
 }
 
 void TreeGravity::build(const double* position) {
@@ -269,19 +333,34 @@ void TreeGravity::build(const double* position) {
     const double q = (x - lo[k]) * scale;  // NaN positions go to cell 0; the forces show them
     return q >= cells - 1 ? static_cast<std::uint64_t>(cells - 1) : q > 0 ? static_cast<std::uint64_t>(q) : 0;
   };
-  struct Keyed {
-    std::uint64_t key;
-    std::uint32_t index;
-  };
-  std::vector<Keyed> keyed(n);
+  std::vector<Keyed>& keyed = keyed_;
+  keyed.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = position + 3 * i;
     keyed[i] = {spread_bits(quantize(p[0], 0)) << 2 | spread_bits(quantize(p[1], 1)) << 1 | spread_bits(quantize(p[2], 2)),
                 static_cast<std::uint32_t>(i)};
   }
-  // A total order (ties by index): the same sorted sequence from any sort algorithm.
-  std::sort(keyed.begin(), keyed.end(),
-            [](const Keyed& a, const Keyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); });
+  // By key, ties by index (a total order: the same sequence from any correct sort). A stable
+  // least-significant-digit radix sort, 11 bits a pass, keeps the index order of equal keys and
+  // is several times faster than a comparison sort at large N; passes whose digit is the same
+  // for every particle are skipped.
+  sorted_.resize(n);
+  constexpr int digit_bits = 11;
+  constexpr std::size_t buckets = std::size_t{1} << digit_bits;
+  std::vector<std::uint32_t> count(buckets);
+  for (int shift = 0; shift < 3 * key_bits; shift += digit_bits) {
+    std::fill(count.begin(), count.end(), 0u);
+    for (const Keyed& k : keyed) ++count[(k.key >> shift) & (buckets - 1)];
+    if (*std::max_element(count.begin(), count.end()) == n) continue;
+    std::uint32_t start = 0;  // count -> first slot of each digit
+    for (std::uint32_t& c : count) {
+      const std::uint32_t size = c;
+      c = start;
+      start += size;
+    }
+    for (const Keyed& k : keyed) sorted_[count[(k.key >> shift) & (buckets - 1)]++] = k;
+    keyed.swap(sorted_);
+  }
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t i = keyed[k].index;
     key_[k] = keyed[k].key;
@@ -293,6 +372,7 @@ void TreeGravity::build(const double* position) {
   for (std::size_t b = 0; b < n; b += group_size)
     groups_.push_back(Group{static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(std::min(n, b + group_size)), {}, {}});
   const std::size_t node_total = nodes_.size();
+  expansion_.resize(node_total);
   // Each node's moments from its own particles (O(N depth)): independent, any thread.
 #pragma omp parallel for schedule(dynamic, 32) if (n >= 4096)
   for (std::size_t i = 0; i < node_total; ++i) compute_moments(i);
@@ -335,50 +415,73 @@ void TreeGravity::interaction_list(const Group& g, std::vector<std::uint32_t>& c
   }
 }
 
+namespace {
+
+/// a[3] = the pull of the cells (TreeGravity::Expansion, in list order) at the targets t.
+template <class Expansion>
+[[gnu::always_inline]] inline void sum_cells(const std::vector<std::uint32_t>& cells, const Expansion* expansion,
+                                             const Targets& t, V e2, V* a) {
+  const V minus_seven_thirds = splat(-7.0 / 3.0);
+  V ax = splat(0.0), ay = ax, az = ax;
+  for (const std::uint32_t c : cells) {
+    const Expansion& e = expansion[c];
+    const CellTerms k(e, t, e2);
+    // a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U')
+    const V y3 = k.y * k.y2, y5 = y3 * k.y2;
+    const V radial = y3 * fma(k.y2, fma(k.y2, fma(minus_seven_thirds * k.p, k.y2, k.w), splat(e.t15)), splat(e.neg_mass));
+    ax = fma(y5, fma(k.y2, k.ux, k.vx), fma(radial, k.rx, ax));
+    ay = fma(y5, fma(k.y2, k.uy, k.vy), fma(radial, k.ry, ay));
+    az = fma(y5, fma(k.y2, k.uz, k.vz), fma(radial, k.rz, az));
+  }
+  a[0] = ax, a[1] = ay, a[2] = az;
+}
+
+}  // namespace
+
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
   std::vector<std::uint32_t> cells, ranges;
-  const V e2 = splat(eps2_), three = splat(3.0), three_halves = splat(1.5), fifteen_halves = splat(7.5),
-          thirty_five_halves = splat(17.5);
+  const V e2 = splat(eps2_);
+  const F e2f = splat_f(static_cast<float>(eps2_));
+  const auto store_accelerations = [&](std::uint32_t first, std::uint32_t end, const V* a) {
+    alignas(64) double b[3][lanes];
+    for (std::size_t k = 0; k < 3; ++k) store(b[k], a[k]);
+    for (std::size_t l = 0; l < lanes && first + l < end; ++l)
+      for (std::size_t k = 0; k < 3; ++k) acceleration_[3 * static_cast<std::size_t>(order_[first + l]) + k] = b[k][l];
+  };
   const std::size_t last = std::min(groups_.size(), (chunk + 1) * groups_per_chunk);
   for (std::size_t gi = chunk * groups_per_chunk; gi < last; ++gi) {
     const Group& g = groups_[gi];
     interaction_list(g, cells, ranges);
-    for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
-      const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
-      V ax = splat(0.0), ay = ax, az = ax;
-      for (const std::uint32_t c : cells) {
-        const Node& cell = nodes_[c];
-        const CellTerms k(cell, t, e2);
-        const V &rx = k.rx, &ry = k.ry, &rz = k.rz, &y3 = k.y3, &y5 = k.y5, &q = k.q, &tr = k.tr;
-        const V y7 = y5 * k.y2, y9 = y7 * k.y2;
-        const V &srx = k.srx, &sry = k.sry, &srz = k.srz;
-        const Octupole& oct = k.oct;
-        // monopole and quadrupole: -M/s^3 + (3/2) tr S/s^5 - (15/2) q/s^7 along r, 3/s^5 along S r;
-        // octupole: (15/2) (t.r)/s^7 - (35/2) P/s^9 along r, (15/2)/s^7 along U, -(3/2)/s^5 along t
-        const V radial = fma(three_halves * splat(cell.trace), y5, splat(0.0) - splat(cell.mass) * y3) -
-                         fifteen_halves * q * y7 + fifteen_halves * tr * y7 - thirty_five_halves * oct.p * y9;
-        const V along = three * y5, along_u = fifteen_halves * y7, along_t = three_halves * y5;
-        ax = fma(along_u, oct.ux, fma(along, srx, fma(radial, rx, ax))) - along_t * splat(cell.third_trace[0]);
-        ay = fma(along_u, oct.uy, fma(along, sry, fma(radial, ry, ay))) - along_t * splat(cell.third_trace[1]);
-        az = fma(along_u, oct.uz, fma(along, srz, fma(radial, rz, az))) - along_t * splat(cell.third_trace[2]);
-      }
-      for (std::size_t r = 0; r < ranges.size(); r += 2) {
-        for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
-          const V dx = splat(x_[j]) - t.x, dy = splat(y_[j]) - t.y, dz = splat(z_[j]) - t.z;
-          const V y = rsqrt(fma(dz, dz, fma(dy, dy, fma(dx, dx, e2))));
-          const V f = keep_lanes(splat(m_[j]) * (y * y * y), all_but_self(first, j));
-          ax = fma(f, dx, ax);
-          ay = fma(f, dy, ay);
-          az = fma(f, dz, az);
-        }
-      }
-      alignas(64) double bx[lanes], by[lanes], bz[lanes];
-      store(bx, ax), store(by, ay), store(bz, az);
-      for (std::size_t l = 0; l < lanes && first + l < g.end; ++l) {
-        double* a = acceleration_.data() + 3 * static_cast<std::size_t>(order_[first + l]);
-        a[0] = bx[l], a[1] = by[l], a[2] = bz[l];
+    // The group's two vectors of targets: the far field one vector of doubles at a time (in
+    // registers), then the near field for all 16 at once in single precision.
+    static_assert(group_size == 2 * lanes);
+    const std::uint32_t second = g.begin + lanes;
+    const Targets t0(x_.data(), y_.data(), z_.data(), g.begin, g.end), t1(x_.data(), y_.data(), z_.data(), second, g.end);
+    V a0[3], a1[3];
+    sum_cells(cells, expansion_.data(), t0, e2, a0);
+    sum_cells(cells, expansion_.data(), t1, e2, a1);
+    // Near field: all 16 targets in one float vector, about the group's first particle c.
+    const double cx = x_[g.begin], cy = y_[g.begin], cz = z_[g.begin];
+    alignas(64) float ox[2 * lanes], oy[2 * lanes], oz[2 * lanes];
+    for (std::size_t l = 0; l < 2 * lanes; ++l) {
+      const std::size_t k = std::min<std::size_t>(g.begin + l, g.end - 1);
+      ox[l] = static_cast<float>(x_[k] - cx), oy[l] = static_cast<float>(y_[k] - cy), oz[l] = static_cast<float>(z_[k] - cz);
+    }
+    const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
+    F ax = splat_f(0.0f), ay = ax, az = ax;
+    for (std::size_t r = 0; r < ranges.size(); r += 2) {
+      for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
+        const F dx = splat_f(static_cast<float>(x_[j] - cx)) - tx, dy = splat_f(static_cast<float>(y_[j] - cy)) - ty,
+                dz = splat_f(static_cast<float>(z_[j] - cz)) - tz;
+        const F y = rsqrt(fma(dz, dz, fma(dy, dy, fma(dx, dx, e2f))));
+        const F f = keep_lanes(splat_f(static_cast<float>(m_[j])) * (y * y * y), all_but_self_group(g.begin, j));
+        ax = fma(f, dx, ax), ay = fma(f, dy, ay), az = fma(f, dz, az);
       }
     }
+    a0[0] = a0[0] + widen(ax, 0), a0[1] = a0[1] + widen(ay, 0), a0[2] = a0[2] + widen(az, 0);
+    a1[0] = a1[0] + widen(ax, 1), a1[1] = a1[1] + widen(ay, 1), a1[2] = a1[2] + widen(az, 1);
+    store_accelerations(g.begin, g.end, a0);
+    store_accelerations(second, g.end, a1);
   }
 }
 
@@ -396,19 +499,15 @@ void TreeGravity::accelerations(const double* position, double* acceleration, bo
 
 void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& ranges) {
   interaction_list(g, cells, ranges);
-  const V e2 = splat(eps2_), half = splat(0.5), three = splat(3.0), sixth = splat(1.0 / 6.0), nine = splat(9.0),
-          fifteen = splat(15.0);
+  const V e2 = splat(eps2_), minus_third = splat(-1.0 / 3.0), fifth = splat(0.2);
   for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
     const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
     V phi = splat(0.0);
     for (const std::uint32_t c : cells) {
-      const Node& cell = nodes_[c];
-      const CellTerms k(cell, t, e2);
-      const V &y = k.y, &y2 = k.y2, &y3 = k.y3, &y5 = k.y5, &q = k.q, &tr = k.tr;
-      const Octupole& oct = k.oct;
-      // -M/s - (1/2) (3 q/s^5 - tr S/s^3) + (1/6) (9 t.r/s^5 - 15 P/s^7)
-      phi = phi - splat(cell.mass) * y - half * (three * q * y5 - splat(cell.trace) * y3) +
-            sixth * (nine * tr * y5 - fifteen * oct.p * y5 * y2);
+      const Expansion& e = expansion_[c];
+      const CellTerms k(e, t, e2);
+      // phi = y (-M + y^2 ((1/2) tr S + y^2 (w/5 - (1/3) P' y^2)))
+      phi = fma(k.y, fma(k.y2, fma(k.y2, fma(minus_third * k.p, k.y2, fifth * k.w), splat(e.t15 / 3.0)), splat(e.neg_mass)), phi);
     }
     for (std::size_t r = 0; r < ranges.size(); r += 2)
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {

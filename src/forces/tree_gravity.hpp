@@ -10,17 +10,18 @@
 
 namespace tidalcrust {
 
-/// The opening angle theta that gives a median relative force error of about `force_error`
-/// (dimensionless, in (0, 0.5]) with moments up to the octupole: theta = 2.55 force_error^(2/9),
-/// between 0.1 and 0.7 (0.33 at 1e-4, 0.55 at 1e-3). A calibration of this code, not a bound:
-/// the median error against direct summation, measured with `tidalcrust bench --random 30000`
-/// (points in a sphere) for theta = 0.23 ... 0.7, grows as theta^4.3 (1.6e-5 at 0.23, 5.8e-5
-/// at 0.315, 2.5e-4 at 0.445, 1.7e-3 at 0.7): one cell's error is its first neglected term, the
-/// hexadecapole, O(theta^4) of its pull (Salmon & Warren 1994), and the errors of the many cells
-/// add with partly random signs. The factor keeps the measured median at about 0.4-0.7 of the
-/// target (4.1e-5 at 1e-4, 4.0e-4 at 1e-3 on 30,000 random points; with quadrupoles only the same
-/// error needed theta = 0.23, three times the near field). The achieved error is measured, not assumed: bench reports median, 99th
-/// percentile and maximum against the direct sum.
+/// The opening angle theta that gives a median relative force error of about 0.8 force_error
+/// (dimensionless, in (0, 0.5]) with moments up to the octupole: theta = 3.0 force_error^(2/9),
+/// between 0.1 and 0.7 (0.39 at 1e-4, 0.65 at 1e-3). A calibration of this code (leaves of 32,
+/// groups of 16), not a bound: the median error against direct summation on 30,000 random points
+/// in a sphere grows as theta^4.7 (8.6e-6 at theta 0.24, 2.9e-5 at 0.31, 8.6e-5 at 0.40, 3.1e-4
+/// at 0.51, 8.1e-4 at 0.67; 99th percentiles 4.9e-5, 1.7e-4, 6.0e-4, 1.4e-3, 5.4e-3): one cell's
+/// error is its first neglected term, the hexadecapole, O(theta^4) of its pull (Salmon & Warren
+/// 1994), and the errors of the many cells add with partly random signs. The factor puts the
+/// median at 0.65-0.9 of the target on 4,000-60,000 random points (0.70 at 30,000) and the 99th
+/// percentile at 4-7 times the target (with quadrupoles only the same error needed about 0.7 of
+/// the angle, three times the near field). The achieved error is measured, not assumed: bench reports median, 99th percentile
+/// and maximum against the direct sum.
 double opening_angle_for(double force_error);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2), approximated by an octree:
@@ -28,7 +29,7 @@ double opening_angle_for(double force_error);
 /// * Tree: Morton keys (21 bits per axis in the particles' bounding cube) sorted with the
 ///   particle index breaking ties, so the order, the nodes, their moments and everything below
 ///   are a pure function of positions and masses (rebuilt every call, no refit: a resumed run
-///   rebuilds the same tree). Leaves hold <= leaf_capacity particles.
+///   rebuilds the same tree), by a stable radix sort. Leaves hold <= leaf_capacity particles.
 /// * Moments of each node about its centre of mass c: mass M, the second moments
 ///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
 ///   b_max = max |x - c|.
@@ -86,23 +87,29 @@ class TreeGravity {
   std::size_t particle_count() const { return count_; }
   std::size_t node_count() const { return nodes_.size(); }
 
-  static constexpr std::size_t leaf_capacity = 16;
+  static constexpr std::size_t leaf_capacity = 32;
   static constexpr std::size_t group_size = 16;
   static constexpr std::size_t groups_per_chunk = 16;
 
  private:
-  struct Node {
+  struct Node {  ///< what the walk reads
     std::uint32_t begin, end;  ///< particle range in Morton order
     std::uint32_t next;        ///< the node after this one's subtree (pre-order)
     bool leaf;
-    double mass;
-    double com[3];
-    double second[6];  ///< S_xx, S_xy, S_xz, S_yy, S_yz, S_zz about com
-    double trace;      ///< tr S
-    /// O_ijk = sum m d_i d_j d_k about com, d = x - com: xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz
-    double third[10];
-    double third_trace[3];  ///< t_k = sum_i O_iik
+    double com[3];     ///< centre of mass c
     double bmax2;      ///< b_max^2
+  };
+  /// A node's moments as the far-field kernel uses them, scaled by the constants of the
+  /// expansion: 32 doubles, four cache lines, read with broadcasts.
+  struct alignas(64) Expansion {
+    double com[3];
+    double neg_mass;   ///< -M
+    double t15;        ///< (3/2) tr S
+    double s3[6];      ///< 3 S: xx, xy, xz, yy, yz, zz (S = sum m (x - c)(x - c)^T)
+    double mt15[3];    ///< -(3/2) t, t_k = O_iik (O_ijk = sum m d_i d_j d_k, d = x - c)
+    /// (15/2) O_ijk r_j r_k as coefficients of r_x^2, r_y^2, r_z^2, r_x r_y, r_x r_z, r_y r_z
+    /// (the mixed ones doubled), for i = x, y, z
+    double u[18];
   };
   struct Group {
     std::uint32_t begin, end;  ///< particle range in Morton order
@@ -122,9 +129,15 @@ class TreeGravity {
   double theta_;
   std::vector<double> mass_;
   std::vector<std::uint64_t> key_;
+  struct Keyed {
+    std::uint64_t key;
+    std::uint32_t index;
+  };
+  std::vector<Keyed> keyed_, sorted_;  ///< [N] Morton keys being sorted (kept to save allocations)
   std::vector<std::uint32_t> order_;  ///< order_[k] = original index of the k-th particle in Morton order
   std::vector<double> x_, y_, z_, m_; ///< positions and masses in Morton order
   std::vector<Node> nodes_;
+  std::vector<Expansion> expansion_;  ///< [nodes_.size()]
   std::vector<Group> groups_;
   std::vector<double> acceleration_;  ///< [N*3] by original index
   std::vector<double> potential_;     ///< [N] in Morton order (potential_energy)
