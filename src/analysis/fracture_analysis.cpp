@@ -1,5 +1,6 @@
 #include "analysis/fracture_analysis.hpp"
 
+#include <Eigen/Geometry>  // cross()
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -93,11 +94,17 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
   summary.median_angle_from_subsatellite_deg =
       n == 0 ? nan : (n % 2 ? angles[n / 2] : 0.5 * (angles[n / 2 - 1] + angles[n / 2]));
 
-  // Dual-lattice bars, and clusters: failed edges of one face are joined at its centroid.
+  // Dual-lattice bars, and clusters: failed edges of one face are joined at its centroid. Each
+  // face also gives a third of its area to each of its three edge springs.
   DisjointSets sets(body.spring_count());
+  std::vector<double> spring_area(body.spring_count(), 0.0);
+  double shell_area = 0;
   for (std::size_t f = 0; f < body.faces.size(); ++f) {
     const auto& face = body.faces[f];
     const Vec3 centroid = (position(face[0]) + position(face[1]) + position(face[2])) / 3.0;
+    const double area = 0.5 * (position(face[1]) - position(face[0])).cross(position(face[2]) - position(face[0])).norm();
+    shell_area += area;
+    for (int k = 0; k < 3; ++k) spring_area[static_cast<std::size_t>(topology.face_edge_spring[f][k])] += area / 3.0;
     std::int32_t first_failed = -1;
     for (int k = 0; k < 3; ++k) {
       const std::int32_t s = topology.face_edge_spring[f][k];
@@ -108,6 +115,11 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
       sets.unite(static_cast<std::size_t>(first_failed), static_cast<std::size_t>(s));
     }
   }
+
+  double failed_area = 0;
+  for (const auto& f : summary.failed) failed_area += spring_area[static_cast<std::size_t>(f.spring)];
+  summary.failed_area_fraction = shell_area > 0 ? failed_area / shell_area : nan;
+  for (const auto& bar : summary.bars) summary.total_crack_length += (bar.edge_midpoint - bar.centroid).norm();
 
   std::vector<std::int64_t> cluster_of_root(body.spring_count(), -1);
   for (const auto& f : summary.failed) {
@@ -146,7 +158,9 @@ Json failure_summary_json(const FractureSummary& summary) {
           {"median_angle_from_subsatellite_deg", summary.median_angle_from_subsatellite_deg},
           {"longest_crack", summary.longest_crack_length},
           {"longest_crack_extent", summary.longest_crack_extent},
-          {"clusters", summary.clusters.size()}};
+          {"clusters", summary.clusters.size()},
+          {"total_crack_length", summary.total_crack_length},
+          {"failed_area_fraction", summary.failed_area_fraction}};
 }
 
 }  // namespace tidalcrust

@@ -55,6 +55,14 @@ struct FractureSummary {
   double median_angle_from_subsatellite_deg = 0;  ///< NaN if none failed (robust to a few far cracks)
   double longest_crack_length = 0;  ///< length of the longest cluster, R (0 if none)
   double longest_crack_extent = 0;  ///< its great-circle extent, R (0 if none)
+  /// Sum of the lengths of all clusters (= of all dual-lattice bars), R (0 if none). Unlike the
+  /// failed count, it converges with resolution: a crack of given length crosses ~1/L_S bars.
+  double total_crack_length = 0;
+  /// Failed share of the shell AREA: each shell spring stands for a third of the area of each of
+  /// its faces (the thirds sum to the whole shell), so a failed spring counts (A_f1 + A_f2)/3 of
+  /// the total face area, both measured on the state's positions. Unlike fraction_shell (a share
+  /// of springs, whose size shrinks as L_S^2) it converges with resolution. NaN without faces.
+  double failed_area_fraction = 0;
   std::array<std::int64_t, angle_bins> angle_histogram{};  ///< failed springs per 10-degree bin
 
   std::size_t count() const { return failed.size(); }
@@ -67,8 +75,9 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 
 /// The `failures` object of summary.json, compare --json and inspect: count, fraction_shell,
 /// hemisphere_fraction, mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg,
-/// longest_crack, longest_crack_extent (R) and clusters (number of clusters), in that order;
-/// count and clusters are integers, undefined (NaN) values are written as null.
+/// longest_crack, longest_crack_extent (R), clusters (number of clusters), total_crack_length (R)
+/// and failed_area_fraction, in that order (new keys go at the end: readers of summary.json rely on
+/// it); count and clusters are integers, undefined (NaN) values are written as null.
 Json failure_summary_json(const FractureSummary& summary);
 
 }  // namespace tidalcrust

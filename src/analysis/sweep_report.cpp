@@ -13,6 +13,7 @@
 #include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
+#include "io/csv.hpp"
 #include "io/state_hash.hpp"
 #include "model/derived_quantities.hpp"
 #include "model/stage_fingerprint.hpp"
@@ -103,15 +104,6 @@ std::vector<CrackBoundary> crack_boundaries(const std::vector<SweepRow>& rows, d
     out.push_back(b);
   }
   return out;
-}
-
-/// A CSV cell: empty for NaN, quoted when it holds a comma, quote or line break.
-std::string csv_number(double v) { return std::isfinite(v) ? fmt::format("{}", v) : ""; }
-std::string csv_text(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return quoted + "\"";
 }
 
 }  // namespace

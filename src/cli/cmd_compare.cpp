@@ -1,8 +1,11 @@
 // tidalcrust compare A.h5 B.h5 [--json]: how alike the fractures of two encounters of one body are.
+// tidalcrust compare --resolution A.h5 B.h5 [C.h5 ...] [--out DIR] [--json]: one encounter at
+// several shell levels, the convergence table (analysis/resolution_study.hpp) and fracture maps.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <cxxopts.hpp>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,6 +14,10 @@
 #include "cli/commands.hpp"
 #include "base/errors.hpp"
 #include "analysis/fracture_comparison.hpp"
+#include "analysis/resolution_study.hpp"
+#include "figures/figure_text.hpp"
+#include "figures/figures.hpp"
+#include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "io/state_hash.hpp"
 
@@ -31,25 +38,93 @@ std::string number(double v, const char* format = "{:.4g}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "n/a";
 }
 
+std::string level_text(const ResolutionRow& r) { return r.shell_level >= 0 ? std::to_string(r.shell_level) : "?"; }
+
+void print_resolution_table(const ResolutionStudy& study) {
+  fmt::print("resolution study of encounter {}: M2 = {} M, q = {} R, V_q = {} sqrt(GM/R), eps_S = {}, {} rule\n",
+             study.encounter.name, study.encounter.perturber_mass, study.encounter.pericenter,
+             study.encounter.pericenter_speed, study.failure_strain, study.failure_rule);
+  const auto line = [](const auto&... cells) {
+    fmt::print("{:>5} {:>7} {:>9} {:>9} {:>7} {:>9} {:>10} {:>9} {:>8} {:>10} {:>8} {:>8} {:>8}\n", cells...);
+  };
+  line("level", "N_S", "particles", "dt", "failed", "area", "total", "longest", "clusters", "hemisphere",
+       "median", "d area", "d hemi");
+  line("", "", "", "[t_grav]", "springs", "fraction", "crack", "crack [R]", "", "fraction", "ang [deg]", "[%]", "[%]");
+  for (const auto& r : study.rows) {
+    const FractureSummary& f = r.fractures;
+    line(level_text(r), r.shell_nodes, r.particles, number(r.dt), f.count(), number(f.failed_area_fraction),
+         number(f.total_crack_length), number(f.longest_crack_length), f.clusters.size(),
+         number(f.hemisphere_fraction), number(f.median_angle_from_subsatellite_deg, "{:.1f}"),
+         number(r.area_fraction_change_percent, "{:+.1f}"), number(r.hemisphere_fraction_change_percent, "{:+.1f}"));
+  }
+  for (const auto& r : study.rows) fmt::print("level {}: {}  state_hash {}\n", level_text(r), r.file, r.state_hash);
+  fmt::print("d area, d hemi: change of the failed area fraction and the hemisphere fraction from the row above\n");
+}
+
+/// DIR/convergence.json, convergence.csv and convergence_maps.png/.svg; returns the files written.
+std::vector<std::filesystem::path> write_resolution_outputs(const ResolutionStudy& study,
+                                                            const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir))
+    throw InputError(fmt::format("{}: cannot create the output folder: {}", dir.string(),
+                                 ec ? ec.message() : "a file of that name exists"));
+  write_file_atomically(dir / "convergence.json", json_text(resolution_study_json(study)));
+  write_file_atomically(dir / "convergence.csv", resolution_study_csv(study));
+  std::vector<const FractureSummary*> panels;
+  std::vector<std::string> titles;
+  for (const auto& r : study.rows) {
+    panels.push_back(&r.fractures);
+    titles.push_back(fmt::format("level {}, N_S = {}: {:.1f}% of the area failed", level_text(r), r.shell_nodes,
+                                 100 * r.fractures.failed_area_fraction));
+  }
+  const std::string title = fmt::format("{}: fracture maps by shell level\n{}; eps_S = {}, {} failure rule",
+                                        study.encounter.name, encounter_parameters_text(study.encounter),
+                                        general_text(study.failure_strain), study.failure_rule);
+  std::vector<std::filesystem::path> written{dir / "convergence.json", dir / "convergence.csv"};
+  for (const auto& f : write_fracture_map_row(panels, titles, dir / "convergence_maps", title)) written.push_back(f);
+  return written;
+}
+
+int compare_resolutions(const cxxopts::ParseResult& parsed, const std::vector<std::string>& files) {
+  const ResolutionStudy study = build_resolution_study(files);
+  std::vector<std::filesystem::path> written;
+  if (parsed.count("out")) written = write_resolution_outputs(study, parsed["out"].as<std::string>());
+  if (parsed.count("json")) {
+    fmt::print("{}", json_text(resolution_study_json(study)));
+    return exit_ok;
+  }
+  print_resolution_table(study);
+  for (const auto& f : written) fmt::print("wrote {}\n", f.string());
+  return exit_ok;
+}
+
 }  // namespace
 
 int command_compare(int argc, char** argv) {
   cxxopts::Options options("tidalcrust compare",
                            "Compare the fractures of two encounter checkpoints branched from the same body:\n"
                            "overlap of failed springs (Jaccard index), angular distributions about the\n"
-                           "subsatellite point (Kolmogorov-Smirnov distance), cracks and state hashes.");
+                           "subsatellite point (Kolmogorov-Smirnov distance), cracks and state hashes.\n"
+                           "With --resolution: the same encounter at several shell levels (two or more\n"
+                           "checkpoints, any order), a convergence table and, with --out, its files.");
   options.add_options()
       ("json", "print one JSON object")
+      ("resolution", "compare one encounter at several resolutions: rows sorted by shell node count")
+      ("out", "with --resolution: write DIR/convergence.json, convergence.csv, convergence_maps.png/.svg",
+       cxxopts::value<std::string>())
       ("h,help", "show this help")
       ("files", "A.h5 B.h5", cxxopts::value<std::vector<std::string>>());
   options.parse_positional({"files"});
-  options.positional_help("A.h5 B.h5");
+  options.positional_help("A.h5 B.h5 | --resolution A.h5 B.h5 [C.h5 ...]");
   const auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) {
     fmt::print("{}", options.help());
     return exit_ok;
   }
   const auto files = parsed.count("files") ? parsed["files"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  if (parsed.count("resolution")) return compare_resolutions(parsed, files);
+  if (parsed.count("out")) throw InputError("compare: --out is for --resolution only (see --help)");
   if (files.size() != 2) throw InputError(fmt::format("expected two checkpoint files A.h5 B.h5, got {} (see --help)", files.size()));
 
   const Checkpoint a = read_checkpoint(files[0]);
@@ -77,6 +152,7 @@ int command_compare(int argc, char** argv) {
   row("step", fmt::format("{}", a.state.step), fmt::format("{}", b.state.step));
   row("failed shell springs", fmt::format("{}", r.a.count()), fmt::format("{}", r.b.count()));
   row("fraction of shell springs", number(r.a.fraction_shell), number(r.b.fraction_shell));
+  row("failed area fraction", number(r.a.failed_area_fraction), number(r.b.failed_area_fraction));
   row("subsatellite hemisphere fraction", number(r.a.hemisphere_fraction), number(r.b.hemisphere_fraction));
   row("mean angle from subsatellite [deg]", number(r.a.mean_angle_from_subsatellite_deg, "{:.2f}"),
       number(r.b.mean_angle_from_subsatellite_deg, "{:.2f}"));
@@ -85,6 +161,7 @@ int command_compare(int argc, char** argv) {
   row("cracks (clusters)", fmt::format("{}", r.a.clusters.size()), fmt::format("{}", r.b.clusters.size()));
   row("longest crack [R]", number(r.a.longest_crack_length), number(r.b.longest_crack_length));
   row("longest crack extent [R]", number(r.a.longest_crack_extent), number(r.b.longest_crack_extent));
+  row("total crack length [R]", number(r.a.total_crack_length), number(r.b.total_crack_length));
   fmt::print("A: {}  state_hash {}\nB: {}  state_hash {}\n", files[0], state_hash(a.state), files[1], state_hash(b.state));
   fmt::print("failed in both {}, in either {}: Jaccard index {}\n", r.common_failed, r.either_failed, number(r.jaccard));
   fmt::print("Kolmogorov-Smirnov distance of the angle-from-subsatellite distributions: {}\n", number(r.ks_distance));

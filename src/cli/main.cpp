@@ -26,6 +26,7 @@ void print_usage(std::FILE* to) {
       "  analyze   --from ENC.h5 --out DIR\n"
       "  inspect CKPT.h5 [--json | --fingerprint]\n"
       "  compare A.h5 B.h5 [--json]\n"
+      "  compare --resolution A.h5 B.h5 [C.h5 ...] [--out DIR] [--json]\n"
       "  estimate [--body NAME | --mass KG --radius KM] [--json]\n"
       "  bench [--config WORKFLOW.toml] [--steps N] [--json]\n"
       "  validate WORKFLOW.toml [--out DIR] [--measure breathing,love,flexure,p-wave]\n"

@@ -33,6 +33,20 @@ struct MapPolyline {
 std::vector<MapPolyline> map_segment_pieces(const Vec3& from, const Vec3& to);
 /// Where write_fracture_map puts longitude (x, degrees) and latitude (y, degrees), in points.
 PlotAxes fracture_map_axes();
+/// Draws one fracture map into `axes` (longitude -180..180, latitude -90..90): ice, graticule,
+/// crack bars, subsatellite ring, frame with ticks and axis labels. Every fracture map is drawn
+/// by it: write_fracture_map's and each panel of write_fracture_map_row.
+void draw_fracture_map(cairo_t* cr, const PlotAxes& axes, const FractureSummary& fractures);
+/// Fracture maps side by side (`compare --resolution`: one panel per shell level, coarsest
+/// first), each drawn by draw_fracture_map at half the size of write_fracture_map's and titled
+/// with `panel_titles[i]`; `title` (two lines, as draw_title) above the row. InputError naming the
+/// stem if there is no panel or the titles do not match the panels (and as write_figure).
+FigureFiles write_fracture_map_row(const std::vector<const FractureSummary*>& panels,
+                                   const std::vector<std::string>& panel_titles, const std::filesystem::path& stem,
+                                   const std::string& title);
+/// Where write_fracture_map_row puts longitude and latitude of panel `index`, in points (the
+/// panels are 320 x 160 points; the figure is as wide as its panels need).
+PlotAxes fracture_map_row_axes(std::size_t index);
 
 /// Figure 6 (fig:T5): one panel per checkpoint (all of one body, in the given order), each an
 /// orthographic view of the hemisphere centred on the subsatellite point. The viewer sits on the

@@ -1,3 +1,4 @@
+#include <Eigen/Geometry>  // cross()
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -100,6 +101,9 @@ TEST(FractureAnalysis, LineOfFailedSpringsIsOneCrack) {
   EXPECT_EQ(s.clusters[1].springs, std::vector<std::int32_t>{far});
   EXPECT_NEAR(s.longest_crack_length, expected_length, 1e-12);
   EXPECT_NEAR(s.clusters[0].length, expected_length, 1e-12);
+  // The total is every cluster's length: the strip's and the lone far spring's two bars.
+  EXPECT_NEAR(s.total_crack_length, s.clusters[0].length + s.clusters[1].length, 1e-15);
+  EXPECT_GT(s.clusters[1].length, 0.0);
   // End to end: from the first to the last face of the strip, on the unit sphere.
   const Vec3 offset(5, -3, 2);
   const double ends = std::acos((face_centroid(c, strip.front()) - offset).normalized().dot(
@@ -174,6 +178,8 @@ TEST(FractureAnalysis, AllSpringsFailedShowTheDualLattice) {
   EXPECT_EQ(s.clusters.size(), 1u);
   EXPECT_EQ(s.bars.size(), 3u * c.body.faces.size());
   EXPECT_NEAR(s.longest_crack_length, expected, 1e-10);
+  EXPECT_NEAR(s.total_crack_length, expected, 1e-10);  // one cluster: the total is its length
+  EXPECT_NEAR(s.failed_area_fraction, 1.0, 1e-14);    // every spring's third of each face
   EXPECT_DOUBLE_EQ(s.hemisphere_fraction, y_positive / 480.0);
   EXPECT_GT(s.longest_crack_extent, 0.95 * std::numbers::pi);  // spans the globe
   EXPECT_NEAR(s.mean_angle_from_subsatellite_deg, 90.0, 1e-9);  // symmetric about the xz-plane
@@ -191,6 +197,64 @@ TEST(FractureAnalysis, FailureSummaryJson) {
                                            {"median_angle_from_subsatellite_deg", s.median_angle_from_subsatellite_deg},
                                            {"longest_crack", s.longest_crack_length},
                                            {"longest_crack_extent", s.longest_crack_extent},
-                                           {"clusters", 1}}));
+                                           {"clusters", 1},
+                                           {"total_crack_length", s.total_crack_length},
+                                           {"failed_area_fraction", s.failed_area_fraction}}));
   EXPECT_GT(s.longest_crack_length, 0.0);
+}
+
+// On the regular icosahedron (level 0, vertices on the unit sphere) every face has the same area,
+// so one failed edge is 2/3 of a face of 20: 1/30 of the area, its share of the 30 springs. Its
+// two bars run from the two face centroids to the edge midpoint, each the inradius a/(2 sqrt 3) of
+// a face of edge a = 4 / sqrt(10 + 2 sqrt 5).
+TEST(FractureAnalysis, OneFailedEdgeOfTheIcosahedronHasExactAreaAndLength) {
+  Checkpoint c = synthetic_encounter(0);
+  ASSERT_EQ(c.body.faces.size(), 20u);
+  c.state.springs.failed[0] = 1;
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  ASSERT_EQ(s.count(), 1u);
+  EXPECT_EQ(s.fraction_shell, 1.0 / 30);
+  EXPECT_NEAR(s.failed_area_fraction, 1.0 / 30, 1e-15);
+  const double edge = 4 / std::sqrt(10 + 2 * std::sqrt(5.0));
+  EXPECT_NEAR(s.total_crack_length, 2 * edge / (2 * std::sqrt(3.0)), 1e-14);
+  EXPECT_EQ(s.total_crack_length, s.longest_crack_length);
+}
+
+// On a level-1 icosphere the faces differ in area: a failed spring counts a third of each of its
+// two faces (brute force here, without shell_topology), not 1/120 of the shell.
+TEST(FractureAnalysis, FailedAreaFractionCountsAThirdOfEachFaceOfAFailedSpring) {
+  Checkpoint c = synthetic_encounter(1);
+  auto area = [&](const std::array<std::int32_t, 3>& f) {
+    const Vec3 a = vec3_at(c.state.position, static_cast<std::size_t>(f[0]));
+    const Vec3 b = vec3_at(c.state.position, static_cast<std::size_t>(f[1]));
+    const Vec3 d = vec3_at(c.state.position, static_cast<std::size_t>(f[2]));
+    return 0.5 * (b - a).cross(d - a).norm();
+  };
+  double total = 0, smallest = 1e9, largest = 0;
+  for (const auto& f : c.body.faces) total += area(f), smallest = std::min(smallest, area(f)), largest = std::max(largest, area(f));
+  ASSERT_GT(largest / smallest, 1.05) << "the level-1 faces differ in area";
+  double expected = 0;
+  for (const std::size_t spring : {0, 7, 33}) {
+    c.state.springs.failed[spring] = 1;
+    const auto e = c.body.springs[spring];
+    for (const auto& f : c.body.faces) {
+      const auto has = [&](std::int32_t v) { return std::find(f.begin(), f.end(), v) != f.end(); };
+      if (has(e[0]) && has(e[1])) expected += area(f) / 3;
+    }
+  }
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  ASSERT_EQ(s.count(), 3u);
+  EXPECT_NEAR(s.failed_area_fraction, expected / total, 1e-15);
+  EXPECT_NE(s.failed_area_fraction, s.fraction_shell);
+  double bars = 0;
+  for (const auto& bar : s.bars) bars += (bar.edge_midpoint - bar.centroid).norm();
+  EXPECT_NEAR(s.total_crack_length, bars, 1e-15);
+  EXPECT_EQ(s.bars.size(), 6u);
+}
+
+TEST(FractureAnalysis, NoFailuresHaveNoAreaAndNoLength) {
+  const Checkpoint c = synthetic_encounter(1);
+  const FractureSummary s = analyze_fractures(c.body, c.state);
+  EXPECT_EQ(s.failed_area_fraction, 0.0);
+  EXPECT_EQ(s.total_crack_length, 0.0);
 }

@@ -89,6 +89,48 @@ TEST(Figures, FractureMapDrawsCrackBarsWhereTheyAre) {
   EXPECT_LT(ring, 0.85);
 }
 
+// compare --resolution's figure: one map panel per level, side by side, each drawn by the same
+// draw_fracture_map as write_fracture_map (cracks where they are, ice elsewhere, the ring).
+TEST(Figures, FractureMapRowHasOnePanelPerLevelWithItsCracks) {
+  std::vector<Checkpoint> levels{synthetic_encounter(1), synthetic_encounter(2), synthetic_encounter(3)};
+  std::vector<FractureSummary> summaries;
+  for (auto& c : levels) {
+    fail_spring_near(c, {-0.6, 0.2, 0.5});
+    summaries.push_back(analyze_fractures(c.body, c.state));
+  }
+  const std::int32_t second = fail_spring_near(levels[2], {0.3, -1, -0.2});  // on the finest level only
+  summaries[2] = analyze_fractures(levels[2].body, levels[2].state);
+  const ScratchFolder scratch("figures_map_row");
+  const auto files = write_fracture_map_row({&summaries[0], &summaries[1], &summaries[2]},
+                                            {"level 1", "level 2", "level 3"}, scratch.path / "row", "test\nrow");
+  expect_png_and_svg(files);
+  const Png png(files[0]);
+  EXPECT_EQ(cairo_image_surface_get_width(png.surface.get()), static_cast<int>(2 * (2 * 62 + 3 * 320 + 2 * 70)));
+  EXPECT_EQ(cairo_image_surface_get_height(png.surface.get()), static_cast<int>(2 * (80 + 160 + 58)));
+  for (std::size_t panel = 0; panel < 3; ++panel) {
+    const PlotAxes axes = fracture_map_row_axes(panel);
+    EXPECT_EQ(axes.area().width, 320);
+    if (panel > 0) {
+      EXPECT_GT(axes.area().left, fracture_map_row_axes(panel - 1).area().right() + 40);
+    }
+    for (const auto& bar : summaries[panel].bars) {
+      const Vec3 middle = 0.5 * (bar.centroid + bar.edge_midpoint);
+      EXPECT_LT(png.luminance(axes.page_x(longitude_deg(middle)), axes.page_y(latitude_deg(middle))), 0.35) << panel;
+    }
+    EXPECT_GT(png.luminance(axes.page_x(-100), axes.page_y(-40)), 0.8) << panel;
+    EXPECT_LT(png.luminance(axes.page_x(90) + 8, axes.page_y(0)), 0.85) << panel;  // the ring
+  }
+  // The second crack (toward -y: longitude about -90) is drawn on the level-3 panel only.
+  Vec3 far = Vec3::Zero();
+  for (const auto& bar : summaries[2].bars)
+    if (bar.spring == second) far = 0.5 * (bar.centroid + bar.edge_midpoint);
+  const double lon = longitude_deg(far), lat = latitude_deg(far);
+  ASSERT_LT(lon, 0);
+  EXPECT_LT(png.luminance(fracture_map_row_axes(2).page_x(lon), fracture_map_row_axes(2).page_y(lat)), 0.5);
+  EXPECT_GT(png.luminance(fracture_map_row_axes(0).page_x(lon), fracture_map_row_axes(0).page_y(lat)), 0.6);
+  EXPECT_THROW(write_fracture_map_row({}, {}, scratch.path / "none", "x"), InputError);
+}
+
 TEST(Figures, HemisphereViewShowsCracksFacingTheViewer) {
   Checkpoint c = synthetic_encounter(3);
   fail_spring_near(c, {0.3, 1, 0.4});
