@@ -39,7 +39,8 @@ BodyMaterial body_material(const Checkpoint& relaxed, const Config& config);
 ///    inward (a stiff centre inside a softer shell strains less than the boundary), so it is
 ///    reported, not used.
 /// The body's moduli are eq. 15's times the geometric non-affine factors K_relaxed / K_affine and
-/// G_relaxed / G_affine (K_I = 2 E_I / 3, G_I = 2 E_I / 5 at nu = 1/4).
+/// G_relaxed / G_affine (K_I = 2 E_I / 3, G_I = 2 E_I / 5 at nu = 1/4). InputError when the
+/// interior is too small for a held layer and a measured sphere (measure_radius <= 0).
 struct InteriorModuli {
   NetworkModuli geometric;   ///< uniform springs at their current lengths
   NetworkModuli network;     ///< the relaxed springs with their pre-stress
@@ -119,11 +120,6 @@ struct FlexureResult {
 };
 FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, double spring_constant);
 
-/// Travel time along the z axis from z_from to z_to (about `center`, R) through the interior cut
-/// into `layers` spherical layers, each with its own P-wave speed from eq. 15 and 16 applied to
-/// the interior springs whose midpoints lie in it and the interior mass in it: the stretch stage
-/// strengthens the springs toward the centre, where the pressure is highest, and the interior
-/// nodes are denser than the body's mean 3/(4 pi) (the crust's mass lies outside r_I).
 /// The body as radial layers for continuum theory (about `center`): `layers` layers of equal
 /// thickness from the centre to the outermost interior node r_out, each with eq. 15 on the
 /// interior springs whose midpoints lie in it, nu = 1/4, and the interior mass in it as density;
@@ -132,6 +128,11 @@ FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, doub
 /// layer without springs or mass.
 std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& center, int layers, bool with_crust);
 
+/// Travel time along the z axis from z_from to z_to (about `center`, R) through the interior cut
+/// into `layers` spherical layers, each with its own P-wave speed from eq. 15 and 16 applied to
+/// the interior springs whose midpoints lie in it and the interior mass in it: the stretch stage
+/// strengthens the springs toward the centre, where the pressure is highest, and the interior
+/// nodes are denser than the body's mean 3/(4 pi) (the crust's mass lies outside r_I).
 double layered_p_wave_time(const Checkpoint& relaxed, const Vec3& center, double z_from, double z_to, int layers = 6);
 
 /// (d) P-wave travel time: the particles within `cap` of the top (largest z about the centre of
