@@ -111,6 +111,55 @@ BodyMaterial body_material(const Checkpoint& relaxed, const Config& config) {
   return m;
 }
 
+InteriorModuli measure_interior_moduli(const Checkpoint& relaxed, const BodyMaterial& eq15_material) {
+  const Body& body = relaxed.body;
+  const State& state = relaxed.state;
+  const Vec3 center = body_center_of_mass(body, state);
+  std::vector<Vec3> positions(body.particle_count());
+  for (std::size_t i = 0; i < body.particle_count(); ++i) positions[i] = position_of(state, i);
+  std::vector<NetworkSpring> springs;
+  double longest = 0, outer = 0;
+  for (std::size_t s = 0; s < body.spring_count(); ++s) {
+    if (body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::interior) || state.springs.failed[s]) continue;
+    const auto [i, j] = body.springs[s];
+    springs.push_back({i, j, state.springs.rest_length[s], state.springs.stiffness[s]});
+    longest = std::max(longest, (positions[i] - positions[j]).norm());
+    outer = std::max({outer, (positions[i] - center).norm(), (positions[j] - center).norm()});
+  }
+  InteriorModuli r;
+  r.hold_radius = outer - 0.5 * longest;
+  r.measure_radius = r.hold_radius - 0.5 * longest;
+  if (springs.empty() || !(r.measure_radius > 0))
+    throw InputError(fmt::format(
+        "the interior network is too small for its moduli: outermost node {:.3g} R, longest spring {:.3g} R", outer,
+        longest));
+  r.network = measure_network_moduli(positions, springs, center, r.hold_radius, r.measure_radius);
+  std::vector<NetworkSpring> uniform = springs;
+  for (auto& s : uniform) s = {s.i, s.j, (positions[s.i] - positions[s.j]).norm(), 1.0};
+  r.geometric = measure_network_moduli(positions, uniform, center, r.hold_radius, r.measure_radius);
+  r.bulk_factor = r.geometric.relaxed_moduli.bulk / r.geometric.affine_moduli.bulk;
+  r.shear_factor = r.geometric.relaxed_moduli.shear / r.geometric.affine_moduli.shear;
+  // Eq. 15 with nu = 1/4: lambda = mu = 2 E_I / 5, K_I = 2 E_I / 3.
+  const IsotropicModuli body_moduli = isotropic_moduli_from_bulk_shear(
+      r.bulk_factor * 2 * eq15_material.youngs_modulus / 3, r.shear_factor * 2 * eq15_material.youngs_modulus / 5);
+  r.material = eq15_material;
+  r.youngs_factor = body_moduli.youngs / eq15_material.youngs_modulus;
+  r.material.youngs_modulus = body_moduli.youngs;
+  r.material.poisson_ratio = body_moduli.poisson;
+  r.material.p_wave_speed = p_wave_speed(body_moduli.youngs, body_moduli.poisson, eq15_material.density);
+  return r;
+}
+
+ContinuumPrediction continuum_prediction(const BodyMaterial& material, double path_length) {
+  const double E = material.youngs_modulus, nu = material.poisson_ratio, rho = material.density;
+  ContinuumPrediction p;
+  p.breathing_period = lamb_breathing_period(E, nu, rho, material.radius);
+  p.self_gravitating_breathing_period = self_gravitating_breathing_period(E, nu, rho, material.radius);
+  p.h2 = homogeneous_sphere_love_numbers(2, E, nu, rho, material.radius).h;
+  p.p_wave_time = path_length / p_wave_speed(E, nu, rho);
+  return p;
+}
+
 BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
                                   double amplitude, double periods) {
   BreathingResult r;
@@ -339,42 +388,57 @@ FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, doub
   return r;
 }
 
-double layered_p_wave_time(const Checkpoint& relaxed, const Vec3& center, double z_from, double z_to, int layers) {
+std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& center, int layers, bool with_crust) {
   const Body& body = relaxed.body;
   const State& state = relaxed.state;
   const auto interior = static_cast<std::uint8_t>(Species::interior);
   double outer = 0;
   for (std::size_t i = 0; i < body.particle_count(); ++i)
     if (body.species[i] == interior) outer = std::max(outer, (position_of(state, i) - center).norm());
-  std::vector<double> modulus_sum(layers, 0.0), mass(layers, 0.0);
+  const bool crust = with_crust && body.count_species(Species::shell) > 0 && outer < 1;
+  const int count = layers + (crust ? 1 : 0);
+  std::vector<double> modulus_sum(count, 0.0), mass(count, 0.0);
   const auto layer_of = [&](const Vec3& x) {
-    return std::min(layers - 1, static_cast<int>((x - center).norm() / outer * layers));
+    const double r = (x - center).norm();
+    return crust && r > outer ? layers : std::min(layers - 1, static_cast<int>(r / outer * layers));
   };
   for (std::size_t i = 0; i < body.particle_count(); ++i)
-    if (body.species[i] == interior) mass[layer_of(position_of(state, i))] += body.mass[i];
+    if (body.species[i] == interior || crust) mass[layer_of(position_of(state, i))] += body.mass[i];
   for (std::size_t s = 0; s < body.spring_count(); ++s) {
-    if (body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::interior) || state.springs.failed[s]) continue;
+    const auto kind = body.spring_kind[s];
+    const bool counted = kind == static_cast<std::uint8_t>(SpringKind::interior) ||
+                         (crust && kind == static_cast<std::uint8_t>(SpringKind::cross));
+    if (!counted || state.springs.failed[s]) continue;
     const auto [i, j] = body.springs[s];
     const double rest = state.springs.rest_length[s];
-    modulus_sum[layer_of(0.5 * (position_of(state, i) + position_of(state, j)))] += state.springs.stiffness[s] * rest * rest;
+    const int b = kind == static_cast<std::uint8_t>(SpringKind::cross)
+                      ? layers
+                      : layer_of(0.5 * (position_of(state, i) + position_of(state, j)));
+    modulus_sum[b] += state.springs.stiffness[s] * rest * rest;
   }
-  std::vector<double> speed(layers);
-  for (int b = 0; b < layers; ++b) {
-    const double r1 = outer * b / layers, r2 = outer * (b + 1) / layers;
+  std::vector<ElasticLayer> result(count);
+  for (int b = 0; b < count; ++b) {
+    const double r1 = b < layers ? outer * b / layers : outer, r2 = b < layers ? outer * (b + 1) / layers : 1.0;
     const double volume = 4 * pi / 3 * (r2 * r2 * r2 - r1 * r1 * r1);
-    speed[b] = mass[b] > 0 && modulus_sum[b] > 0
-                   ? p_wave_speed(modulus_sum[b] / (6 * volume), 0.25, mass[b] / volume)
-                   : 0.0;
+    if (!(mass[b] > 0 && modulus_sum[b] > 0))
+      throw InputError("the interior has a layer without springs or mass: no P-wave speed there");
+    result[b] = {r2, modulus_sum[b] / (6 * volume), 0.25, mass[b] / volume};
   }
+  return result;
+}
+
+double layered_p_wave_time(const Checkpoint& relaxed, const Vec3& center, double z_from, double z_to, int layers) {
+  const std::vector<ElasticLayer> profile = body_layers(relaxed, center, layers, false);
+  const double outer = profile.back().outer_radius;
+  std::vector<double> speed(layers);
+  for (int b = 0; b < layers; ++b) speed[b] = p_wave_speed(profile[b].youngs_modulus, 0.25, profile[b].density);
   // Midpoint rule along the z axis through the centre.
   const int pieces = 2000;
   double time = 0;
   const double dz = (z_to - z_from) / pieces;
   for (int p = 0; p < pieces; ++p) {
     const double z = z_from + (p + 0.5) * dz;
-    const double v = speed[std::min(layers - 1, static_cast<int>(std::abs(z) / outer * layers))];
-    if (!(v > 0)) throw InputError("the interior has a layer without springs or mass: no P-wave speed there");
-    time += std::abs(dz) / v;
+    time += std::abs(dz) / speed[std::min(layers - 1, static_cast<int>(std::abs(z) / outer * layers))];
   }
   return time;
 }

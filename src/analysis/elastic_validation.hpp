@@ -8,6 +8,8 @@
 #include "base/vec3.hpp"
 #include "model/checkpoint.hpp"
 #include "model/config.hpp"
+#include "physics/continuum_elasticity.hpp"
+#include "physics/network_moduli.hpp"
 
 namespace tidalcrust {
 
@@ -24,6 +26,43 @@ struct BodyMaterial {
 };
 
 BodyMaterial body_material(const Checkpoint& relaxed, const Config& config);
+
+/// The relaxed interior network's own static moduli (physics/network_moduli.hpp), and the body
+/// material they give. The interior springs and nodes of the relaxed state, about the centre of
+/// mass; d the longest interior spring and r_out the outermost interior node: the nodes beyond
+/// hold_radius = r_out - d/2 stay at the affine positions, the stress is taken over the sphere of
+/// measure_radius = hold_radius - d/2. Measured twice:
+///  - `geometric`: the network's geometry alone, every spring k = 1 at its current length (no
+///    pre-stress): how far the random geometry relaxes off the affine deformation;
+///  - `network`: the relaxed springs as they are (strengthened toward the centre, pre-stressed):
+///    under the held boundary this also contains the continuum effect of the stiffness growing
+///    inward (a stiff centre inside a softer shell strains less than the boundary), so it is
+///    reported, not used.
+/// The body's moduli are eq. 15's times the geometric non-affine factors K_relaxed / K_affine and
+/// G_relaxed / G_affine (K_I = 2 E_I / 3, G_I = 2 E_I / 5 at nu = 1/4). InputError when the
+/// interior is too small for a held layer and a measured sphere (measure_radius <= 0).
+struct InteriorModuli {
+  NetworkModuli geometric;   ///< uniform springs at their current lengths
+  NetworkModuli network;     ///< the relaxed springs with their pre-stress
+  double hold_radius = 0;    ///< R
+  double measure_radius = 0; ///< R
+  double bulk_factor = 0;    ///< K_relaxed / K_affine of `geometric`
+  double shear_factor = 0;   ///< G_relaxed / G_affine of `geometric`
+  double youngs_factor = 0;  ///< E of `material` / E_I
+  BodyMaterial material;     ///< the body's material with E, nu, V_P from the measured moduli
+};
+InteriorModuli measure_interior_moduli(const Checkpoint& relaxed, const BodyMaterial& eq15_material);
+
+/// Continuum predictions for a body material (theory only; the measurements stay as they are):
+/// Lamb's breathing period with and without self-gravity, the static h2, the P-wave time over
+/// `path_length` (R).
+struct ContinuumPrediction {
+  double breathing_period = 0;                  ///< Lamb (1882), t_grav
+  double self_gravitating_breathing_period = 0; ///< t_grav
+  double h2 = 0;                                ///< homogeneous_sphere_love_numbers(2, ...).h
+  double p_wave_time = 0;                       ///< path_length / V_P, t_grav
+};
+ContinuumPrediction continuum_prediction(const BodyMaterial& material, double path_length);
 
 /// (a) The fundamental radial mode: positions scaled about the centre of mass by 1 + amplitude,
 /// integrated with Leapfrog (no damping, no perturber) beside an unscaled copy; the signal is the
@@ -80,6 +119,14 @@ struct FlexureResult {
   int nodes = 0;
 };
 FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, double spring_constant);
+
+/// The body as radial layers for continuum theory (about `center`): `layers` layers of equal
+/// thickness from the centre to the outermost interior node r_out, each with eq. 15 on the
+/// interior springs whose midpoints lie in it, nu = 1/4, and the interior mass in it as density;
+/// with `with_crust` and a shell, one more layer from r_out to R = 1 holding the crust: eq. 15 on
+/// the cross springs over its volume, and the shell's mass. Innermost first. InputError for a
+/// layer without springs or mass.
+std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& center, int layers, bool with_crust);
 
 /// Travel time along the z axis from z_from to z_to (about `center`, R) through the interior cut
 /// into `layers` spherical layers, each with its own P-wave speed from eq. 15 and 16 applied to

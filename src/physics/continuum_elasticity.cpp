@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "base/errors.hpp"
 
@@ -31,12 +33,11 @@ std::array<double, 2> lame_parameters(double youngs_modulus, double poisson_rati
 
 using Y = std::array<double, 6>;  // y1..y6 of Takeuchi & Saito (1972)
 
-/// Right-hand side of TS72 eq. 82 at omega = 0 for a homogeneous layer (lambda, mu, rho) with
-/// g(r) = (4 pi/3) rho r (G = 1); L = n(n+1). y5 is the potential perturbation in the geodesy
+/// Right-hand side of TS72 eq. 82 at omega = 0 at radius r in a layer (lambda, mu, rho) with the
+/// gravity g(r) = m(r)/r^2 of the mass inside r (G = 1); L = n(n+1). y5 is the potential perturbation in the geodesy
 /// sign (force = +grad y5), y6 = y5' - 4 pi rho y1 + (n+1) y5 / r.
-Y spheroidal_rhs(double r, const Y& y, int n, double lambda, double mu, double rho) {
+Y spheroidal_rhs(double r, const Y& y, int n, double lambda, double mu, double rho, double g) {
   const double four_pi_rho = 4 * std::numbers::pi * rho;
-  const double g = four_pi_rho * r / 3;
   const double rho_g = rho * g;
   const double L = n * (n + 1.0);
   const double beta = lambda + 2 * mu;
@@ -107,15 +108,24 @@ double self_gravitating_breathing_period(double youngs_modulus, double poisson_r
 
 LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, double poisson_ratio, double density,
                                             double radius, int steps) {
+  return layered_sphere_love_numbers(degree, {{radius, youngs_modulus, poisson_ratio, density}}, steps);
+}
+
+LoveNumbers layered_sphere_love_numbers(int degree, const std::vector<ElasticLayer>& layers, int steps) {
   if (degree < 2) throw InputError(fmt::format("Love numbers need degree >= 2, got {}", degree));
   if (steps < 100) throw InputError(fmt::format("Love number integration needs >= 100 steps, got {}", steps));
-  check_poisson_ratio(poisson_ratio, -1);
-  check_positive(youngs_modulus, "Young's modulus");
-  check_positive(density, "density");
-  check_positive(radius, "radius");
+  if (layers.empty()) throw InputError("Love numbers need at least one layer");
+  double inner = 0;
+  for (const auto& layer : layers) {
+    check_poisson_ratio(layer.poisson_ratio, -1);
+    check_positive(layer.youngs_modulus, "Young's modulus");
+    check_positive(layer.density, "density");
+    if (!(layer.outer_radius > inner))
+      throw InputError(fmt::format("layer radii must increase, got {} after {}", layer.outer_radius, inner));
+    inner = layer.outer_radius;
+  }
+  const double radius = layers.back().outer_radius;
   const int n = degree;
-  const auto [lambda, mu] = lame_parameters(youngs_modulus, poisson_ratio);
-  const double beta = lambda + 2 * mu;
   const double L = n * (n + 1.0);
 
   // Regular solutions near the centre, exact without gravity (whose terms are O(rho^2 r^2/mu)
@@ -123,25 +133,41 @@ LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, d
   // y3 = b r^(n+1), y2 = c r^n, y4 = d r^n with b, c, d from the equations; and the potential
   // r^n alone. Any error excites the irregular solutions, which decay outward as (r0/r)^(2n+1).
   const double r0 = 0.005 * radius;
-  const double b = (2 * mu - lambda * (n + 1) - 2 * beta - (n + 3) * mu) / ((n + 3) * n * mu + 2 * mu - L * beta);
-  const double c = beta * (n + 1) + lambda * (2 - L * b);
-  const double d = mu * (n * b + 1);
+  if (!(r0 < layers.front().outer_radius)) throw InputError("the innermost layer is thinner than the start radius");
+  const auto [lambda0, mu0] = lame_parameters(layers.front().youngs_modulus, layers.front().poisson_ratio);
+  const double beta0 = lambda0 + 2 * mu0;
+  const double b = (2 * mu0 - lambda0 * (n + 1) - 2 * beta0 - (n + 3) * mu0) / ((n + 3) * n * mu0 + 2 * mu0 - L * beta0);
+  const double c = beta0 * (n + 1) + lambda0 * (2 - L * b);
+  const double d = mu0 * (n * b + 1);
   std::array<Y, 3> solutions;
   const double p_minus_2 = std::pow(r0, n - 2), p_minus_1 = p_minus_2 * r0, p = p_minus_1 * r0, p_plus_1 = p * r0;
-  solutions[0] = {n * p_minus_1, 2 * mu * n * (n - 1) * p_minus_2, p_minus_1, 2 * mu * (n - 1) * p_minus_2, 0, 0};
+  solutions[0] = {n * p_minus_1, 2 * mu0 * n * (n - 1) * p_minus_2, p_minus_1, 2 * mu0 * (n - 1) * p_minus_2, 0, 0};
   solutions[1] = {p_plus_1, c * p, b * p_plus_1, d * p, 0, 0};
   solutions[2] = {0, 0, 0, 0, p, (2 * n + 1) * p_minus_1};
 
-  const double h = (radius - r0) / steps;
-  for (auto& y : solutions) {
-    for (int s = 0; s < steps; ++s) {
-      const double r = r0 + s * h;
-      const Y k1 = spheroidal_rhs(r, y, n, lambda, mu, density);
-      const Y k2 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k1), n, lambda, mu, density);
-      const Y k3 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k2), n, lambda, mu, density);
-      const Y k4 = spheroidal_rhs(r + h, axpy(y, h, k3), n, lambda, mu, density);
-      for (int i = 0; i < 6; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+  // Layer by layer (y1..y6 are continuous across the boundaries of welded solid layers), each with
+  // its share of the steps; g(r) from the mass inside r.
+  double start = r0, mass_below = 0, layer_inner = 0;
+  for (const auto& layer : layers) {
+    const auto [lambda, mu] = lame_parameters(layer.youngs_modulus, layer.poisson_ratio);
+    const double rho = layer.density;
+    const double four_pi_rho_3 = 4 * std::numbers::pi * rho / 3;
+    const double below = mass_below - four_pi_rho_3 * layer_inner * layer_inner * layer_inner;
+    const auto g_at = [&](double r) { return (below + four_pi_rho_3 * r * r * r) / (r * r); };
+    const int layer_steps = std::max(100, static_cast<int>(std::ceil(steps * (layer.outer_radius - start) / radius)));
+    const double h = (layer.outer_radius - start) / layer_steps;
+    for (auto& y : solutions) {
+      for (int s = 0; s < layer_steps; ++s) {
+        const double r = start + s * h;
+        const Y k1 = spheroidal_rhs(r, y, n, lambda, mu, rho, g_at(r));
+        const Y k2 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k1), n, lambda, mu, rho, g_at(r + h / 2));
+        const Y k3 = spheroidal_rhs(r + h / 2, axpy(y, h / 2, k2), n, lambda, mu, rho, g_at(r + h / 2));
+        const Y k4 = spheroidal_rhs(r + h, axpy(y, h, k3), n, lambda, mu, rho, g_at(r + h));
+        for (int i = 0; i < 6; ++i) y[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
+      }
     }
+    mass_below = below + four_pi_rho_3 * layer.outer_radius * layer.outer_radius * layer.outer_radius;
+    layer_inner = start = layer.outer_radius;
   }
   // Surface: free of traction (y2 = y4 = 0) under a unit external potential (y6 = (2n+1)/a).
   Eigen::Matrix3d boundary;
@@ -154,7 +180,7 @@ LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, d
   Y surface{};
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 6; ++i) surface[i] += weights[j] * solutions[j][i];
-  const double g = 4 * std::numbers::pi / 3 * density * radius;
+  const double g = mass_below / (radius * radius);
   return {g * surface[0], surface[4] - 1, g * surface[2]};
 }
 

@@ -12,6 +12,8 @@
 //  - A thin plate under a sinusoidal load (Timoshenko & Woinowsky-Krieger 1959, "Theory of
 //    Plates and Shells", Navier's solution) and
 //    the flexural rigidity of Bridson's hinges on a triangular lattice.
+#include <vector>
+
 namespace tidalcrust {
 
 /// P-wave speed sqrt((lambda + 2 mu)/rho) = sqrt(E/rho) sqrt((1-nu)/((1+nu)(1-2nu))) (paper eq. 16)
@@ -54,6 +56,25 @@ struct LoveNumbers {
 /// As nu -> 1/2 it tends to incompressible_love_h2 (tests/physics/test_continuum_elasticity.cpp).
 LoveNumbers homogeneous_sphere_love_numbers(int degree, double youngs_modulus, double poisson_ratio, double density,
                                             double radius, int steps = 20000);
+
+/// One spherical layer of a radially layered elastic sphere: from the previous layer's outer
+/// radius (0 for the first) to `outer_radius` (R), with Young's modulus (e_g), Poisson ratio and
+/// density (M/R^3).
+struct ElasticLayer {
+  double outer_radius = 0;
+  double youngs_modulus = 0;
+  double poisson_ratio = 0.25;
+  double density = 0;
+};
+
+/// Static Love numbers of degree n >= 2 of a self-gravitating sphere of welded homogeneous layers
+/// (innermost first): the same TS72 equations, with each layer's lambda, mu, rho and the gravity
+/// g(r) = m(r)/r^2 of the mass inside r, integrated through the layers with y1..y6 continuous at
+/// their boundaries; the surface is the last layer's outer radius. `steps` RK4 steps over the
+/// radius, shared by thickness (at least 100 per layer). One layer gives
+/// homogeneous_sphere_love_numbers exactly. InputError for no layer, radii that do not increase,
+/// or a layer value out of range.
+LoveNumbers layered_sphere_love_numbers(int degree, const std::vector<ElasticLayer>& layers, int steps = 20000);
 
 /// h2 of a homogeneous incompressible self-gravitating sphere (Love 1911; e.g. Murray & Dermott
 /// 1999, "Solar System Dynamics", with k2 = (3/5) h2): h2 = (5/2) / (1 + 19 mu / (2 rho g a)), G = 1.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "io/json.hpp"
 #include "support/quick_workflow.hpp"
@@ -50,6 +51,23 @@ TEST(CmdValidate, WritesEveryComparisonWithItsRatioAndTheFigures) {
     EXPECT_FALSE(c["source"].get<std::string>().empty());
   }
   EXPECT_NEAR(json["comparisons"]["flexure"]["tolerance"].get<double>(), 0.20, 1e-12);
+  // The same measurements against theory with the network's measured moduli: same measured
+  // value, another theory; the moduli themselves under network_moduli.
+  for (const auto& [network, eq15] : {std::pair{"breathing-network", "breathing"}, std::pair{"love-network", "love"},
+                                      std::pair{"love-layered", "love"}, std::pair{"p-wave-network", "p-wave"},
+                                      std::pair{"p-wave-layered", "p-wave"}}) {
+    SCOPED_TRACE(network);
+    const Json& c = json["comparisons"][network];
+    ASSERT_TRUE(c.is_object());
+    EXPECT_EQ(c["measured"].get<double>(), json["comparisons"][eq15]["measured"].get<double>());
+    EXPECT_GT(c["theory"].get<double>(), 0);
+    EXPECT_NE(c["theory"].get<double>(), json["comparisons"][eq15]["theory"].get<double>());
+  }
+  const Json& moduli = json["network_moduli"];
+  EXPECT_GT(moduli["youngs_factor"].get<double>(), 0.5);
+  EXPECT_LT(moduli["youngs_factor"].get<double>(), 1.0);  // non-affine: below eq. 15
+  EXPECT_GT(moduli["geometric"]["free_nodes"].get<int>(), 0);
+  EXPECT_NE(r.out.find("network moduli: E ="), std::string::npos) << r.out;
   for (const char* figure : {"breathing.png", "breathing.svg", "p_wave.png", "p_wave.svg"})
     EXPECT_GT(fs::file_size(out / "validate" / figure), 1000u) << figure;
   // The body chain is reused on a second call: only the selected measurement is redone.

@@ -80,3 +80,33 @@ TEST(ContinuumElasticity, BadMaterialIsAnInputError) {
   EXPECT_THROW(homogeneous_sphere_love_numbers(1, 1, 0.25, 1, 1), InputError);
   EXPECT_THROW(plate_sinusoidal_deflection(1, 0, 1), InputError);
 }
+
+TEST(ContinuumElasticity, LayeredSphereOfEqualLayersIsTheHomogeneousSphere) {
+  const double E = 3.9;
+  const LoveNumbers one = homogeneous_sphere_love_numbers(2, E, 0.25, mean_density, 1.0);
+  const LoveNumbers four = layered_sphere_love_numbers(
+      2, {{0.3, E, 0.25, mean_density}, {0.55, E, 0.25, mean_density}, {0.9, E, 0.25, mean_density},
+          {1.0, E, 0.25, mean_density}});
+  EXPECT_NEAR(four.h / one.h, 1.0, 1e-6);
+  EXPECT_NEAR(four.k / one.k, 1.0, 1e-6);
+  EXPECT_NEAR(four.l / one.l, 1.0, 1e-6);
+}
+
+TEST(ContinuumElasticity, LayeredSphereLiesBetweenItsLayersAndFeelsTheOuterOneMost) {
+  // A 10x stiffer core of half the radius: h2 between the homogeneous spheres of either modulus,
+  // and nearer the mantle's (a degree-2 tide strains the outside most); the same modulus
+  // outside a softer core changes h2 less than a softer mantle over the same core.
+  const double E = 3.0, rho = mean_density;
+  const double mantle = homogeneous_sphere_love_numbers(2, E, 0.25, rho, 1.0).h;
+  const double core = homogeneous_sphere_love_numbers(2, 10 * E, 0.25, rho, 1.0).h;
+  const double layered = layered_sphere_love_numbers(2, {{0.5, 10 * E, 0.25, rho}, {1.0, E, 0.25, rho}}).h;
+  EXPECT_LT(layered, mantle);
+  EXPECT_GT(layered, core);
+  EXPECT_LT(mantle - layered, layered - core);
+  const double soft_core = layered_sphere_love_numbers(2, {{0.5, 0.5 * E, 0.25, rho}, {1.0, E, 0.25, rho}}).h;
+  const double soft_mantle = layered_sphere_love_numbers(2, {{0.5, E, 0.25, rho}, {1.0, 0.5 * E, 0.25, rho}}).h;
+  EXPECT_GT(soft_core, mantle);
+  EXPECT_GT(soft_mantle - mantle, 2 * (soft_core - mantle));
+  EXPECT_THROW(layered_sphere_love_numbers(2, {}), InputError);
+  EXPECT_THROW(layered_sphere_love_numbers(2, {{0.5, E, 0.25, rho}, {0.4, E, 0.25, rho}}), InputError);
+}
