@@ -122,6 +122,7 @@ StabilityBound stability_bound(const Body& body, const State& state, double damp
                               node.diag_hinges / trace};
   }
   bound.safe_dt = damped_bound_dt(bound.safe_limit.omega2, bound.damping_rate);
+  bound.undamped_safe_dt = bound_dt(bound.safe_limit.omega2);
   bound.unstable_dt = bound_dt(bound.unstable_limit.omega2);
   return bound;
 }

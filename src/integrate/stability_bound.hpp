@@ -43,6 +43,7 @@ struct LimitingNode {
 
 struct StabilityBound {
   double safe_dt = 0;      ///< Gershgorin bound with damping (2 / sqrt(lambda_K) without): stable below it, t_grav
+  double undamped_safe_dt = 0;  ///< 2 / sqrt(lambda_K): the same bound without damping, t_grav
   double damping = 0;      ///< the spring damping rate gamma it was computed for, 1/t_grav
   double damping_rate = 0; ///< lambda_C, the Gershgorin bound of M^{-1/2} C M^{-1/2}, 1/t_grav
   double unstable_dt = 0;  ///< 2 / sqrt(largest one-node Rayleigh quotient): unstable above it, t_grav
