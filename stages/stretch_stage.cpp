@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "model/center_of_mass.hpp"
@@ -69,14 +70,19 @@ class StretchTrial {
   }
 
   /// Rest lengths f L_built (cross springs (1 + cross_compression) times longer: slightly
-  /// compressed) and stiffnesses k_built times `multiplier`.
+  /// compressed; interior springs their own factor instead of f once hold_interior() was called)
+  /// and stiffnesses k_built times `multiplier`.
   void apply(double factor, const std::vector<double>& multiplier, SpringState& springs) const {
     for (std::size_t n = 0; n < body_.spring_count(); ++n) {
-      const bool cross = body_.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::cross);
-      springs.rest_length[n] = factor * base_.rest_length[n] * (cross ? 1.0 + cross_compression_ : 1.0);
+      const auto kind = static_cast<SpringKind>(body_.spring_kind[n]);
+      const double f = kind == SpringKind::interior && !interior_factor_.empty() ? interior_factor_[n] : factor;
+      springs.rest_length[n] = f * base_.rest_length[n] * (kind == SpringKind::cross ? 1.0 + cross_compression_ : 1.0);
       springs.stiffness[n] = base_.stiffness[n] * multiplier[n];
     }
   }
+
+  /// From now on interior spring n gets rest length factor[n] L_built whatever f is [Ns].
+  void hold_interior(std::vector<double> factor) { interior_factor_ = std::move(factor); }
 
   /// Accelerations at rest (gravity + springs + hinges) for stretch factor f and stiffness
   /// multipliers, reduced to the two balances the stage zeroes.
@@ -110,6 +116,7 @@ class StretchTrial {
   Accelerations acc_;
   Vec3 centre_;
   std::vector<std::size_t> surface_;
+  std::vector<double> interior_factor_;  ///< [Ns] or empty: interior springs follow f
 };
 
 /// Counts force evaluations against stretch.max_iterations.
@@ -238,6 +245,32 @@ std::vector<double> midpoint_pressures(const Body& body, const State& state, con
   return p;
 }
 
+/// Rest-length factors that let every interior spring carry the hydrostatic pressure of the body
+/// as built at its own stiffness ("compress"): 1 + P(r_mid) / (2 E) [Ns], P the particle
+/// pressure profile (ParticleHydrostaticPressure) at the spring's midpoint radius and E the
+/// layer's modulus (the mantle's, core.modulus_ratio times it inside the core), by the virial
+/// pressure of an evenly compressed network, 2 E (f - 1) (uniform_network_pressure). Other
+/// springs get 1. Unlike strengthening, this leaves every stiffness as built, so the interior's
+/// moduli are the material's at any resolution (issue 13: strengthening stiffened the centre
+/// 1.6x at level 3 and 3.5x at level 6).
+std::vector<double> interior_compression_factors(const Body& body, const State& state, const Vec3& centre,
+                                                 const Config& config, double mantle_modulus) {
+  std::vector<double> radius(body.particle_count());
+  for (std::size_t i = 0; i < body.particle_count(); ++i) radius[i] = (vec3_at(state.position, i) - centre).norm();
+  const ParticleHydrostaticPressure pressure(radius, body.mass);
+  const double core_radius = config.core.radius.value_or(0.0);
+  const double core_modulus = mantle_modulus * config.core.modulus_ratio.value_or(1.0);
+  std::vector<double> factor(body.spring_count(), 1.0);
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
+    const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])) +
+                            vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])));
+    const double r = (mid - centre).norm();
+    factor[n] = 1 + pressure(r) / (2 * (r < core_radius ? core_modulus : mantle_modulus));
+  }
+  return factor;
+}
+
 /// Young's modulus of eq. 15 over the mantle (interior springs with midpoints outside the core,
 /// the volume between core and interior radius); the whole interior without a core.
 double mantle_youngs_modulus(const Body& body, const State& state, const Config& config) {
@@ -287,22 +320,31 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
     return solve_stretch_factor([&](double f) { return trial.balance(f, strengthening.multiplier).surface; },
                                 budget);
   };
-  const Root unstrengthened = solve_factor();
+  const bool compress = config.stretch.hydrostatic_support == "compress";
+  if (compress)  // each interior spring carries its own pressure; f sets only the crust's and cross springs'
+    trial.hold_interior(interior_compression_factors(body, built.state, trial.centre(), config, young_modulus));
+  const bool f_moves_forces = !compress || std::any_of(body.spring_kind.begin(), body.spring_kind.end(), [](auto k) {
+    return k != static_cast<std::uint8_t>(SpringKind::interior);
+  });
+  const Root unstrengthened = f_moves_forces ? solve_factor() : Root{1.0, 0.0};
   // (b) Strengthening for the pressure of that compression, then the factor again with the
   // strengthened springs. With a shell the surface nodes carry no interior springs and the
   // factor does not change. Without a shell it drops a little (the stiffer outer interior
   // pushes the surface out); strengthening is not iterated to a fixed point, which for such a
   // body drifts toward f = 1 with ever stiffer springs (the force of a strengthened spring,
   // k P(r)/P_uniform (f - 1) L, no longer depends on f).
-  const double uniform_pressure = uniform_network_pressure(young_modulus, unstrengthened.x);
-  strengthening = strengthen(body, pressure, uniform_pressure > 0 ? 1 / uniform_pressure : 0.0);
-  if (strengthening.largest > largest_strengthening)
-    throw InputError(fmt::format(
-        "stretch: the common compression (stretch factor {:.6g}) is too small for the interior to carry the "
-        "hydrostatic pressure: its central springs would have to be {:.3g}x stiffer (limit {}); soften "
-        "interior.spring_constant relative to shell.spring_constant and cross.spring_constant",
-        unstrengthened.x, strengthening.largest, largest_strengthening));
-  const Root factor = solve_factor();
+  Root factor = unstrengthened;
+  if (!compress) {
+    const double uniform_pressure = uniform_network_pressure(young_modulus, unstrengthened.x);
+    strengthening = strengthen(body, pressure, uniform_pressure > 0 ? 1 / uniform_pressure : 0.0);
+    if (strengthening.largest > largest_strengthening)
+      throw InputError(fmt::format(
+          "stretch: the common compression (stretch factor {:.6g}) is too small for the interior to carry the "
+          "hydrostatic pressure: its central springs would have to be {:.3g}x stiffer (limit {}); soften "
+          "interior.spring_constant relative to shell.spring_constant and cross.spring_constant",
+          unstrengthened.x, strengthening.largest, largest_strengthening));
+    factor = solve_factor();
+  }
   trial.apply(factor.x, strengthening.multiplier, out.state.springs);
   const Balance final_balance = trial.balance(factor.x, strengthening.multiplier);
 

@@ -108,6 +108,10 @@ void visit_keys(C& c, V&& visit) {
       {"stretch", "tolerance", "G M/R^2", "target |mean radial acceleration| of the surface", 0, 1});
   key(c.stretch.cross_compression,
       {"stretch", "cross_compression", "-", "extra compressive strain given to cross springs", 0, 0.5});
+  key(c.stretch.hydrostatic_support,
+      {"stretch", "hydrostatic_support", "-",
+       "\"strengthen\" (paper: stiffer core springs) or \"compress\" (pre-strain at the material's stiffness; "
+       "default for [material])"});
 
   key(c.relax.damping, {"relax", "damping", "1/t_grav", "gamma during relaxation", 0, 1e4});
   key(c.relax.duration, {"relax", "duration", "t_grav", "T, length of the relaxation run", 0, 1e4});
@@ -581,6 +585,8 @@ void validate(const Config& config, const std::string& origin) {
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
   check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
+  check_choice(config.stretch.hydrostatic_support, {"strengthen", "compress"},
+               fmt::format("{}: stretch.hydrostatic_support", origin));
   check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
   check_choice(config.gravity.kernel, {"fast", "portable"}, fmt::format("{}: gravity.kernel", origin));
   check_choice(config.gravity.method, {"direct", "tree"}, fmt::format("{}: gravity.method", origin));
@@ -638,6 +644,10 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   resolve_material(config, origin);
   const toml::table* integrator = root["integrator"].as_table();
   config.choose_dt = config.from_material() && !(integrator && integrator->get("dt") != nullptr);
+  // A [material] body keeps its moduli at every resolution unless the file asks otherwise.
+  const toml::table* stretch = root["stretch"].as_table();
+  if (config.from_material() && !(stretch && stretch->get("hydrostatic_support") != nullptr))
+    config.stretch.hydrostatic_support = "compress";
   validate(config, origin);
   return config;
 }

@@ -65,6 +65,12 @@ struct StretchConfig {
   std::int64_t max_iterations = 60;
   double tolerance = 1e-6;            ///< |mean radial surface acceleration|, G M / R^2
   double cross_compression = 0.002;   ///< extra compressive strain of cross springs
+  /// How the interior carries its hydrostatic pressure: "strengthen" (section 2.3: one common
+  /// compression, springs stiffened inside by P(r)/P_uniform; the stiffening depends on the
+  /// resolution) or "compress" (each interior spring compressed by P(r)/(2E) at its built
+  /// stiffness: the body keeps the material's moduli at any resolution). Default "compress" for a
+  /// [material] body, "strengthen" otherwise. docs/material.md.
+  std::string hydrostatic_support = "strengthen";
 };
 
 /// Damped relaxation and stability probe (section 2.8).

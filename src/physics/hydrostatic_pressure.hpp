@@ -1,8 +1,12 @@
 #pragma once
 // Pressure of a self-gravitating sphere in hydrostatic equilibrium (paper section 2.3,
 // Dobrovolskis 1990 eq. 2), uniform or with a denser core (issue 12), in the units G = M = R = 1.
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <numeric>
+#include <vector>
 
 namespace tidalcrust {
 
@@ -43,6 +47,45 @@ struct LayeredSphere {
     if (r >= rc) return mantle(r);
     return mantle(rc) + 2.0 / 3.0 * pi * rho_c * rho_c * (rc * rc - r * r);
   }
+};
+
+/// Hydrostatic pressure of a body of point masses, spherically averaged: each particle's weight
+/// spread over the sphere through it, P(r) = sum over r_j > r of m_j G m(< r_j) / (4 pi r_j^4)
+/// (dP/dr = -rho g for the averaged density; m(< r_j) the mass strictly closer to the centre).
+/// Unlike hydrostatic_pressure() it follows the mass as the body was built: an interior that ends
+/// at r_I < R under a crust at R carries only the crust's weight at r_I, a heavy core its own.
+/// Units G = 1: e_g with masses in M and radii in R. Deterministic (ties in radius by index).
+class ParticleHydrostaticPressure {
+ public:
+  /// radii[i] (R, distance from the centre of mass) and mass[i] (M) of every particle.
+  ParticleHydrostaticPressure(const std::vector<double>& radii, const std::vector<double>& mass) {
+    std::vector<std::size_t> order(radii.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return radii[a] < radii[b] || (radii[a] == radii[b] && a < b);
+    });
+    radius_.resize(order.size());
+    pressure_.assign(order.size() + 1, 0.0);
+    std::vector<double> weight(order.size());
+    double inside = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const double r = radii[order[k]];
+      radius_[k] = r;
+      weight[k] = r > 0 ? mass[order[k]] * inside / (4 * std::numbers::pi * r * r * r * r) : 0.0;
+      inside += mass[order[k]];
+    }
+    for (std::size_t k = order.size(); k-- > 0;) pressure_[k] = pressure_[k + 1] + weight[k];
+  }
+
+  /// P(r), e_g: the weight of every particle farther out than r; 0 beyond the outermost.
+  double operator()(double r) const {
+    const auto k = static_cast<std::size_t>(std::upper_bound(radius_.begin(), radius_.end(), r) - radius_.begin());
+    return pressure_[k];
+  }
+
+ private:
+  std::vector<double> radius_;    ///< [N] sorted radii
+  std::vector<double> pressure_;  ///< [N+1] pressure_[k] = weight of particles k.. (sorted order)
 };
 
 }  // namespace tidalcrust

@@ -130,3 +130,17 @@ TEST(MaterialConfig, PaperTKeepsItsPrintedConstantsAndItsText) {
   EXPECT_DOUBLE_EQ(t.integrator.dt, 0.002);
   EXPECT_NE(to_toml(t).find("spring_constant = 0.076"), std::string::npos);
 }
+
+TEST(MaterialConfig, AMaterialBodyCarriesItsPressureByCompressionUnlessTheFileSaysOtherwise) {
+  EXPECT_EQ(parse_config(material_toml, "m.toml").stretch.hydrostatic_support, "compress");
+  const Config asked = parse_config(material_toml + "[stretch]\nhydrostatic_support = \"strengthen\"\n", "m.toml");
+  EXPECT_EQ(asked.stretch.hydrostatic_support, "strengthen");
+  // The resolved text states the choice, so a checkpoint's stored configuration reloads to it.
+  EXPECT_EQ(parse_config(to_toml(asked), "stored").stretch.hydrostatic_support, "strengthen");
+  const Config t = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/paper-T.toml");
+  EXPECT_EQ(t.stretch.hydrostatic_support, "strengthen");  // the paper's method
+  const std::string message = error_of(material_toml + "[stretch]\nhydrostatic_support = \"stiffen\"\n");
+  EXPECT_NE(message.find("bad.toml"), std::string::npos) << message;
+  EXPECT_NE(message.find("stretch.hydrostatic_support"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}

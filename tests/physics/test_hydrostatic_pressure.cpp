@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "physics/hydrostatic_pressure.hpp"
 
@@ -51,4 +52,30 @@ TEST(HydrostaticPressure, TwoLayerBodyMatchesTheIntegratedEquation) {
 TEST(HydrostaticPressure, UniformLimitIsThePapersFormula) {
   for (const LayeredSphere s : {LayeredSphere{0.5, 1.0}, LayeredSphere{0.0, 3.0}})
     for (double r : {0.0, 0.3, 0.7, 1.0}) EXPECT_NEAR(s.pressure(r), hydrostatic_pressure(r), 1e-15);
+}
+
+TEST(ParticleHydrostaticPressure, ACrustOnAPointMassCarriesItsWeightDownToTheCentre) {
+  // A point mass M0 at the centre and one particle m at r = 1: everything below r = 1 carries
+  // m G M0 / (4 pi R^4), nothing beyond it.
+  const ParticleHydrostaticPressure p({1.0, 0.0}, {0.25, 0.75});
+  const double expected = 0.25 * 0.75 / (4 * std::numbers::pi);
+  EXPECT_DOUBLE_EQ(p(0.0), expected);
+  EXPECT_DOUBLE_EQ(p(0.5), expected);
+  EXPECT_DOUBLE_EQ(p(1.0), 0.0);
+  EXPECT_DOUBLE_EQ(p(2.0), 0.0);
+}
+
+TEST(ParticleHydrostaticPressure, AUniformCloudFollowsTheContinuumProfileWithin1Percent) {
+  // Equal masses on a cubic lattice of spacing h inside the unit sphere, total mass 1: the
+  // profile is (2/3) pi rho^2 (1 - r^2) (hydrostatic_pressure) up to the lattice's granularity.
+  const double h = 0.03;
+  std::vector<double> radius;
+  for (double x = -1; x <= 1; x += h)
+    for (double y = -1; y <= 1; y += h)
+      for (double z = -1; z <= 1; z += h)
+        if (const double r = std::sqrt(x * x + y * y + z * z); r < 1) radius.push_back(r);
+  const std::vector<double> mass(radius.size(), 1.0 / static_cast<double>(radius.size()));
+  const ParticleHydrostaticPressure p(radius, mass);
+  for (double r : {0.05, 0.3, 0.6, 0.9})
+    EXPECT_NEAR(p(r), hydrostatic_pressure(r), 0.01 * hydrostatic_pressure(0)) << "r = " << r;
 }

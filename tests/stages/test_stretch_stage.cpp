@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "stages/build_stage.hpp"
 #include "physics/crust_relaxation.hpp"
@@ -175,4 +176,57 @@ TEST(StretchStage, SpringsTooWeakForSelfGravityAreAnInputError) {
   const Checkpoint built = build_stage(config);
   const std::string msg = error_of(built, config);
   EXPECT_NE(msg.find("cannot hold the body"), std::string::npos) << msg;
+}
+
+TEST(StretchStage, CompressionCarriesTheParticlePressureAtTheBuiltStiffness) {
+  Config config = quick_config();
+  config.stretch.hydrostatic_support = "compress";
+  const Checkpoint& built = quick_built();
+  const Checkpoint s = stretch_stage(built, config);
+  const StretchRecord& record = s.stage.as<StretchRecord>();
+  EXPECT_LT(std::abs(mean_radial_shell_acceleration(s, config)), config.stretch.tolerance);
+  EXPECT_EQ(record.strengthening_max, 1.0);
+  EXPECT_EQ(record.uniform_pressure, 0.0);
+  EXPECT_EQ(s.state.springs.stiffness, built.state.springs.stiffness);  // every stiffness as built
+  const double f = record.stretch_factor;
+  EXPECT_GT(f, 1.0);
+  // Interior spring n: L0 = L_built (1 + P(r_mid) / (2 E_I)) with the particle pressure profile.
+  Vec3 centre = Vec3::Zero();
+  for (std::size_t i = 0; i < built.body.particle_count(); ++i) centre += built.body.mass[i] * vec3_at(built.state.position, i);
+  std::vector<double> radius(built.body.particle_count());
+  for (std::size_t i = 0; i < radius.size(); ++i) radius[i] = (vec3_at(built.state.position, i) - centre).norm();
+  const ParticleHydrostaticPressure pressure(radius, built.body.mass);
+  const double E_I = derive_quantities(built.body, built.state, config.interior.radius).E_I;
+  double central_strain = 0;
+  for (std::size_t n = 0; n < s.body.spring_count(); ++n) {
+    const auto kind = static_cast<SpringKind>(s.body.spring_kind[n]);
+    const double L = built.state.springs.rest_length[n];
+    if (kind == SpringKind::cross) {
+      EXPECT_DOUBLE_EQ(s.state.springs.rest_length[n], f * L * (1 + config.stretch.cross_compression));
+    } else if (kind == SpringKind::shell) {
+      EXPECT_DOUBLE_EQ(s.state.springs.rest_length[n], f * L);
+    } else {
+      const auto i = static_cast<std::size_t>(s.body.springs[n][0]), j = static_cast<std::size_t>(s.body.springs[n][1]);
+      const double r = (0.5 * (vec3_at(built.state.position, i) + vec3_at(built.state.position, j)) - centre).norm();
+      const double factor = 1 + pressure(r) / (2 * E_I);
+      EXPECT_NEAR(s.state.springs.rest_length[n], factor * L, 1e-14 * L) << "spring " << n << " r " << r;
+      central_strain = std::max(central_strain, factor - 1);
+    }
+  }
+  // The centre carries the weight of the whole body: close to the uniform sphere's 3/(8 pi) e_g.
+  EXPECT_NEAR(pressure(0) / hydrostatic_pressure(0), 1.0, 0.35);
+  EXPECT_NEAR(central_strain, pressure(0) / (2 * E_I), 0.1 * central_strain);
+}
+
+TEST(StretchStage, CompressionOfABodyWithoutShellNeedsNoCommonFactor) {
+  Config config = interior_only_config();
+  config.stretch.hydrostatic_support = "compress";
+  const Checkpoint built = build_stage(config);
+  const Checkpoint s = stretch_stage(built, config);
+  EXPECT_EQ(s.stage.as<StretchRecord>().stretch_factor, 1.0);
+  EXPECT_EQ(s.stage.as<StretchRecord>().iterations, 0);
+  EXPECT_EQ(s.state.springs.stiffness, built.state.springs.stiffness);
+  // Every interior spring is compressed (rest length longer than built), the outermost least.
+  for (std::size_t n = 0; n < s.body.spring_count(); ++n)
+    EXPECT_GE(s.state.springs.rest_length[n], built.state.springs.rest_length[n]) << "spring " << n;
 }
