@@ -101,6 +101,8 @@ ResolutionStudy build_resolution_study(const std::vector<std::string>& files) {
         previous ? relative_change_percent(row.fractures.failed_area_fraction, previous->failed_area_fraction) : nan;
     row.hemisphere_fraction_change_percent =
         previous ? relative_change_percent(row.fractures.hemisphere_fraction, previous->hemisphere_fraction) : nan;
+    row.crack_length_change_percent =
+        previous ? relative_change_percent(row.fractures.total_crack_length, previous->total_crack_length) : nan;
   }
   return study;
 }
@@ -117,7 +119,8 @@ Json resolution_study_json(const ResolutionStudy& study) {
                     {"failures", failure_summary_json(r.fractures)},
                     {"change_percent",
                      {{"failed_area_fraction", number_or_null(r.area_fraction_change_percent)},
-                      {"hemisphere_fraction", number_or_null(r.hemisphere_fraction_change_percent)}}}});
+                      {"hemisphere_fraction", number_or_null(r.hemisphere_fraction_change_percent)},
+                      {"total_crack_length", number_or_null(r.crack_length_change_percent)}}}});
   return {{"encounter",
            {{"name", study.encounter.name},
             {"perturber_mass", study.encounter.perturber_mass},
@@ -132,16 +135,16 @@ std::string resolution_study_csv(const ResolutionStudy& study) {
   std::string csv =
       "file,shell_level [1],shell_nodes [1],particles [1],dt [t_grav],failed_springs [1],failed_area_fraction [1],"
       "total_crack_length [R],longest_crack [R],clusters [1],hemisphere_fraction [1],median_angle [deg],"
-      "failed_area_fraction_change [%],hemisphere_fraction_change [%],state_hash\n";
+      "failed_area_fraction_change [%],hemisphere_fraction_change [%],total_crack_length_change [%],state_hash\n";
   for (const auto& r : study.rows) {
     const FractureSummary& f = r.fractures;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.file),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.file),
                        r.shell_level >= 0 ? std::to_string(r.shell_level) : "", r.shell_nodes, r.particles,
                        csv_number(r.dt), f.count(), csv_number(f.failed_area_fraction),
                        csv_number(f.total_crack_length), csv_number(f.longest_crack_length), f.clusters.size(),
                        csv_number(f.hemisphere_fraction), csv_number(f.median_angle_from_subsatellite_deg),
                        csv_number(r.area_fraction_change_percent), csv_number(r.hemisphere_fraction_change_percent),
-                       r.state_hash);
+                       csv_number(r.crack_length_change_percent), r.state_hash);
   }
   return csv;
 }

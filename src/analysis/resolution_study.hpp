@@ -26,10 +26,13 @@ struct ResolutionRow {
   double dt = 0;                ///< the encounter's time step, t_grav
   std::string state_hash;
   FractureSummary fractures;    ///< analyze_fractures of the checkpoint (as analyze and compare)
-  /// 100 (x - x_prev) / x_prev of failed_area_fraction and hemisphere_fraction against the
-  /// previous (coarser) row, percent; NaN for the first row and where x_prev is 0 or NaN.
+  /// 100 (x - x_prev) / x_prev of failed_area_fraction, hemisphere_fraction and
+  /// total_crack_length against the previous (coarser) row, percent; NaN for the first row and
+  /// where x_prev is 0 or NaN. The crack length is the measure that can converge: the failed area
+  /// is L_S / 2 times it by construction and halves with L_S (README, resolution convergence).
   double area_fraction_change_percent = 0;
   double hemisphere_fraction_change_percent = 0;
+  double crack_length_change_percent = 0;
 };
 
 struct ResolutionStudy {
@@ -53,13 +56,14 @@ double relative_change_percent(double x, double previous);
 /// The study as JSON: encounter {name, perturber_mass, pericenter, pericenter_speed,
 /// failure_strain, failure_rule} and rows [{file, shell_level (null if none), shell_nodes,
 /// particles, dt, state_hash, failures (failure_summary_json, exactly what analyze's summary.json
-/// holds), change_percent {failed_area_fraction, hemisphere_fraction} (null where undefined)}].
+/// holds), change_percent {failed_area_fraction, hemisphere_fraction, total_crack_length} (null where
+/// undefined)}].
 Json resolution_study_json(const ResolutionStudy& study);
 
 /// CSV (io/csv.hpp): a header with units in brackets, then one row per checkpoint: file,
 /// shell_level, shell_nodes, particles, dt, failed_springs, failed_area_fraction,
-/// total_crack_length, longest_crack, clusters, hemisphere_fraction, median_angle, the two
-/// changes in percent, state_hash; undefined values are empty cells.
+/// total_crack_length, longest_crack, clusters, hemisphere_fraction, median_angle, the three
+/// changes in percent (area, hemisphere, crack length), state_hash; undefined values are empty cells.
 std::string resolution_study_csv(const ResolutionStudy& study);
 
 }  // namespace tidalcrust

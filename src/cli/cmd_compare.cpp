@@ -45,20 +45,23 @@ void print_resolution_table(const ResolutionStudy& study) {
              study.encounter.name, study.encounter.perturber_mass, study.encounter.pericenter,
              study.encounter.pericenter_speed, study.failure_strain, study.failure_rule);
   const auto line = [](const auto&... cells) {
-    fmt::print("{:>5} {:>7} {:>9} {:>9} {:>7} {:>9} {:>10} {:>9} {:>8} {:>10} {:>8} {:>8} {:>8}\n", cells...);
+    fmt::print("{:>5} {:>7} {:>9} {:>9} {:>7} {:>9} {:>10} {:>9} {:>8} {:>10} {:>8} {:>8} {:>8} {:>8}\n", cells...);
   };
   line("level", "N_S", "particles", "dt", "failed", "area", "total", "longest", "clusters", "hemisphere",
-       "median", "d area", "d hemi");
-  line("", "", "", "[t_grav]", "springs", "fraction", "crack", "crack [R]", "", "fraction", "ang [deg]", "[%]", "[%]");
+       "median", "d area", "d hemi", "d crack");
+  line("", "", "", "[t_grav]", "springs", "fraction", "crack", "crack [R]", "", "fraction", "ang [deg]", "[%]", "[%]",
+       "[%]");
   for (const auto& r : study.rows) {
     const FractureSummary& f = r.fractures;
     line(level_text(r), r.shell_nodes, r.particles, number(r.dt), f.count(), number(f.failed_area_fraction),
          number(f.total_crack_length), number(f.longest_crack_length), f.clusters.size(),
          number(f.hemisphere_fraction), number(f.median_angle_from_subsatellite_deg, "{:.1f}"),
-         number(r.area_fraction_change_percent, "{:+.1f}"), number(r.hemisphere_fraction_change_percent, "{:+.1f}"));
+         number(r.area_fraction_change_percent, "{:+.1f}"), number(r.hemisphere_fraction_change_percent, "{:+.1f}"),
+         number(r.crack_length_change_percent, "{:+.1f}"));
   }
   for (const auto& r : study.rows) fmt::print("level {}: {}  state_hash {}\n", level_text(r), r.file, r.state_hash);
-  fmt::print("d area, d hemi: change of the failed area fraction and the hemisphere fraction from the row above\n");
+  fmt::print("d area, d hemi, d crack: change of the failed area fraction, the hemisphere fraction and the total crack "
+             "length from the row above (the area is L_S / 2 x the crack length: it halves with L_S)\n");
 }
 
 /// DIR/convergence.json, convergence.csv and convergence_maps.png/.svg; returns the files written.

@@ -87,6 +87,9 @@ TEST(ResolutionStudy, RowsCoarsestFirstWithTheirOwnStatistics) {
                    100 * (fine_summary.failed_area_fraction / coarse_summary.failed_area_fraction - 1));
   EXPECT_DOUBLE_EQ(study.rows[1].hemisphere_fraction_change_percent,
                    100 * (fine_summary.hemisphere_fraction / coarse_summary.hemisphere_fraction - 1));
+  EXPECT_DOUBLE_EQ(study.rows[1].crack_length_change_percent,
+                   100 * (fine_summary.total_crack_length / coarse_summary.total_crack_length - 1));
+  EXPECT_TRUE(std::isnan(study.rows[0].crack_length_change_percent));
 
   const Json json = resolution_study_json(study);
   EXPECT_EQ(json["rows"][0]["shell_level"], 1);

@@ -4,6 +4,8 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -116,6 +118,9 @@ TEST_F(CompareResolutionCli, OutWritesJsonCsvAndOneMapPerLevel) {
   EXPECT_EQ(lines[0].substr(0, 34), "file,shell_level [1],shell_nodes [");
   EXPECT_EQ(lines[1].find(encounter(1).string() + ",1,42,"), 0u) << lines[1];
   EXPECT_EQ(lines[2].find(encounter(2).string() + ",2,162,"), 0u) << lines[2];
+  EXPECT_NE(lines[0].find(",total_crack_length_change [%],state_hash"), std::string::npos) << lines[0];
+  for (const std::string& line : lines)  // every row has the header's columns (no commas in the paths)
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), std::count(lines[0].begin(), lines[0].end(), ',')) << line;
   // Two map panels of 320 x 160 points side by side (figure_fracture_map.cpp's layout: 62-point
   // margins, 70 between panels; 80 above, 58 below), at 2 pixels per point.
   ASSERT_TRUE(fs::exists(out / "convergence_maps.svg"));
