@@ -114,13 +114,29 @@ class TreeGravity {
     /// (the mixed ones doubled), for i = x, y, z
     double u[18];
   };
+  /// The same expansion in single precision for the far field of accumulate_chunk (the com
+  /// stays in Node, in double: the kernel takes it relative to the group's first particle).
+  /// 29 floats used, two cache lines.
+  struct alignas(64) ExpansionF {
+    float neg_mass, t15, s3[6], mt15[3], u[18];
+  };
+  /// A node's raw moments about its own centre of mass (the build's bottom-up pass): mass,
+  /// S (xx, xy, xz, yy, yz, zz) and O (xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz).
+  struct Moments {
+    double mass, s[6], o[10];
+  };
   struct Group {
     std::uint32_t begin, end;  ///< particle range in Morton order
     double lo[3], hi[3];       ///< bounding box of its particles
   };
   /// Appends the node of [begin, end) at depth `level` and its subtree; returns its index.
   std::uint32_t build_node(std::uint32_t begin, std::uint32_t end, int level);
+  /// Moments of a leaf from its particles, of an inner node from its children's moments
+  /// (children first: the build runs the nodes in reverse pre-order).
   void compute_moments(std::size_t node);
+  void combine_moments(std::size_t node);
+  /// Expansion and ExpansionF of a node from moments_.
+  void finish_expansion(std::size_t node);
   /// Interaction list of group g: accepted cells, and ranges of particles of opened leaves.
   void interaction_list(const Group& g, std::vector<std::uint32_t>& cells,
                         std::vector<std::uint32_t>& ranges) const;
@@ -141,6 +157,9 @@ class TreeGravity {
   std::vector<double> x_, y_, z_, m_; ///< positions and masses in Morton order
   std::vector<Node> nodes_;
   std::vector<Expansion> expansion_;  ///< [nodes_.size()]
+  std::vector<ExpansionF> expansion_f_;  ///< [nodes_.size()]
+  std::vector<Moments> moments_;      ///< [nodes_.size()]
+  std::vector<std::uint32_t> inner_;  ///< inner nodes, by depth (deepest last)
   std::vector<Group> groups_;
   std::vector<double> acceleration_;  ///< [N*3] by original index
   std::vector<double> potential_;     ///< [N] in Morton order (potential_energy)
