@@ -283,7 +283,11 @@ void TreeGravity::compute_moments(std::size_t index) {
   } else {  // massless particles only: no pull, any centre
     node.com[0] = x_[node.begin], node.com[1] = y_[node.begin], node.com[2] = z_[node.begin];
   }
-  double s[6] = {0, 0, 0, 0, 0, 0}, o[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, bmax2 = 0;
+  Moments& mo = moments_[index];
+  mo = Moments{mass, {0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}};
+  double* s = mo.s;
+  double* o = mo.o;
+  double bmax2 = 0;
   for (std::uint32_t k = node.begin; k < node.end; ++k) {
     const double d[3] = {x_[k] - node.com[0], y_[k] - node.com[1], z_[k] - node.com[2]};
     const double m = m_[k];
@@ -300,9 +304,61 @@ void TreeGravity::compute_moments(std::size_t index) {
     bmax2 = std::max(bmax2, d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   }
   node.bmax2 = bmax2;
+}
+
+void TreeGravity::combine_moments(std::size_t index) {
+  // Children in pre-order: index + 1, then each one's `next`, up to this node's `next`.
+  Node& node = nodes_[index];
+  double mass = 0, mx = 0, my = 0, mz = 0;
+  for (std::uint32_t c = static_cast<std::uint32_t>(index) + 1; c < node.next; c = nodes_[c].next) {
+    const double mc = moments_[c].mass;
+    mass += mc;
+    mx += mc * nodes_[c].com[0];
+    my += mc * nodes_[c].com[1];
+    mz += mc * nodes_[c].com[2];
+  }
+  if (mass > 0) {
+    node.com[0] = mx / mass, node.com[1] = my / mass, node.com[2] = mz / mass;
+  } else {  // massless particles only: no pull, any centre
+    node.com[0] = x_[node.begin], node.com[1] = y_[node.begin], node.com[2] = z_[node.begin];
+  }
+  // Shifted to this node's centre (the children's first moments about their own centres vanish):
+  // S = sum_c S_c + m_c d d^T, O_ijk = sum_c O_c,ijk + (S_c,ij d_k + S_c,ik d_j + S_c,jk d_i)
+  // + m_c d_i d_j d_k, d = c_c - c.
+  Moments& mo = moments_[index];
+  mo = Moments{mass, {0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}};
+  constexpr int sym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};  // S_ij -> its index in s[6]
+  for (std::uint32_t c = static_cast<std::uint32_t>(index) + 1; c < node.next; c = nodes_[c].next) {
+    const Moments& mc = moments_[c];
+    const double d[3] = {nodes_[c].com[0] - node.com[0], nodes_[c].com[1] - node.com[1], nodes_[c].com[2] - node.com[2]};
+    const double m = mc.mass;
+    std::size_t q = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i; j < 3; ++j, ++q) mo.s[q] += mc.s[q] + m * d[i] * d[j];
+    q = 0;
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = i; j < 3; ++j)
+        for (std::size_t l = j; l < 3; ++l, ++q)
+          mo.o[q] += mc.o[q] + (mc.s[sym[i][j]] * d[l] + mc.s[sym[i][l]] * d[j] + mc.s[sym[j][l]] * d[i]) +
+                     m * d[i] * d[j] * d[l];
+  }
+  // b_max exactly, from the particles (the children's bound |d| + b_max,c would open more cells
+  // than the calibration assumes).
+  double bmax2 = 0;
+  for (std::uint32_t k = node.begin; k < node.end; ++k) {
+    const double dx = x_[k] - node.com[0], dy = y_[k] - node.com[1], dz = z_[k] - node.com[2];
+    bmax2 = std::max(bmax2, dx * dx + dy * dy + dz * dz);
+  }
+  node.bmax2 = bmax2;
+}
+
+void TreeGravity::finish_expansion(std::size_t index) {
+  const Node& node = nodes_[index];
+  const double* s = moments_[index].s;
+  const double* o = moments_[index].o;
   Expansion& e = expansion_[index];
   std::copy(node.com, node.com + 3, e.com);
-  e.neg_mass = -mass;
+  e.neg_mass = -moments_[index].mass;
   e.t15 = 1.5 * (s[0] + s[3] + s[5]);
   for (std::size_t k = 0; k < 6; ++k) e.s3[k] = 3.0 * s[k];
   e.mt15[0] = -1.5 * (o[0] + o[3] + o[5]);  // xxx + xyy + xzz
@@ -312,6 +368,12 @@ void TreeGravity::compute_moments(std::size_t index) {
   constexpr int of_u[3][6] = {{0, 3, 5, 1, 2, 4}, {1, 6, 8, 3, 4, 7}, {2, 7, 9, 4, 5, 8}};
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t k = 0; k < 6; ++k) e.u[6 * i + k] = (k < 3 ? 7.5 : 15.0) * o[of_u[i][k]];
+  ExpansionF& f = expansion_f_[index];  // each coefficient rounded once from the double one
+  f.neg_mass = static_cast<float>(e.neg_mass);
+  f.t15 = static_cast<float>(e.t15);
+  for (std::size_t k = 0; k < 6; ++k) f.s3[k] = static_cast<float>(e.s3[k]);
+  for (std::size_t k = 0; k < 3; ++k) f.mt15[k] = static_cast<float>(e.mt15[k]);
+  for (std::size_t k = 0; k < 18; ++k) f.u[k] = static_cast<float>(e.u[k]);
 }
 
 void TreeGravity::build(const double* position) {
@@ -378,12 +440,40 @@ void TreeGravity::build(const double* position) {
     groups_.push_back(Group{static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(std::min(n, b + group_size)), {}, {}});
   const std::size_t node_total = nodes_.size();
   expansion_.resize(node_total);
+  expansion_f_.resize(node_total);
+  moments_.resize(node_total);
+  // Inner nodes grouped by depth, deepest first: each level's nodes only read the level below.
+  inner_.clear();
+  std::vector<std::uint32_t> level_start;  ///< inner_[level_start[l], level_start[l + 1]): level deepest - l
+  {
+    std::vector<std::uint32_t> depth(node_total, 0);
+    std::uint32_t deepest = 0;
+    for (std::size_t i = 0; i < node_total; ++i)
+      if (!nodes_[i].leaf)
+        for (std::uint32_t c = static_cast<std::uint32_t>(i) + 1; c < nodes_[i].next; c = nodes_[c].next)
+          depth[c] = depth[i] + 1, deepest = std::max(deepest, depth[c]);
+    level_start.assign(deepest + 2, 0);
+    for (std::uint32_t level = deepest + 1; level-- > 0;) {
+      level_start[deepest - level] = static_cast<std::uint32_t>(inner_.size());
+      for (std::size_t i = 0; i < node_total; ++i)
+        if (!nodes_[i].leaf && depth[i] == level) inner_.push_back(static_cast<std::uint32_t>(i));
+    }
+    level_start[deepest + 1] = static_cast<std::uint32_t>(inner_.size());
+  }
   const std::size_t group_total = groups_.size();
 #pragma omp parallel if (parallel)
   {
-    // Each node's moments from its own particles (O(N depth)): independent, any thread.
-#pragma omp for schedule(dynamic, 32) nowait
-    for (std::size_t i = 0; i < node_total; ++i) compute_moments(i);
+    // Leaves from their particles, then inner nodes level by level from their children (each
+    // node's sums in a fixed order: any thread, the same bits), then the expansions.
+#pragma omp for schedule(dynamic, 32)
+    for (std::size_t i = 0; i < node_total; ++i)
+      if (nodes_[i].leaf) compute_moments(i);
+    for (std::size_t level = 0; level + 1 < level_start.size(); ++level) {
+#pragma omp for schedule(dynamic, 4)
+      for (std::size_t k = level_start[level]; k < level_start[level + 1]; ++k) combine_moments(inner_[k]);
+    }
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < node_total; ++i) finish_expansion(i);
 #pragma omp for schedule(static)
     for (std::size_t gi = 0; gi < group_total; ++gi) {
       Group& g = groups_[gi];
@@ -447,11 +537,62 @@ template <class Expansion>
   a[0] = ax, a[1] = ay, a[2] = az;
 }
 
+/// Cells summed in single precision between two widenings to double: bounds the float
+/// accumulators' rounding to ~64 terms (a few 1e-7 relative) whatever the list's length.
+constexpr std::size_t cells_per_block = 64;
+
+/// The pull of the cells (TreeGravity::Node for the centre, TreeGravity::ExpansionF, in list
+/// order) at the group's 2 * lanes targets, in single precision: t holds the targets relative to
+/// the group's first particle o, each cell's centre is taken relative to o in double and rounded
+/// once, so r = x - c keeps ~1e-7 relative accuracy. The float sums of each block of
+/// cells_per_block cells are widened and added to a0 (targets 0..7) and a1 (8..15) in double.
+/// a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U'), as sum_cells.
+template <class Node, class ExpansionF>
+[[gnu::always_inline]] inline void sum_cells_f(const std::vector<std::uint32_t>& cells, const Node* nodes,
+                                               const ExpansionF* expansion, const double* o, F tx, F ty, F tz,
+                                               F e2, V* a0, V* a1) {
+  const F minus_seven_thirds = splat_f(-7.0f / 3.0f), minus_five_halves = splat_f(-2.5f);
+  const F zero = splat_f(0.0f);
+  for (std::size_t k = 0; k < 3; ++k) a0[k] = splat(0.0), a1[k] = a0[k];
+  const std::size_t count = cells.size();
+  for (std::size_t block = 0; block < count; block += cells_per_block) {
+    F ax = zero, ay = zero, az = zero;
+    const std::size_t block_end = std::min(count, block + cells_per_block);
+    for (std::size_t n = block; n < block_end; ++n) {
+      const std::uint32_t c = cells[n];
+      const double* com = nodes[c].com;
+      const ExpansionF& e = expansion[c];
+      const F rx = tx - splat_f(static_cast<float>(com[0] - o[0])), ry = ty - splat_f(static_cast<float>(com[1] - o[1])),
+              rz = tz - splat_f(static_cast<float>(com[2] - o[2]));
+      const F y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2)))), y2 = y * y;
+      const float* s = e.s3;  // 3 S: xx, xy, xz, yy, yz, zz
+      const F vx = fma(splat_f(s[2]), rz, fma(splat_f(s[1]), ry, fma(splat_f(s[0]), rx, splat_f(e.mt15[0]))));
+      const F vy = fma(splat_f(s[4]), rz, fma(splat_f(s[3]), ry, fma(splat_f(s[1]), rx, splat_f(e.mt15[1]))));
+      const F vz = fma(splat_f(s[5]), rz, fma(splat_f(s[4]), ry, fma(splat_f(s[2]), rx, splat_f(e.mt15[2]))));
+      // r.v + r.(-(3/2) t) = 3 r.S.r - 3 t.r
+      const F qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, splat_f(e.mt15[2]), fma(ry, splat_f(e.mt15[1]), rx * splat_f(e.mt15[0]))))));
+      const F w = minus_five_halves * qt;
+      const F xx = rx * rx, yy = ry * ry, zz = rz * rz, xy = rx * ry, xz = rx * rz, yz = ry * rz;
+      const float* u = e.u;  // per component, the coefficients of xx, yy, zz, xy, xz, yz
+      const F ux = fma(splat_f(u[5]), yz, fma(splat_f(u[4]), xz, fma(splat_f(u[3]), xy, fma(splat_f(u[2]), zz, fma(splat_f(u[1]), yy, splat_f(u[0]) * xx)))));
+      const F uy = fma(splat_f(u[11]), yz, fma(splat_f(u[10]), xz, fma(splat_f(u[9]), xy, fma(splat_f(u[8]), zz, fma(splat_f(u[7]), yy, splat_f(u[6]) * xx)))));
+      const F uz = fma(splat_f(u[17]), yz, fma(splat_f(u[16]), xz, fma(splat_f(u[15]), xy, fma(splat_f(u[14]), zz, fma(splat_f(u[13]), yy, splat_f(u[12]) * xx)))));
+      const F p = fma(rz, uz, fma(ry, uy, rx * ux));
+      const F y3 = y * y2, y5 = y3 * y2;
+      const F radial = y3 * fma(y2, fma(y2, fma(minus_seven_thirds * p, y2, w), splat_f(e.t15)), splat_f(e.neg_mass));
+      ax = fma(y5, fma(y2, ux, vx), fma(radial, rx, ax));
+      ay = fma(y5, fma(y2, uy, vy), fma(radial, ry, ay));
+      az = fma(y5, fma(y2, uz, vz), fma(radial, rz, az));
+    }
+    a0[0] = a0[0] + widen(ax, 0), a0[1] = a0[1] + widen(ay, 0), a0[2] = a0[2] + widen(az, 0);
+    a1[0] = a1[0] + widen(ax, 1), a1[1] = a1[1] + widen(ay, 1), a1[2] = a1[2] + widen(az, 1);
+  }
+}
+
 }  // namespace
 
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
   std::vector<std::uint32_t> cells, ranges;
-  const V e2 = splat(eps2_);
   const F e2f = splat_f(static_cast<float>(eps2_));
   const auto store_accelerations = [&](std::uint32_t first, std::uint32_t end, const V* a) {
     alignas(64) double b[3][lanes];
@@ -463,22 +604,21 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
   for (std::size_t gi = chunk * groups_per_chunk; gi < last; ++gi) {
     const Group& g = groups_[gi];
     interaction_list(g, cells, ranges);
-    // The group's two vectors of targets: the far field one vector of doubles at a time (in
-    // registers), then the near field for all 16 at once in single precision.
+    // All 16 targets of the group in one float vector, about the group's first particle c (the
+    // last valid particle repeated into lanes past its end; their results are not used): the far
+    // field (cells, sum_cells_f) and then the near field (particles), both in single precision.
     static_assert(group_size == 2 * lanes);
     const std::uint32_t second = g.begin + lanes;
-    const Targets t0(x_.data(), y_.data(), z_.data(), g.begin, g.end), t1(x_.data(), y_.data(), z_.data(), second, g.end);
-    V a0[3], a1[3];
-    sum_cells(cells, expansion_.data(), t0, e2, a0);
-    sum_cells(cells, expansion_.data(), t1, e2, a1);
-    // Near field: all 16 targets in one float vector, about the group's first particle c.
-    const double cx = x_[g.begin], cy = y_[g.begin], cz = z_[g.begin];
+    const double c[3] = {x_[g.begin], y_[g.begin], z_[g.begin]};
+    const double cx = c[0], cy = c[1], cz = c[2];
     alignas(64) float ox[2 * lanes], oy[2 * lanes], oz[2 * lanes];
     for (std::size_t l = 0; l < 2 * lanes; ++l) {
       const std::size_t k = std::min<std::size_t>(g.begin + l, g.end - 1);
       ox[l] = static_cast<float>(x_[k] - cx), oy[l] = static_cast<float>(y_[k] - cy), oz[l] = static_cast<float>(z_[k] - cz);
     }
     const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
+    V a0[3], a1[3];
+    sum_cells_f(cells, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
     F ax = splat_f(0.0f), ay = ax, az = ax;
     for (std::size_t r = 0; r < ranges.size(); r += 2) {
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {

@@ -32,21 +32,26 @@ double opening_angle_for(double force_error);
 ///   rebuilds the same tree), by a stable radix sort. Leaves hold <= leaf_capacity particles.
 /// * Moments of each node about its centre of mass c: mass M, the second moments
 ///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
-///   b_max = max |x - c|.
+///   b_max = max |x - c|: a leaf's from its particles, an inner node's M, c, S and O from its
+///   children's (parallel-axis shifts, children in order, level by level), b_max exactly from
+///   its particles.
 /// * Far field: a cell is used as a whole for a group of particles when b_max < theta d, d the
 ///   distance from c to the group's bounding box (Salmon & Warren 1994). Its pull is the
 ///   Taylor expansion of the SOFTENED kernel to third order: with r = x - c, s^2 = r^2 + eps^2,
 ///   a = -M r/s^3 + 3 S r/s^5 - (15/2) (r.S.r) r/s^7 + (3/2) tr(S) r/s^5
 ///       + (15/2) U/s^7 - (35/2) P r/s^9 - (3/2) t/s^5 + (15/2) (t.r) r/s^7
 ///   (U_i = O_ijk r_j r_k, P = r.U, t_k = O_iik), exact for the Plummer law up to fourth order in
-///   (x_j - c)/s: no r >> eps assumption, the trace terms are what softening adds.
+///   (x_j - c)/s: no r >> eps assumption, the trace terms are what softening adds. Forces
+///   evaluate it in single precision (ExpansionF) on positions relative to the group's first
+///   particle (c - o rounded once from double: ~1e-7 relative per cell), widened to double every
+///   64 cells; the potential (energy samples) keeps double precision.
 /// * Near field: particles of opened leaves, the Plummer law pair by pair, in single precision
 ///   on positions relative to the group's first particle (~1e-7 relative per pair, 1,000 times
 ///   below the target error); the potential (energy samples) keeps double precision.
 /// * Groups: runs of group_size particles consecutive in Morton order (spatially compact, all
 ///   vectors full) walk the tree once for all their particles; each particle then sums its
-///   group's cells in walk order (8 particles per vector of doubles) and, apart, its group's
-///   particles in walk order (16 per vector of floats), then adds the two. Every particle's sum
+///   group's cells in walk order and, apart, its group's particles in walk order (both 16 per
+///   vector of floats), then adds the two in double. Every particle's sum
 ///   has one fixed order: the same bits for any thread count, no atomics.
 ///
 /// Usage: build(position), then accumulate_chunk(c) for every chunk (any order, any threads),
@@ -114,13 +119,29 @@ class TreeGravity {
     /// (the mixed ones doubled), for i = x, y, z
     double u[18];
   };
+  /// The same expansion in single precision for the far field of accumulate_chunk (the com
+  /// stays in Node, in double: the kernel takes it relative to the group's first particle).
+  /// 29 floats used, two cache lines.
+  struct alignas(64) ExpansionF {
+    float neg_mass, t15, s3[6], mt15[3], u[18];
+  };
+  /// A node's raw moments about its own centre of mass (the build's bottom-up pass): mass,
+  /// S (xx, xy, xz, yy, yz, zz) and O (xxx, xxy, xxz, xyy, xyz, xzz, yyy, yyz, yzz, zzz).
+  struct Moments {
+    double mass, s[6], o[10];
+  };
   struct Group {
     std::uint32_t begin, end;  ///< particle range in Morton order
     double lo[3], hi[3];       ///< bounding box of its particles
   };
   /// Appends the node of [begin, end) at depth `level` and its subtree; returns its index.
   std::uint32_t build_node(std::uint32_t begin, std::uint32_t end, int level);
+  /// Moments of a leaf from its particles, of an inner node from its children's moments
+  /// (children first: the build runs the nodes in reverse pre-order).
   void compute_moments(std::size_t node);
+  void combine_moments(std::size_t node);
+  /// Expansion and ExpansionF of a node from moments_.
+  void finish_expansion(std::size_t node);
   /// Interaction list of group g: accepted cells, and ranges of particles of opened leaves.
   void interaction_list(const Group& g, std::vector<std::uint32_t>& cells,
                         std::vector<std::uint32_t>& ranges) const;
@@ -141,6 +162,9 @@ class TreeGravity {
   std::vector<double> x_, y_, z_, m_; ///< positions and masses in Morton order
   std::vector<Node> nodes_;
   std::vector<Expansion> expansion_;  ///< [nodes_.size()]
+  std::vector<ExpansionF> expansion_f_;  ///< [nodes_.size()]
+  std::vector<Moments> moments_;      ///< [nodes_.size()]
+  std::vector<std::uint32_t> inner_;  ///< inner nodes, by depth (deepest last)
   std::vector<Group> groups_;
   std::vector<double> acceleration_;  ///< [N*3] by original index
   std::vector<double> potential_;     ///< [N] in Morton order (potential_energy)

@@ -94,10 +94,11 @@ TEST(TreeGravity, BuiltBodyMeetsTheTargetError) {
 }
 
 TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
-  // 64 particles in [0, 0.1]^3 and one at (10, 10, 10), last in Morton order and so a group of
-  // its own (groups are 16 consecutive particles): the cluster's node is one cell for the far
-  // particle (b_max ~ 0.09 << theta d), so its pull is exactly the expansion to octupole order
-  // about the centre of mass, unsoftened here.
+  // 64 particles in [0, 0.1]^3 and one at (0.4, 0.4, 0.4), last in Morton order and so a group
+  // of its own (groups are 16 consecutive particles): the cluster's node is one cell for the far
+  // particle (b_max ~ 0.09 < theta d, d ~ 0.6), so its pull is the expansion to octupole order
+  // about the centre of mass, unsoftened here, evaluated in single precision (relative to the
+  // group, ~1e-7 relative). Close enough that the octupole stands far above that rounding.
   Random random(9);
   std::vector<double> mass, position;
   for (int i = 0; i < 64; ++i) {
@@ -105,7 +106,7 @@ TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
     for (int k = 0; k < 3; ++k) position.push_back(random.uniform(0, 0.1));
   }
   mass.push_back(1e-3);
-  for (int k = 0; k < 3; ++k) position.push_back(10.0);
+  for (int k = 0; k < 3; ++k) position.push_back(0.4);
   const std::size_t far = 64;
   static_assert(TreeGravity::group_size == 16);
   const std::vector<double> a = tree(mass, 0.0, 1e-4, position.data());
@@ -131,7 +132,7 @@ TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
       }
   }
   double r[3], r2 = 0;
-  for (int k = 0; k < 3; ++k) r[k] = 10.0 - com[k], r2 += r[k] * r[k];
+  for (int k = 0; k < 3; ++k) r[k] = 0.4 - com[k], r2 += r[k] * r[k];
   const double rn = std::sqrt(r2);
   double qr[3] = {0, 0, 0}, rqr = 0, u[3] = {0, 0, 0}, p = 0, t[3] = {0, 0, 0}, tr = 0;
   for (int k = 0; k < 3; ++k)
@@ -155,12 +156,14 @@ TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
     higher_orders = std::max(higher_orders, std::abs(exact[3 * far + k] - expected));
   }
   const double scale = m / r2;
-  EXPECT_LE(miss, 1e-14 * scale);
-  EXPECT_GT(quadrupole_part, 1e-8 * scale);  // both terms are there and counted
-  EXPECT_GT(octupole_part, 1e-10 * scale);
+  EXPECT_LE(miss, 1e-6 * scale);  // single-precision far field (measured 6e-8)
+  EXPECT_GT(quadrupole_part, 1e-4 * scale);  // both terms are there and counted
+  EXPECT_GT(octupole_part, 1e-5 * scale);
   EXPECT_GT(octupole_part, 100 * miss);
-  // The pair sum differs by the next orders only, each smaller by about b/r ~ 0.005.
-  EXPECT_LT(higher_orders, 0.05 * octupole_part);
+  // The pair sum differs by the next orders only, each smaller by about b/r ~ 0.1 (measured
+  // 0.17 of the octupole at this distance): the tree did use the cell, not the pairs.
+  EXPECT_LT(higher_orders, 0.3 * octupole_part);
+  EXPECT_GT(higher_orders, 10 * miss);
 }
 
 TEST(TreeGravity, SameBitsOnOneAndTwoThreads) {
