@@ -269,6 +269,20 @@ std::uint32_t TreeGravity::build_node(std::uint32_t begin, std::uint32_t end, in
   return index;
 }
 
+namespace {
+/// node.com = (mx, my, mz) / mass; a node of massless particles only (no pull) takes its first
+/// particle's position (x0, y0, z0) as centre.
+template <class TreeNode>
+void set_centre_of_mass(TreeNode& node, double mass, double mx, double my, double mz, double x0, double y0,
+                        double z0) {
+  if (mass > 0) {
+    node.com[0] = mx / mass, node.com[1] = my / mass, node.com[2] = mz / mass;
+  } else {
+    node.com[0] = x0, node.com[1] = y0, node.com[2] = z0;
+  }
+}
+}  // namespace
+
 void TreeGravity::compute_moments(std::size_t index) {
   Node& node = nodes_[index];
   double mass = 0, mx = 0, my = 0, mz = 0;
@@ -278,11 +292,7 @@ void TreeGravity::compute_moments(std::size_t index) {
     my += m_[k] * y_[k];
     mz += m_[k] * z_[k];
   }
-  if (mass > 0) {
-    node.com[0] = mx / mass, node.com[1] = my / mass, node.com[2] = mz / mass;
-  } else {  // massless particles only: no pull, any centre
-    node.com[0] = x_[node.begin], node.com[1] = y_[node.begin], node.com[2] = z_[node.begin];
-  }
+  set_centre_of_mass(node, mass, mx, my, mz, x_[node.begin], y_[node.begin], z_[node.begin]);
   Moments& mo = moments_[index];
   mo = Moments{mass, {0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}};
   double* s = mo.s;
@@ -317,11 +327,7 @@ void TreeGravity::combine_moments(std::size_t index) {
     my += mc * nodes_[c].com[1];
     mz += mc * nodes_[c].com[2];
   }
-  if (mass > 0) {
-    node.com[0] = mx / mass, node.com[1] = my / mass, node.com[2] = mz / mass;
-  } else {  // massless particles only: no pull, any centre
-    node.com[0] = x_[node.begin], node.com[1] = y_[node.begin], node.com[2] = z_[node.begin];
-  }
+  set_centre_of_mass(node, mass, mx, my, mz, x_[node.begin], y_[node.begin], z_[node.begin]);
   // Shifted to this node's centre (the children's first moments about their own centres vanish):
   // S = sum_c S_c + m_c d d^T, O_ijk = sum_c O_c,ijk + (S_c,ij d_k + S_c,ik d_j + S_c,jk d_i)
   // + m_c d_i d_j d_k, d = c_c - c.
