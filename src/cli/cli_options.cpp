@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 #include <omp.h>
+#include <sys/resource.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 
@@ -145,6 +147,14 @@ int checked_thread_count(int threads) {
 
 void apply_thread_count(int threads) {
   if (threads > 0) omp_set_num_threads(threads);
+}
+
+double peak_memory_mb(bool include_children) {
+  rusage self{}, children{};
+  getrusage(RUSAGE_SELF, &self);
+  long peak = self.ru_maxrss;
+  if (include_children && getrusage(RUSAGE_CHILDREN, &children) == 0) peak = std::max(peak, children.ru_maxrss);
+  return static_cast<double>(peak) / 1024.0;
 }
 
 }  // namespace tidalcrust

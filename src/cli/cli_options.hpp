@@ -76,4 +76,9 @@ int checked_thread_count(int threads);
 /// Sets the OpenMP thread count (0 leaves the default). Results never depend on it.
 void apply_thread_count(int threads);
 
+/// Peak resident memory so far, MB (getrusage ru_maxrss, which Linux gives in KiB): of this
+/// process, or with `include_children` the larger of it and the largest finished child process
+/// (`run --jobs` runs its encounters in children).
+double peak_memory_mb(bool include_children = false);
+
 }  // namespace tidalcrust

@@ -6,7 +6,6 @@
 // sphere. Peak memory is the process's getrusage ru_maxrss.
 #include <fmt/format.h>
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -54,13 +53,6 @@ double median_ms_per_call(int repeats, std::int64_t calls, Run&& run) {
     samples.push_back(milliseconds_since(start) / static_cast<double>(calls));
   }
   return median(samples);
-}
-
-/// Peak resident memory of this process so far (MB; getrusage ru_maxrss, which Linux gives in KiB).
-double peak_memory_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
 Json error_json(const ForceErrorStats& e) {

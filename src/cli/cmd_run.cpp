@@ -190,6 +190,8 @@ int command_run(int argc, char** argv) {
     fmt::print("relaxed body: stability probe {} failures, largest shell strain {:.2e}\n",
                result.relaxed->probe_failures, result.relaxed->probe_max_shell_strain);
   for (const auto& e : result.encounters) fmt::print("  {}\n    figures: {}\n", e.summary, e.analysis.string());
+  // What a batch job must request (the level-6 T5 run: 567 MB with its analysis figures).
+  fmt::print("peak memory: {:.0f} MB{}\n", peak_memory_mb(true), jobs > 1 ? " (largest process)" : "");
   return exit_ok;
 }
 

@@ -141,6 +141,13 @@ TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
                             "encounter B: up to date", "analyze A: up to date"})
     EXPECT_NE(again.out.find(stage), std::string::npos) << again.out;
   EXPECT_EQ(read_file(out / "A" / "encounter.h5"), a_bytes);
+  // The summary ends with the peak memory, what a batch job has to request.
+  const auto peak = again.out.rfind("\npeak memory: ");
+  ASSERT_NE(peak, std::string::npos) << again.out;
+  const double megabytes = std::stod(again.out.substr(peak + 14));
+  EXPECT_GT(megabytes, 1.0) << again.out;
+  EXPECT_LT(megabytes, 4096.0) << again.out;
+  EXPECT_EQ(again.out.substr(again.out.find('\n', peak + 1)), "\n") << "the last line";
   const std::string status = read_file(out / "status.json");
   EXPECT_NE(status.find("\"stage\": \"workflow small\""), std::string::npos) << status;
   EXPECT_NE(status.find("\"state\": \"done\""), std::string::npos) << status;
