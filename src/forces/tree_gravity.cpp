@@ -56,40 +56,55 @@ inline V rsqrt(V s) {
 /// a with the lanes whose bit in `keep` is 0 set to zero.
 inline V keep_lanes(V a, unsigned keep) { return {_mm512_maskz_mov_pd(static_cast<__mmask8>(keep), a.v)}; }
 #else
-struct V {
-  double v[lanes];
+/// Plain-loop vectors of N values of T (the portable path of V and F below): lane by lane the
+/// same operations as the intrinsics, no FMA, so the same bits on every x86-64 CPU.
+template <class T, std::size_t N>
+struct Lanes {
+  T v[N];
 };
-inline V splat(double a) {
-  V r;
-  for (std::size_t l = 0; l < lanes; ++l) r.v[l] = a;
+template <class T, std::size_t N>
+inline Lanes<T, N> lanes_splat(T a) {
+  Lanes<T, N> r;
+  for (T& x : r.v) x = a;
   return r;
 }
-inline V load(const double* p) {
-  V r;
-  for (std::size_t l = 0; l < lanes; ++l) r.v[l] = p[l];
+template <class T, std::size_t N>
+inline Lanes<T, N> lanes_load(const T* p) {
+  Lanes<T, N> r;
+  for (std::size_t l = 0; l < N; ++l) r.v[l] = p[l];
   return r;
 }
-inline void store(double* p, V a) {
-  for (std::size_t l = 0; l < lanes; ++l) p[l] = a.v[l];
-}
-#define TIDALCRUST_LANEWISE(op)                                  \
-  inline V operator op(V a, V b) {                               \
-    for (std::size_t l = 0; l < lanes; ++l) a.v[l] = a.v[l] op b.v[l]; \
-    return a;                                                    \
+#define TIDALCRUST_LANEWISE(op)                                        \
+  template <class T, std::size_t N>                                    \
+  inline Lanes<T, N> operator op(Lanes<T, N> a, Lanes<T, N> b) {        \
+    for (std::size_t l = 0; l < N; ++l) a.v[l] = a.v[l] op b.v[l];      \
+    return a;                                                          \
   }
 TIDALCRUST_LANEWISE(+)
 TIDALCRUST_LANEWISE(-)
 TIDALCRUST_LANEWISE(*)
 #undef TIDALCRUST_LANEWISE
-inline V fma(V a, V b, V c) { return a * b + c; }
-inline V rsqrt(V s) {
-  for (std::size_t l = 0; l < lanes; ++l) s.v[l] = 1.0 / std::sqrt(s.v[l]);
+template <class T, std::size_t N>
+inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
+  return a * b + c;
+}
+template <class T, std::size_t N>
+inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
+  for (T& x : s.v) x = T(1) / std::sqrt(x);
   return s;
 }
-inline V keep_lanes(V a, unsigned keep) {
-  for (std::size_t l = 0; l < lanes; ++l)
-    if (!((keep >> l) & 1u)) a.v[l] = 0.0;
+template <class T, std::size_t N>
+inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {
+  for (std::size_t l = 0; l < N; ++l)
+    if (!((keep >> l) & 1u)) a.v[l] = T(0);
   return a;
+}
+
+using V = Lanes<double, lanes>;
+inline V splat(double a) { return lanes_splat<double, lanes>(a); }
+inline V load(const double* p) { return lanes_load<double, lanes>(p); }
+inline void store(double* p, V a) {
+  for (std::size_t l = 0; l < lanes; ++l) p[l] = a.v[l];
 }
 #endif
 
@@ -120,38 +135,9 @@ inline V widen(F a, int half) {
   return {_mm512_maskz_cvtps_pd(0xFF, _mm256_load_ps(b + half * lanes))};
 }
 #else
-struct F {
-  float v[2 * lanes];
-};
-inline F splat_f(float a) {
-  F r;
-  for (float& x : r.v) x = a;
-  return r;
-}
-inline F load_f(const float* p) {
-  F r;
-  for (std::size_t l = 0; l < 2 * lanes; ++l) r.v[l] = p[l];
-  return r;
-}
-#define TIDALCRUST_LANEWISE_F(op)                                        \
-  inline F operator op(F a, F b) {                                       \
-    for (std::size_t l = 0; l < 2 * lanes; ++l) a.v[l] = a.v[l] op b.v[l]; \
-    return a;                                                            \
-  }
-TIDALCRUST_LANEWISE_F(+)
-TIDALCRUST_LANEWISE_F(-)
-TIDALCRUST_LANEWISE_F(*)
-#undef TIDALCRUST_LANEWISE_F
-inline F fma(F a, F b, F c) { return a * b + c; }
-inline F rsqrt(F s) {
-  for (float& x : s.v) x = 1.0f / std::sqrt(x);
-  return s;
-}
-inline F keep_lanes(F a, unsigned keep) {
-  for (std::size_t l = 0; l < 2 * lanes; ++l)
-    if (!((keep >> l) & 1u)) a.v[l] = 0.0f;
-  return a;
-}
+using F = Lanes<float, 2 * lanes>;
+inline F splat_f(float a) { return lanes_splat<float, 2 * lanes>(a); }
+inline F load_f(const float* p) { return lanes_load<float, 2 * lanes>(p); }
 inline V widen(F a, int half) {
   V r;
   for (std::size_t l = 0; l < lanes; ++l) r.v[l] = static_cast<double>(a.v[half * lanes + l]);
