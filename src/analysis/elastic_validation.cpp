@@ -196,10 +196,11 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
 
 namespace {
 
-/// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) about `center` with spring
-/// damping: the leapfrog of Leapfrog::step (drift, kick with the forces at the half-step
-/// positions plus the field, drift), for `steps` steps of dt.
-void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double dt,
+/// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) about `center` with a drag
+/// -drag v on every particle (v at the start of the step, as the spring damping takes it): the
+/// leapfrog of Leapfrog::step (drift, kick with the forces at the half-step positions plus the
+/// field and the drag, drift), for `steps` steps of dt.
+void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag, double dt,
                           std::int64_t steps) {
   const std::size_t n = state.position.size();
   std::vector<double> half(n);
@@ -213,7 +214,7 @@ void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, 
       acc.body[3 * p + 2] += 2 * eps * (half[3 * p + 2] - center[2]);
     }
     for (std::size_t i = 0; i < n; ++i) {
-      state.velocity[i] += dt * acc.body[i];
+      state.velocity[i] += dt * (acc.body[i] - drag * state.velocity[i]);
       state.position[i] = half[i] + 0.5 * dt * state.velocity[i];
     }
   }
@@ -251,7 +252,7 @@ std::array<double, 2> fit_degree_two(const Body& body, const State& rest, const 
 }  // namespace
 
 LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
-                           double surface_displacement, double damping, double duration) {
+                           double surface_displacement, double drag, double duration) {
   LoveResult r;
   const LoveNumbers theory = homogeneous_sphere_love_numbers(2, material.youngs_modulus, material.poisson_ratio,
                                                              material.density, material.radius);
@@ -261,9 +262,9 @@ LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, cons
   r.tidal_strength = surface_displacement / theory.h;
   const double omega_lamb = 2 * pi / lamb_breathing_period(material.youngs_modulus, material.poisson_ratio,
                                                            material.density, material.radius);
-  if (damping <= 0) damping = std::min(50.0, 5 * omega_lamb);
+  if (drag <= 0) drag = omega_lamb;
   if (duration <= 0) duration = std::max(3.0, 30 / omega_lamb);
-  r.damping = damping;
+  r.drag = drag;
   r.duration = duration;
   const Body& body = relaxed.body;
   const State rest = state_at_rest(relaxed);
@@ -271,18 +272,18 @@ LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, cons
   const double dt = relaxed.stage.clock.dt;
   const std::int64_t steps = step_count(duration, dt);
   const std::int64_t early = 2 * steps / 3;
-  ForceField forces(body, force_options(config, damping));
+  ForceField forces(body, force_options(config, 0.0));
   State plus = rest, minus = rest;
-  relax_in_tidal_field(forces, plus, center, r.tidal_strength, dt, early);
-  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, dt, early);
+  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, dt, early);
+  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, dt, early);
   auto fit = fit_degree_two(body, rest, plus, minus);
   const auto h2_of = [&](const std::array<double, 2>& f) {
     const double rs = f[1];
     return f[0] / (r.tidal_strength * rs * rs * rs * rs);  // W/g = eps r_s^2 / (1/r_s^2)
   };
   r.h2_early = h2_of(fit);
-  relax_in_tidal_field(forces, plus, center, r.tidal_strength, dt, steps - early);
-  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, dt, steps - early);
+  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, dt, steps - early);
+  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, dt, steps - early);
   fit = fit_degree_two(body, rest, plus, minus);
   r.h2 = h2_of(fit);
   r.shell_radius = fit[1];

@@ -81,14 +81,18 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
                                   double amplitude = 1e-3, double periods = 5);
 
 /// (b) The degree-2 Love number h2: the static tidal potential W = eps r^2 P2(cos theta) (force
-/// +grad W per unit mass, about the centre of mass) applied with spring damping `damping` for
-/// `duration` t_grav, once with +eps and once with -eps; h2 = u_r / (W/g) at the shell from the
-/// least-squares fit u_r = a0 + a2 P2(cos theta) of half the shell nodes' radial displacement
-/// difference, W/g = eps r_s^4 at the mean shell radius r_s. eps is chosen so that theory's
-/// surface displacement is `surface_displacement`. Theory: homogeneous_sphere_love_numbers.
-/// damping = 0 and duration = 0 choose them from the body's Lamb frequency omega_L, so that a
-/// soft body settles as well as a stiff one: gamma = min(50, 5 omega_L), T = max(3, 30/omega_L)
-/// (50 and 3 t_grav for the quick and paper-T bodies, 22 and 6.9 for paper-N).
+/// +grad W per unit mass, about the centre of mass) applied for `duration` t_grav with a drag
+/// -`drag` v on every particle, once with +eps and once with -eps; h2 = u_r / (W/g) at the shell
+/// from the least-squares fit u_r = a0 + a2 P2(cos theta) of half the shell nodes' radial
+/// displacement difference, W/g = eps r_s^4 at the mean shell radius r_s. eps is chosen so that
+/// theory's surface displacement is `surface_displacement`. Theory: homogeneous_sphere_love_numbers.
+/// The drag, not the springs' damping, settles the body: a spring dashpot gamma mu acts on the
+/// velocity difference of neighbours, about (L / wavelength)^2 of a long mode's velocity, so its
+/// hold on the degree-2 deformation weakens 4x per shell level (level 6 did not settle in 3 t_grav
+/// at gamma = 50); a drag damps every mode at the same rate at any resolution and leaves the static
+/// equilibrium unchanged. drag = 0 and duration = 0 choose them from the body's Lamb frequency
+/// omega_L: drag = omega_L (the degree-2 mode, near 0.6 omega_L, is then close to critically damped
+/// and every faster mode decays as exp(-omega_L t / 2)), T = max(3, 30 / omega_L) t_grav.
 struct LoveResult {
   double h2 = 0;             ///< measured at the end
   double h2_early = 0;       ///< measured at 2/3 of the duration (how far it has settled)
@@ -97,11 +101,11 @@ struct LoveResult {
   double ratio = 0;          ///< h2 / theory_h2
   double tidal_strength = 0; ///< eps, G M / R^3
   double shell_radius = 0;   ///< r_s, R
-  double damping = 0;        ///< gamma used, 1/t_grav
+  double drag = 0;           ///< drag rate used, 1/t_grav
   double duration = 0;       ///< t_grav
 };
 LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
-                           double surface_displacement = 1e-3, double damping = 0, double duration = 0);
+                           double surface_displacement = 1e-3, double drag = 0, double duration = 0);
 
 /// (c) Flexural rigidity of the crust's lattice: a flat periodic equilateral triangular lattice
 /// (spacing L_S, one spring k_S per edge and one hinge k_e per edge, the project's evaluators),

@@ -218,7 +218,7 @@ int command_validate(int argc, char** argv) {
     }
     details["love"] = Json{{"h2_at_two_thirds", l.h2_early}, {"incompressible_h2", l.incompressible_h2},
                            {"tidal_strength", l.tidal_strength}, {"shell_radius", l.shell_radius},
-                           {"damping", l.damping}, {"duration", l.duration},
+                           {"drag", l.drag}, {"duration", l.duration},
                            {"eq15_layered_h2", eq15_layered_h2}, {"surface_radius", layers.back().outer_radius}};
   }
   if (wanted("flexure")) {
