@@ -242,6 +242,8 @@ std::uint32_t TreeGravity::build_node(std::uint32_t begin, std::uint32_t end, in
   Node node{};  // moments: compute_moments()
   node.begin = begin, node.end = end, node.leaf = leaf;
   nodes_.push_back(node);
+  block_of_.push_back(leaf ? 0 : static_cast<std::uint32_t>(block_valid_.size()));
+  if (!leaf) block_valid_.push_back(0), block_leaf_.push_back(0);
   if (!leaf) {
     for (std::uint32_t b = begin; b < end;) {
       const unsigned o = octant(key_[b], level);
@@ -372,6 +374,9 @@ void TreeGravity::build(const double* position) {
   const std::size_t n = count_;
   nodes_.clear();
   groups_.clear();
+  block_of_.clear();
+  block_valid_.clear();
+  block_leaf_.clear();
   if (n == 0) return;
   double lo[3], hi[3];
   for (std::size_t k = 0; k < 3; ++k) lo[k] = hi[k] = position[k];
@@ -476,58 +481,109 @@ void TreeGravity::build(const double* position) {
       }
     }
   }
+  child_blocks();
 }
 
-void TreeGravity::interaction_list(const Group& g, std::vector<std::uint32_t>& cells,
-                                   std::vector<std::uint32_t>& ranges) const {
-  cells.clear();
-  ranges.clear();
-  const double theta2 = theta_ * theta_;
-  const std::size_t total = nodes_.size();
-  for (std::size_t i = 0; i < total;) {
-    const Node& node = nodes_[i];
-    double d2 = 0;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const double d = std::max({g.lo[k] - node.com[k], node.com[k] - g.hi[k], 0.0});
-      d2 += d * d;
-    }
-    // A node holding a particle of the group never passes: that particle lies in the box, so
-    // d <= b_max, and theta < 1.
-    if (node.bmax2 < theta2 * d2) {
-      cells.push_back(static_cast<std::uint32_t>(i));
-      i = node.next;
-    } else if (node.leaf) {
-      if (!ranges.empty() && ranges.back() == node.begin)
-        ranges.back() = node.end;  // contiguous leaves make one longer range
-      else
-        ranges.push_back(node.begin), ranges.push_back(node.end);
-      i = node.next;
-    } else {
-      ++i;
+void TreeGravity::child_blocks() {
+  const std::size_t slots = lanes * block_valid_.size();
+  walk_x_.assign(slots, 0.0), walk_y_.assign(slots, 0.0), walk_z_.assign(slots, 0.0);
+  walk_bmax2_.assign(slots, 0.0);
+  walk_node_.assign(slots, 0), walk_block_.assign(slots, 0);
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].leaf) continue;
+    const std::uint32_t b = block_of_[i];
+    unsigned l = 0;  // an octree node has at most 8 children, one per octant
+    for (std::uint32_t c = static_cast<std::uint32_t>(i) + 1; c < nodes_[i].next; c = nodes_[c].next, ++l) {
+      const std::size_t slot = lanes * b + l;
+      walk_x_[slot] = nodes_[c].com[0], walk_y_[slot] = nodes_[c].com[1], walk_z_[slot] = nodes_[c].com[2];
+      walk_bmax2_[slot] = nodes_[c].bmax2;
+      walk_node_[slot] = c;
+      walk_block_[slot] = block_of_[c];
+      block_valid_[b] |= static_cast<std::uint8_t>(1u << l);
+      if (nodes_[c].leaf) block_leaf_[b] |= static_cast<std::uint8_t>(1u << l);
     }
   }
+}
+
+void TreeGravity::interaction_list(const Group& g, InteractionList& list) const {
+  list.cell_count = 0;
+  list.ranges.clear();
+  std::uint32_t* cells = list.cells.get();
+  std::vector<std::uint32_t>& ranges = list.ranges;
+  if (nodes_[0].leaf) {  // the root holds the group's particles: never accepted
+    ranges.push_back(nodes_[0].begin), ranges.push_back(nodes_[0].end);
+    return;
+  }
+  const double theta2 = theta_ * theta_;
+  // Breadth first over child blocks, in a queue: the next block to test is already known while
+  // this one's test runs, so the tests overlap (depth first, each pop waited for the last push).
+  std::uint32_t* queue = list.queue.get();
+  std::size_t head = 0, tail = 0, count = 0;
+  queue[tail++] = block_of_[0];
+  while (head < tail) {
+    const std::uint32_t b = queue[head++];
+    const std::size_t first = lanes * b;
+    // A child is accepted when b_max^2 < theta^2 d^2, d the distance from its centre to the
+    // group's box, d^2 = (dx^2 + dy^2) + dz^2 (the same operations in both paths, no FMA: the
+    // same decisions). A child holding a particle of the group never passes: that particle lies
+    // in the box, so d <= b_max, and theta < 1.
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    const __m512d zero = _mm512_setzero_pd();
+    __m512d d2 = zero;
+    const double* centre[3] = {walk_x_.data() + first, walk_y_.data() + first, walk_z_.data() + first};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const __m512d c = _mm512_loadu_pd(centre[k]);
+      // maskz: GCC 12 warns about the plain max's undefined pass-through operand
+      const __m512d d = _mm512_maskz_max_pd(0xFF, _mm512_maskz_max_pd(0xFF, _mm512_sub_pd(_mm512_set1_pd(g.lo[k]), c),
+                                                                     _mm512_sub_pd(c, _mm512_set1_pd(g.hi[k]))),
+                                            zero);
+      d2 = k == 0 ? _mm512_mul_pd(d, d) : _mm512_add_pd(d2, _mm512_mul_pd(d, d));
+    }
+    const unsigned accepted = block_valid_[b] & _mm512_cmp_pd_mask(_mm512_loadu_pd(walk_bmax2_.data() + first),
+                                                                    _mm512_mul_pd(_mm512_set1_pd(theta2), d2), _CMP_LT_OQ);
+    const unsigned opened = block_valid_[b] & ~accepted;
+    const unsigned inner = opened & ~block_leaf_[b];
+    // Compressed in a register and stored whole (a compressing store to memory is slow): the
+    // lanes past the count are scratch, overwritten by the next store (8 slots of slack).
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(cells + count),
+                        _mm256_maskz_compress_epi32(static_cast<__mmask8>(accepted),
+                                                    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(walk_node_.data() + first))));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(queue + tail),
+                        _mm256_maskz_compress_epi32(static_cast<__mmask8>(inner),
+                                                    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(walk_block_.data() + first))));
+    count += static_cast<std::size_t>(__builtin_popcount(accepted));
+    tail += static_cast<std::size_t>(__builtin_popcount(inner));
+#else
+    unsigned accepted = 0;
+    for (unsigned l = 0; l < lanes; ++l) {
+      if (!((block_valid_[b] >> l) & 1u)) continue;
+      const double c[3] = {walk_x_[first + l], walk_y_[first + l], walk_z_[first + l]};
+      double d2 = 0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const double d = std::max(std::max(g.lo[k] - c[k], c[k] - g.hi[k]), 0.0);
+        d2 = k == 0 ? d * d : d2 + d * d;
+      }
+      if (walk_bmax2_[first + l] < theta2 * d2) accepted |= 1u << l;
+    }
+    const unsigned opened = block_valid_[b] & ~accepted;
+    const unsigned inner = opened & ~block_leaf_[b];
+    for (unsigned l = 0; l < lanes; ++l) {
+      if ((accepted >> l) & 1u) cells[count++] = walk_node_[first + l];
+      if ((inner >> l) & 1u) queue[tail++] = walk_block_[first + l];
+    }
+#endif
+    for (unsigned leaves = opened & block_leaf_[b]; leaves != 0; leaves &= leaves - 1) {
+      const Node& leaf = nodes_[walk_node_[first + static_cast<unsigned>(__builtin_ctz(leaves))]];
+      if (!ranges.empty() && ranges.back() == leaf.begin)
+        ranges.back() = leaf.end;  // contiguous leaves make one longer range
+      else
+        ranges.push_back(leaf.begin), ranges.push_back(leaf.end);
+    }
+  }
+  list.cell_count = count;
 }
 
 namespace {
-
-/// a[3] = the pull of the cells (TreeGravity::Expansion, in list order) at the targets t.
-template <class Expansion>
-[[gnu::always_inline]] inline void sum_cells(const std::vector<std::uint32_t>& cells, const Expansion* expansion,
-                                             const Targets& t, V e2, V* a) {
-  const V minus_seven_thirds = splat(-7.0 / 3.0);
-  V ax = splat(0.0), ay = ax, az = ax;
-  for (const std::uint32_t c : cells) {
-    const Expansion& e = expansion[c];
-    const CellTerms k(e, t, e2);
-    // a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U')
-    const V y3 = k.y * k.y2, y5 = y3 * k.y2;
-    const V radial = y3 * fma(k.y2, fma(k.y2, fma(minus_seven_thirds * k.p, k.y2, k.w), splat(e.t15)), splat(e.neg_mass));
-    ax = fma(y5, fma(k.y2, k.ux, k.vx), fma(radial, k.rx, ax));
-    ay = fma(y5, fma(k.y2, k.uy, k.vy), fma(radial, k.ry, ay));
-    az = fma(y5, fma(k.y2, k.uz, k.vz), fma(radial, k.rz, az));
-  }
-  a[0] = ax, a[1] = ay, a[2] = az;
-}
 
 /// Cells summed in single precision between two widenings to double: bounds the float
 /// accumulators' rounding to ~64 terms (a few 1e-7 relative) whatever the list's length.
@@ -538,15 +594,14 @@ constexpr std::size_t cells_per_block = 64;
 /// the group's first particle o, each cell's centre is taken relative to o in double and rounded
 /// once, so r = x - c keeps ~1e-7 relative accuracy. The float sums of each block of
 /// cells_per_block cells are widened and added to a0 (targets 0..7) and a1 (8..15) in double.
-/// a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U'), as sum_cells.
+/// a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U').
 template <class Node, class ExpansionF>
-[[gnu::always_inline]] inline void sum_cells_f(const std::vector<std::uint32_t>& cells, const Node* nodes,
+[[gnu::always_inline]] inline void sum_cells_f(const std::uint32_t* cells, std::size_t count, const Node* nodes,
                                                const ExpansionF* expansion, const double* o, F tx, F ty, F tz,
                                                F e2, V* a0, V* a1) {
   const F minus_seven_thirds = splat_f(-7.0f / 3.0f), minus_five_halves = splat_f(-2.5f);
   const F zero = splat_f(0.0f);
   for (std::size_t k = 0; k < 3; ++k) a0[k] = splat(0.0), a1[k] = a0[k];
-  const std::size_t count = cells.size();
   for (std::size_t block = 0; block < count; block += cells_per_block) {
     F ax = zero, ay = zero, az = zero;
     const std::size_t block_end = std::min(count, block + cells_per_block);
@@ -584,7 +639,8 @@ template <class Node, class ExpansionF>
 }  // namespace
 
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
-  std::vector<std::uint32_t> cells, ranges;
+  InteractionList list(nodes_.size());
+  const std::vector<std::uint32_t>& ranges = list.ranges;
   const F e2f = splat_f(static_cast<float>(eps2_));
   const auto store_accelerations = [&](std::uint32_t first, std::uint32_t end, const V* a) {
     alignas(64) double b[3][lanes];
@@ -595,7 +651,7 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
   const std::size_t last = std::min(groups_.size(), (chunk + 1) * groups_per_chunk);
   for (std::size_t gi = chunk * groups_per_chunk; gi < last; ++gi) {
     const Group& g = groups_[gi];
-    interaction_list(g, cells, ranges);
+    interaction_list(g, list);
     // All 16 targets of the group in one float vector, about the group's first particle c (the
     // last valid particle repeated into lanes past its end; their results are not used): the far
     // field (cells, sum_cells_f) and then the near field (particles), both in single precision.
@@ -610,7 +666,7 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
     }
     const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
     V a0[3], a1[3];
-    sum_cells_f(cells, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
+    sum_cells_f(list.cells.get(), list.cell_count, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
     F ax = splat_f(0.0f), ay = ax, az = ax;
     for (std::size_t r = 0; r < ranges.size(); r += 2) {
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
@@ -628,6 +684,16 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
   }
 }
 
+double TreeGravity::covered_mass(std::size_t group) const {
+  InteractionList list(nodes_.size());
+  interaction_list(groups_.at(group), list);
+  double mass = 0;
+  for (std::size_t n = 0; n < list.cell_count; ++n) mass += moments_[list.cells[n]].mass;
+  for (std::size_t r = 0; r < list.ranges.size(); r += 2)
+    for (std::uint32_t j = list.ranges[r]; j < list.ranges[r + 1]; ++j) mass += m_[j];
+  return mass;
+}
+
 void TreeGravity::accelerations(const double* position, double* acceleration, bool parallel) {
   build(position);
   const std::size_t chunks = chunk_count();
@@ -640,14 +706,15 @@ void TreeGravity::accelerations(const double* position, double* acceleration, bo
   }
 }
 
-void TreeGravity::group_potential(const Group& g, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& ranges) {
-  interaction_list(g, cells, ranges);
+void TreeGravity::group_potential(const Group& g, InteractionList& list) {
+  interaction_list(g, list);
+  const std::vector<std::uint32_t>& ranges = list.ranges;
   const V e2 = splat(eps2_), minus_third = splat(-1.0 / 3.0), fifth = splat(0.2);
   for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
     const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
     V phi = splat(0.0);
-    for (const std::uint32_t c : cells) {
-      const Expansion& e = expansion_[c];
+    for (std::size_t n = 0; n < list.cell_count; ++n) {
+      const Expansion& e = expansion_[list.cells[n]];
       const CellTerms k(e, t, e2);
       // phi = y (-M + y^2 ((1/2) tr S + y^2 (w/5 - (1/3) P' y^2)))
       phi = fma(k.y, fma(k.y2, fma(k.y2, fma(minus_third * k.p, k.y2, fifth * k.w), splat(e.t15 / 3.0)), splat(e.neg_mass)), phi);
@@ -670,9 +737,9 @@ double TreeGravity::potential_energy(const double* position) {
   const std::size_t groups = groups_.size();
 #pragma omp parallel if (count_ >= 512)
   {
-    std::vector<std::uint32_t> cells, ranges;
+    InteractionList list(nodes_.size());
 #pragma omp for schedule(dynamic, 16)
-    for (std::size_t g = 0; g < groups; ++g) group_potential(groups_[g], cells, ranges);
+    for (std::size_t g = 0; g < groups; ++g) group_potential(groups_[g], list);
   }
   std::vector<double> by_index(count_);
   for (std::size_t k = 0; k < count_; ++k) by_index[order_[k]] = potential_[k];

@@ -6,6 +6,7 @@
 // R, accelerations G M/R^2, energies G M^2/R. docs/architecture.md ("Self-gravity methods").
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace tidalcrust {
@@ -53,6 +54,12 @@ double opening_angle_for(double force_error);
 ///   group's cells in walk order and, apart, its group's particles in walk order (both 16 per
 ///   vector of floats), then adds the two in double. Every particle's sum
 ///   has one fixed order: the same bits for any thread count, no atomics.
+/// * Walk: breadth first over child blocks (each inner node's <= 8 children side by side), the
+///   acceptance test of a whole block in one vector (AVX-512) or lane by lane (portable path,
+///   the same operations: the same lists in the same order). It accepts exactly the cells of
+///   the classic one-node-at-a-time walk; only their order differs (by depth, not pre-order).
+///   Breadth first because the next block to test is known before this one's test ends, so
+///   the tests overlap; the walk took a quarter of the tree's time one node at a time.
 ///
 /// Usage: build(position), then accumulate_chunk(c) for every chunk (any order, any threads),
 /// then acceleration(i) for every particle; or accelerations() for all of it.
@@ -90,6 +97,12 @@ class TreeGravity {
   /// like in self_gravity_energy. Deterministic (per-particle sums in a fixed order, added in
   /// index order).
   double potential_energy(const double* position);
+
+  /// Mass (M) that the interaction list of group `group` (0 .. group_count() - 1) covers after
+  /// build(): its accepted cells' masses plus its near-field particles' masses. Equal to the
+  /// total mass (to rounding) when the walk takes every particle exactly once (a check).
+  double covered_mass(std::size_t group) const;
+  std::size_t group_count() const { return groups_.size(); }
 
   double opening_angle() const { return theta_; }
   std::size_t particle_count() const { return count_; }
@@ -142,11 +155,24 @@ class TreeGravity {
   void combine_moments(std::size_t node);
   /// Expansion and ExpansionF of a node from moments_.
   void finish_expansion(std::size_t node);
-  /// Interaction list of group g: accepted cells, and ranges of particles of opened leaves.
-  void interaction_list(const Group& g, std::vector<std::uint32_t>& cells,
-                        std::vector<std::uint32_t>& ranges) const;
+  /// What a group interacts with: the accepted cells (node indices, cells[0, cell_count)) and
+  /// the particle ranges [begin, end) of the opened leaves, both in walk order.
+  struct InteractionList {
+    explicit InteractionList(std::size_t nodes)
+        : cells(new std::uint32_t[nodes + 8]), queue(new std::uint32_t[nodes + 8]) {}
+    std::unique_ptr<std::uint32_t[]> cells;  ///< room for every node (a list never repeats one) + 8 of slack
+    std::unique_ptr<std::uint32_t[]> queue;  ///< the walk's queue of child blocks, as long
+    std::size_t cell_count = 0;
+    std::vector<std::uint32_t> ranges;
+  };
+  /// Interaction list of group g: a breadth-first walk over the child blocks (child_blocks()),
+  /// testing the up to 8 children of an opened node at once.
+  void interaction_list(const Group& g, InteractionList& list) const;
+  /// The walk's copy of the tree: each inner node's children side by side in one block of 8
+  /// slots (centres and b_max^2 as separate arrays for vector loads), in pre-order of the nodes.
+  void child_blocks();
   /// phi (potential per unit mass) of the particles of group g, into potential_ (Morton order).
-  void group_potential(const Group& g, std::vector<std::uint32_t>& cells, std::vector<std::uint32_t>& ranges);
+  void group_potential(const Group& g, InteractionList& list);
 
   std::size_t count_;
   double eps2_;
@@ -165,6 +191,13 @@ class TreeGravity {
   std::vector<ExpansionF> expansion_f_;  ///< [nodes_.size()]
   std::vector<Moments> moments_;      ///< [nodes_.size()]
   std::vector<std::uint32_t> inner_;  ///< inner nodes, by depth (deepest last)
+  std::vector<std::uint32_t> block_of_;  ///< [nodes] an inner node's child block (leaves: unused)
+  /// Child blocks [8 * blocks]: slot 8 b + l is the l-th child of the inner node of block b.
+  std::vector<double> walk_x_, walk_y_, walk_z_, walk_bmax2_;
+  std::vector<std::uint32_t> walk_node_;   ///< the child's node index
+  std::vector<std::uint32_t> walk_block_;  ///< an inner child's own block
+  std::vector<std::uint8_t> block_valid_;  ///< [blocks] bit l: slot l holds a child
+  std::vector<std::uint8_t> block_leaf_;   ///< [blocks] bit l: that child is a leaf
   std::vector<Group> groups_;
   std::vector<double> acceleration_;  ///< [N*3] by original index
   std::vector<double> potential_;     ///< [N] in Morton order (potential_energy)

@@ -166,6 +166,23 @@ TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
   EXPECT_GT(higher_orders, 10 * miss);
 }
 
+TEST(TreeGravity, EveryGroupsInteractionListCoversEachParticleOnce) {
+  // The walk's lists, cell masses plus near-field particles, hold the whole mass for every group:
+  // a particle missed or counted twice (a cell and its child, or a leaf twice) would show as a
+  // difference of at least the smallest mass, 0.5/n.
+  const std::size_t n = 20000;
+  const Cloud c = random_ball(n, 11);
+  double total = 0;
+  for (const double m : c.mass) total += m;
+  for (const double force_error : {1e-5, 1e-4, 1e-3}) {
+    TreeGravity gravity(c.mass, 0.01, force_error);
+    gravity.build(c.position.data());
+    ASSERT_GT(gravity.group_count(), n / TreeGravity::group_size - 1);
+    for (std::size_t g = 0; g < gravity.group_count(); ++g)
+      ASSERT_NEAR(gravity.covered_mass(g), total, 1e-12) << "group " << g << ", force error " << force_error;
+  }
+}
+
 TEST(TreeGravity, SameBitsOnOneAndTwoThreads) {
   const Cloud c = random_ball(6000, 17);
   omp_set_num_threads(1);
