@@ -227,6 +227,7 @@ TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, doub
     : count_(mass.size()),
       eps2_(softening * softening),
       theta_(opening_angle_for(force_error)),
+      theta_quadrupole_(std::pow(theta_, 5.0 / 3.0)),
       mass_(mass),
       key_(mass.size()),
       order_(mass.size()),
@@ -507,18 +508,20 @@ void TreeGravity::child_blocks() {
 
 void TreeGravity::interaction_list(const Group& g, InteractionList& list) const {
   list.cell_count = 0;
+  list.quadrupole_count = 0;
   list.ranges.clear();
   std::uint32_t* cells = list.cells.get();
+  std::uint32_t* quadrupole_cells = list.quadrupole_cells.get();
   std::vector<std::uint32_t>& ranges = list.ranges;
   if (nodes_[0].leaf) {  // the root holds the group's particles: never accepted
     ranges.push_back(nodes_[0].begin), ranges.push_back(nodes_[0].end);
     return;
   }
-  const double theta2 = theta_ * theta_;
+  const double theta2 = theta_ * theta_, quadrupole2 = theta_quadrupole_ * theta_quadrupole_;
   // Breadth first over child blocks, in a queue: the next block to test is already known while
   // this one's test runs, so the tests overlap (depth first, each pop waited for the last push).
   std::uint32_t* queue = list.queue.get();
-  std::size_t head = 0, tail = 0, count = 0;
+  std::size_t head = 0, tail = 0, count = 0, quadrupole_count = 0;
   queue[tail++] = block_of_[0];
   while (head < tail) {
     const std::uint32_t b = queue[head++];
@@ -539,22 +542,29 @@ void TreeGravity::interaction_list(const Group& g, InteractionList& list) const 
                                             zero);
       d2 = k == 0 ? _mm512_mul_pd(d, d) : _mm512_add_pd(d2, _mm512_mul_pd(d, d));
     }
-    const unsigned accepted = block_valid_[b] & _mm512_cmp_pd_mask(_mm512_loadu_pd(walk_bmax2_.data() + first),
-                                                                    _mm512_mul_pd(_mm512_set1_pd(theta2), d2), _CMP_LT_OQ);
+    const __m512d bmax2 = _mm512_loadu_pd(walk_bmax2_.data() + first);
+    const unsigned accepted =
+        block_valid_[b] & _mm512_cmp_pd_mask(bmax2, _mm512_mul_pd(_mm512_set1_pd(theta2), d2), _CMP_LT_OQ);
+    const unsigned quadrupole =
+        accepted & _mm512_cmp_pd_mask(bmax2, _mm512_mul_pd(_mm512_set1_pd(quadrupole2), d2), _CMP_LT_OQ);
+    const unsigned octupole = accepted & ~quadrupole;
     const unsigned opened = block_valid_[b] & ~accepted;
     const unsigned inner = opened & ~block_leaf_[b];
     // Compressed in a register and stored whole (a compressing store to memory is slow): the
     // lanes past the count are scratch, overwritten by the next store (8 slots of slack).
+    const __m256i children = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(walk_node_.data() + first));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(cells + count),
-                        _mm256_maskz_compress_epi32(static_cast<__mmask8>(accepted),
-                                                    _mm256_loadu_si256(reinterpret_cast<const __m256i*>(walk_node_.data() + first))));
+                        _mm256_maskz_compress_epi32(static_cast<__mmask8>(octupole), children));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(quadrupole_cells + quadrupole_count),
+                        _mm256_maskz_compress_epi32(static_cast<__mmask8>(quadrupole), children));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(queue + tail),
                         _mm256_maskz_compress_epi32(static_cast<__mmask8>(inner),
                                                     _mm256_loadu_si256(reinterpret_cast<const __m256i*>(walk_block_.data() + first))));
-    count += static_cast<std::size_t>(__builtin_popcount(accepted));
+    count += static_cast<std::size_t>(__builtin_popcount(octupole));
+    quadrupole_count += static_cast<std::size_t>(__builtin_popcount(quadrupole));
     tail += static_cast<std::size_t>(__builtin_popcount(inner));
 #else
-    unsigned accepted = 0;
+    unsigned accepted = 0, quadrupole = 0;
     for (unsigned l = 0; l < lanes; ++l) {
       if (!((block_valid_[b] >> l) & 1u)) continue;
       const double c[3] = {walk_x_[first + l], walk_y_[first + l], walk_z_[first + l]};
@@ -564,11 +574,15 @@ void TreeGravity::interaction_list(const Group& g, InteractionList& list) const 
         d2 = k == 0 ? d * d : d2 + d * d;
       }
       if (walk_bmax2_[first + l] < theta2 * d2) accepted |= 1u << l;
+      if (walk_bmax2_[first + l] < quadrupole2 * d2) quadrupole |= 1u << l;
     }
+    quadrupole &= accepted;
+    const unsigned octupole = accepted & ~quadrupole;
     const unsigned opened = block_valid_[b] & ~accepted;
     const unsigned inner = opened & ~block_leaf_[b];
     for (unsigned l = 0; l < lanes; ++l) {
-      if ((accepted >> l) & 1u) cells[count++] = walk_node_[first + l];
+      if ((octupole >> l) & 1u) cells[count++] = walk_node_[first + l];
+      if ((quadrupole >> l) & 1u) quadrupole_cells[quadrupole_count++] = walk_node_[first + l];
       if ((inner >> l) & 1u) queue[tail++] = walk_block_[first + l];
     }
 #endif
@@ -581,6 +595,7 @@ void TreeGravity::interaction_list(const Group& g, InteractionList& list) const 
     }
   }
   list.cell_count = count;
+  list.quadrupole_count = quadrupole_count;
 }
 
 namespace {
@@ -589,19 +604,21 @@ namespace {
 /// accumulators' rounding to ~64 terms (a few 1e-7 relative) whatever the list's length.
 constexpr std::size_t cells_per_block = 64;
 
-/// The pull of the cells (TreeGravity::Node for the centre, TreeGravity::ExpansionF, in list
-/// order) at the group's 2 * lanes targets, in single precision: t holds the targets relative to
-/// the group's first particle o, each cell's centre is taken relative to o in double and rounded
-/// once, so r = x - c keeps ~1e-7 relative accuracy. The float sums of each block of
-/// cells_per_block cells are widened and added to a0 (targets 0..7) and a1 (8..15) in double.
-/// a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U').
-template <class Node, class ExpansionF>
+/// Adds the pull of the cells (TreeGravity::Node for the centre, TreeGravity::ExpansionF, in
+/// list order) at the group's 2 * lanes targets to a0 (targets 0..7) and a1 (8..15), in single
+/// precision: t holds the targets relative to the group's first particle o, each cell's centre
+/// is taken relative to o in double and rounded once, so r = x - c keeps ~1e-7 relative
+/// accuracy. The float sums of each block of cells_per_block cells are widened and added in
+/// double. To octupole order:
+///   a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U'),
+/// to quadrupole order (Octupole false; O = 0, so t = U' = P' = 0): v = 3 S r, w = -(5/2) r.v,
+///   a = y^3 (-M + y^2 ((3/2) tr S + y^2 w)) r + y^5 v.
+template <bool Octupole, class Node, class ExpansionF>
 [[gnu::always_inline]] inline void sum_cells_f(const std::uint32_t* cells, std::size_t count, const Node* nodes,
                                                const ExpansionF* expansion, const double* o, F tx, F ty, F tz,
                                                F e2, V* a0, V* a1) {
   const F minus_seven_thirds = splat_f(-7.0f / 3.0f), minus_five_halves = splat_f(-2.5f);
   const F zero = splat_f(0.0f);
-  for (std::size_t k = 0; k < 3; ++k) a0[k] = splat(0.0), a1[k] = a0[k];
   for (std::size_t block = 0; block < count; block += cells_per_block) {
     F ax = zero, ay = zero, az = zero;
     const std::size_t block_end = std::min(count, block + cells_per_block);
@@ -613,6 +630,18 @@ template <class Node, class ExpansionF>
               rz = tz - splat_f(static_cast<float>(com[2] - o[2]));
       const F y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2)))), y2 = y * y;
       const float* s = e.s3;  // 3 S: xx, xy, xz, yy, yz, zz
+      if constexpr (!Octupole) {
+        const F vx = fma(splat_f(s[2]), rz, fma(splat_f(s[1]), ry, splat_f(s[0]) * rx));
+        const F vy = fma(splat_f(s[4]), rz, fma(splat_f(s[3]), ry, splat_f(s[1]) * rx));
+        const F vz = fma(splat_f(s[5]), rz, fma(splat_f(s[4]), ry, splat_f(s[2]) * rx));
+        const F w = minus_five_halves * fma(rz, vz, fma(ry, vy, rx * vx));
+        const F y3 = y * y2, y5 = y3 * y2;
+        const F radial = y3 * fma(y2, fma(y2, w, splat_f(e.t15)), splat_f(e.neg_mass));
+        ax = fma(y5, vx, fma(radial, rx, ax));
+        ay = fma(y5, vy, fma(radial, ry, ay));
+        az = fma(y5, vz, fma(radial, rz, az));
+        continue;
+      }
       const F vx = fma(splat_f(s[2]), rz, fma(splat_f(s[1]), ry, fma(splat_f(s[0]), rx, splat_f(e.mt15[0]))));
       const F vy = fma(splat_f(s[4]), rz, fma(splat_f(s[3]), ry, fma(splat_f(s[1]), rx, splat_f(e.mt15[1]))));
       const F vz = fma(splat_f(s[5]), rz, fma(splat_f(s[4]), ry, fma(splat_f(s[2]), rx, splat_f(e.mt15[2]))));
@@ -666,7 +695,10 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
     }
     const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
     V a0[3], a1[3];
-    sum_cells_f(list.cells.get(), list.cell_count, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
+    for (std::size_t k = 0; k < 3; ++k) a0[k] = splat(0.0), a1[k] = a0[k];
+    sum_cells_f<false>(list.quadrupole_cells.get(), list.quadrupole_count, nodes_.data(), expansion_f_.data(), c, tx,
+                       ty, tz, e2f, a0, a1);
+    sum_cells_f<true>(list.cells.get(), list.cell_count, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
     F ax = splat_f(0.0f), ay = ax, az = ax;
     for (std::size_t r = 0; r < ranges.size(); r += 2) {
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
@@ -689,6 +721,7 @@ double TreeGravity::covered_mass(std::size_t group) const {
   interaction_list(groups_.at(group), list);
   double mass = 0;
   for (std::size_t n = 0; n < list.cell_count; ++n) mass += moments_[list.cells[n]].mass;
+  for (std::size_t n = 0; n < list.quadrupole_count; ++n) mass += moments_[list.quadrupole_cells[n]].mass;
   for (std::size_t r = 0; r < list.ranges.size(); r += 2)
     for (std::uint32_t j = list.ranges[r]; j < list.ranges[r + 1]; ++j) mass += m_[j];
   return mass;
@@ -713,6 +746,19 @@ void TreeGravity::group_potential(const Group& g, InteractionList& list) {
   for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
     const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
     V phi = splat(0.0);
+    for (std::size_t n = 0; n < list.quadrupole_count; ++n) {
+      const Expansion& e = expansion_[list.quadrupole_cells[n]];
+      // To quadrupole order (as the forces): phi = y (-M + y^2 ((1/2) tr S + y^2 w/5)),
+      // w = -(5/2) r.(3 S r)
+      const V rx = t.x - splat(e.com[0]), ry = t.y - splat(e.com[1]), rz = t.z - splat(e.com[2]);
+      const V y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2)))), y2 = y * y;
+      const double* s = e.s3;
+      const V vx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, splat(s[0]) * rx));
+      const V vy = fma(splat(s[4]), rz, fma(splat(s[3]), ry, splat(s[1]) * rx));
+      const V vz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
+      const V w = splat(-2.5) * fma(rz, vz, fma(ry, vy, rx * vx));
+      phi = fma(y, fma(y2, fma(y2, fifth * w, splat(e.t15 / 3.0)), splat(e.neg_mass)), phi);
+    }
     for (std::size_t n = 0; n < list.cell_count; ++n) {
       const Expansion& e = expansion_[list.cells[n]];
       const CellTerms k(e, t, e2);

@@ -14,15 +14,16 @@ namespace tidalcrust {
 /// The opening angle theta that gives a median relative force error of about 0.8 force_error
 /// (dimensionless, in (0, 0.5]) with moments up to the octupole: theta = 3.0 force_error^(2/9),
 /// between 0.1 and 0.7 (0.39 at 1e-4, 0.65 at 1e-3). A calibration of this code (leaves of 32,
-/// groups of 16), not a bound: the median error against direct summation on 30,000 random points
-/// in a sphere grows as theta^4.7 (8.6e-6 at theta 0.24, 2.9e-5 at 0.31, 8.6e-5 at 0.40, 3.1e-4
-/// at 0.51, 8.1e-4 at 0.67; 99th percentiles 4.9e-5, 1.7e-4, 6.0e-4, 1.4e-3, 5.4e-3): one cell's
-/// error is its first neglected term, the hexadecapole, O(theta^4) of its pull (Salmon & Warren
-/// 1994), and the errors of the many cells add with partly random signs. The factor puts the
-/// median at 0.65-0.9 of the target on 4,000-60,000 random points (0.70 at 30,000) and the 99th
-/// percentile at 4-7 times the target (with quadrupoles only the same error needed about 0.7 of
-/// the angle, three times the near field). The achieved error is measured, not assumed: bench reports median, 99th percentile
-/// and maximum against the direct sum.
+/// groups of 16, the octupole dropped beyond theta^(5/3)), not a bound: the median error against
+/// direct summation on 30,000 random points in a sphere grows as theta^4.7 (8.3e-6 at theta
+/// 0.24, 3.0e-5 at 0.31, 8.7e-5 at 0.40, 3.0e-4 at 0.51, 1.06e-3 at 0.67; 99th percentiles
+/// 5.0e-5, 1.7e-4, 6.0e-4, 1.5e-3, 6.7e-3): one cell's error is its first neglected term, the
+/// hexadecapole, O(theta^4) of its pull (Salmon & Warren 1994), and the errors of the many cells
+/// add with partly random signs. The factor puts the median at 0.66-0.9 of the target on
+/// 4,000-60,000 random points (0.72 at 30,000 and 1e-4) and the 99th percentile at 4-8 times the
+/// target (with quadrupoles only the same error needed about 0.7 of the angle, three times the
+/// near field). The achieved error is measured, not assumed: bench reports median, 99th
+/// percentile and maximum against the direct sum.
 double opening_angle_for(double force_error);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2), approximated by an octree:
@@ -38,7 +39,12 @@ double opening_angle_for(double force_error);
 ///   its particles.
 /// * Far field: a cell is used as a whole for a group of particles when b_max < theta d, d the
 ///   distance from c to the group's bounding box (Salmon & Warren 1994). Its pull is the
-///   Taylor expansion of the SOFTENED kernel to third order: with r = x - c, s^2 = r^2 + eps^2,
+///   Taylor expansion of the SOFTENED kernel to third order (to second order, the octupole
+///   terms dropped, when b_max < theta^(5/3) d: that truncation, O((b_max/d)^3) of the cell's
+///   pull, is below theta^5, a factor theta under the hexadecapole error theta^4 of the cells
+///   near the acceptance limit; it saves the octupole's ~half of the kernel's operations on
+///   ~40% of the cells for +2% of median error at theta = 0.39 on the level-6 body). The
+///   expansion, with r = x - c, s^2 = r^2 + eps^2,
 ///   a = -M r/s^3 + 3 S r/s^5 - (15/2) (r.S.r) r/s^7 + (3/2) tr(S) r/s^5
 ///       + (15/2) U/s^7 - (35/2) P r/s^9 - (3/2) t/s^5 + (15/2) (t.r) r/s^7
 ///   (U_i = O_ijk r_j r_k, P = r.U, t_k = O_iik), exact for the Plummer law up to fourth order in
@@ -105,6 +111,8 @@ class TreeGravity {
   std::size_t group_count() const { return groups_.size(); }
 
   double opening_angle() const { return theta_; }
+  /// theta_q = theta^(5/3): a cell with b_max < theta_q d is summed to quadrupole order.
+  double quadrupole_angle() const { return theta_quadrupole_; }
   std::size_t particle_count() const { return count_; }
   std::size_t node_count() const { return nodes_.size(); }
 
@@ -155,14 +163,19 @@ class TreeGravity {
   void combine_moments(std::size_t node);
   /// Expansion and ExpansionF of a node from moments_.
   void finish_expansion(std::size_t node);
-  /// What a group interacts with: the accepted cells (node indices, cells[0, cell_count)) and
-  /// the particle ranges [begin, end) of the opened leaves, both in walk order.
+  /// What a group interacts with: the accepted cells (node indices; to octupole order
+  /// cells[0, cell_count), to quadrupole order quadrupole_cells[0, quadrupole_count)) and the
+  /// particle ranges [begin, end) of the opened leaves, all in walk order.
   struct InteractionList {
     explicit InteractionList(std::size_t nodes)
-        : cells(new std::uint32_t[nodes + 8]), queue(new std::uint32_t[nodes + 8]) {}
+        : cells(new std::uint32_t[nodes + 8]),
+          quadrupole_cells(new std::uint32_t[nodes + 8]),
+          queue(new std::uint32_t[nodes + 8]) {}
     std::unique_ptr<std::uint32_t[]> cells;  ///< room for every node (a list never repeats one) + 8 of slack
+    /// The accepted cells far enough that their octupole is dropped (b_max < theta_q d), as long.
+    std::unique_ptr<std::uint32_t[]> quadrupole_cells;
     std::unique_ptr<std::uint32_t[]> queue;  ///< the walk's queue of child blocks, as long
-    std::size_t cell_count = 0;
+    std::size_t cell_count = 0, quadrupole_count = 0;
     std::vector<std::uint32_t> ranges;
   };
   /// Interaction list of group g: a breadth-first walk over the child blocks (child_blocks()),
@@ -177,6 +190,7 @@ class TreeGravity {
   std::size_t count_;
   double eps2_;
   double theta_;
+  double theta_quadrupole_;
   std::vector<double> mass_;
   std::vector<std::uint64_t> key_;
   struct Keyed {

@@ -94,22 +94,20 @@ TEST(TreeGravity, BuiltBodyMeetsTheTargetError) {
 }
 
 TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
-  // 64 particles in [0, 0.1]^3 and one at (0.4, 0.4, 0.4), last in Morton order and so a group
-  // of its own (groups are 16 consecutive particles): the cluster's node is one cell for the far
-  // particle (b_max ~ 0.09 < theta d, d ~ 0.6), so its pull is the expansion to octupole order
-  // about the centre of mass, unsoftened here, evaluated in single precision (relative to the
-  // group, ~1e-7 relative). Close enough that the octupole stands far above that rounding.
+  // 64 particles in [0, 0.1]^3 and one more on the diagonal beyond them, last in Morton order and
+  // so a group of its own (groups are 16 consecutive particles): the cluster's node is one cell
+  // for it (b_max < theta d), so its pull is the expansion about the centre of mass, unsoftened
+  // here, evaluated in single precision (relative to the group, ~1e-7 relative): to octupole
+  // order where b_max > theta_q d, to quadrupole order farther out. Close enough that the
+  // octupole stands far above that rounding.
   Random random(9);
   std::vector<double> mass, position;
   for (int i = 0; i < 64; ++i) {
     mass.push_back(random.uniform(0.5, 1.5) / 64);
     for (int k = 0; k < 3; ++k) position.push_back(random.uniform(0, 0.1));
   }
-  mass.push_back(1e-3);
-  for (int k = 0; k < 3; ++k) position.push_back(0.4);
   const std::size_t far = 64;
   static_assert(TreeGravity::group_size == 16);
-  const std::vector<double> a = tree(mass, 0.0, 1e-4, position.data());
 
   // Analytic, from the Taylor series of -m/|r - d| (r = x - c, d = x_j - c, c the centre of mass):
   // a = -M r/r^3 + Q r/r^5 - (5/2) (r.Q.r) r/r^7 with Q = sum m (3 d d^T - |d|^2 I), plus the
@@ -121,49 +119,63 @@ TEST(TreeGravity, FarParticleFeelsTheClusterAsItsMultipoleExpansion) {
     for (int k = 0; k < 3; ++k) com[k] += mass[i] * position[3 * i + k];
   }
   for (double& v : com) v /= m;
-  double q[3][3] = {}, o[3][3][3] = {};
+  double q[3][3] = {}, o[3][3][3] = {}, b_max = 0;
   for (std::size_t i = 0; i < far; ++i) {
     double d[3], d2 = 0;
     for (int k = 0; k < 3; ++k) d[k] = position[3 * i + k] - com[k], d2 += d[k] * d[k];
+    b_max = std::max(b_max, std::sqrt(d2));
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
         q[k][l] += mass[i] * (3 * d[k] * d[l] - (k == l ? d2 : 0.0));
         for (int n = 0; n < 3; ++n) o[k][l][n] += mass[i] * d[k] * d[l] * d[n];
       }
   }
-  double r[3], r2 = 0;
-  for (int k = 0; k < 3; ++k) r[k] = 0.4 - com[k], r2 += r[k] * r[k];
-  const double rn = std::sqrt(r2);
-  double qr[3] = {0, 0, 0}, rqr = 0, u[3] = {0, 0, 0}, p = 0, t[3] = {0, 0, 0}, tr = 0;
-  for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) {
-      qr[k] += q[k][l] * r[l];
-      t[k] += o[l][l][k];
-      for (int n = 0; n < 3; ++n) u[k] += o[k][l][n] * r[l] * r[n];
+  const TreeGravity probe(mass, 0.0, 1e-4);
+  const double theta = probe.opening_angle(), theta_q = probe.quadrupole_angle();
+  ASSERT_LT(theta_q, theta);
+  // b_max / d halfway between theta_q and theta (octupole order), and at 0.7 theta_q (quadrupole).
+  for (const double ratio : {0.5 * (theta + theta_q), 0.7 * theta_q}) {
+    const bool octupole_order = ratio > theta_q;
+    std::vector<double> all = position, masses = mass;
+    masses.push_back(1e-3);
+    const double distance = b_max / ratio;
+    for (int k = 0; k < 3; ++k) all.push_back(com[k] + distance / std::sqrt(3.0));
+    const std::vector<double> a = tree(masses, 0.0, 1e-4, all.data());
+    double r[3], r2 = 0;
+    for (int k = 0; k < 3; ++k) r[k] = all[3 * far + k] - com[k], r2 += r[k] * r[k];
+    const double rn = std::sqrt(r2);
+    double qr[3] = {0, 0, 0}, rqr = 0, u[3] = {0, 0, 0}, p = 0, t[3] = {0, 0, 0}, tr = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        qr[k] += q[k][l] * r[l];
+        t[k] += o[l][l][k];
+        for (int n = 0; n < 3; ++n) u[k] += o[k][l][n] * r[l] * r[n];
+      }
+    for (int k = 0; k < 3; ++k) rqr += r[k] * qr[k], p += r[k] * u[k], tr += t[k] * r[k];
+    const std::vector<double> exact = direct(masses, 0.0, all.data());
+    double quadrupole_part = 0, octupole_part = 0, miss = 0, higher_orders = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double monopole = -m * r[k] / (r2 * rn);
+      const double quadrupole = qr[k] / (r2 * r2 * rn) - 2.5 * rqr * r[k] / (r2 * r2 * r2 * rn);
+      const double octupole = 7.5 * u[k] / std::pow(rn, 7) - 17.5 * p * r[k] / std::pow(rn, 9) -
+                              1.5 * t[k] / std::pow(rn, 5) + 7.5 * tr * r[k] / std::pow(rn, 7);
+      const double expected = monopole + quadrupole + (octupole_order ? octupole : 0.0);
+      quadrupole_part = std::max(quadrupole_part, std::abs(quadrupole));
+      octupole_part = std::max(octupole_part, std::abs(octupole));
+      miss = std::max(miss, std::abs(a[3 * far + k] - expected));
+      higher_orders = std::max(higher_orders, std::abs(exact[3 * far + k] - (monopole + quadrupole + octupole)));
     }
-  for (int k = 0; k < 3; ++k) rqr += r[k] * qr[k], p += r[k] * u[k], tr += t[k] * r[k];
-  const std::vector<double> exact = direct(mass, 0.0, position.data());
-  double quadrupole_part = 0, octupole_part = 0, miss = 0, higher_orders = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double monopole = -m * r[k] / (r2 * rn);
-    const double quadrupole = qr[k] / (r2 * r2 * rn) - 2.5 * rqr * r[k] / (r2 * r2 * r2 * rn);
-    const double octupole = 7.5 * u[k] / std::pow(rn, 7) - 17.5 * p * r[k] / std::pow(rn, 9) -
-                            1.5 * t[k] / std::pow(rn, 5) + 7.5 * tr * r[k] / std::pow(rn, 7);
-    const double expected = monopole + quadrupole + octupole;
-    quadrupole_part = std::max(quadrupole_part, std::abs(quadrupole));
-    octupole_part = std::max(octupole_part, std::abs(octupole));
-    miss = std::max(miss, std::abs(a[3 * far + k] - expected));
-    higher_orders = std::max(higher_orders, std::abs(exact[3 * far + k] - expected));
+    const double scale = m / r2;
+    SCOPED_TRACE(octupole_order ? "octupole order" : "quadrupole order");
+    EXPECT_LE(miss, 1e-6 * scale);  // single-precision far field (measured 6e-8)
+    EXPECT_GT(quadrupole_part, 1e-4 * scale);  // the terms are there and counted (or left out)
+    EXPECT_GT(octupole_part, 1e-5 * scale);
+    EXPECT_GT(octupole_part, 100 * miss);
+    // The pair sum differs from the octupole expansion by the next orders only, each smaller by
+    // about b/r: the tree did use the cell, not the pairs.
+    EXPECT_LT(higher_orders, 0.5 * octupole_part);
+    EXPECT_GT(higher_orders, 10 * miss);
   }
-  const double scale = m / r2;
-  EXPECT_LE(miss, 1e-6 * scale);  // single-precision far field (measured 6e-8)
-  EXPECT_GT(quadrupole_part, 1e-4 * scale);  // both terms are there and counted
-  EXPECT_GT(octupole_part, 1e-5 * scale);
-  EXPECT_GT(octupole_part, 100 * miss);
-  // The pair sum differs by the next orders only, each smaller by about b/r ~ 0.1 (measured
-  // 0.17 of the octupole at this distance): the tree did use the cell, not the pairs.
-  EXPECT_LT(higher_orders, 0.3 * octupole_part);
-  EXPECT_GT(higher_orders, 10 * miss);
 }
 
 TEST(TreeGravity, EveryGroupsInteractionListCoversEachParticleOnce) {
