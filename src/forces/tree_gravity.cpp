@@ -404,15 +404,37 @@ void TreeGravity::build(const double* position) {
     keyed[i] = {spread_bits(quantize(p[0], 0)) << 2 | spread_bits(quantize(p[1], 1)) << 1 | spread_bits(quantize(p[2], 2)),
                 static_cast<std::uint32_t>(i)};
   }
-  // By key, ties by index (a total order: the same sequence from any correct sort). A stable
-  // least-significant-digit radix sort, 11 bits a pass, keeps the index order of equal keys and
-  // is several times faster than a comparison sort at large N; passes whose digit is the same
-  // for every particle are skipped.
+  // By key, ties by index: a total order, so the same sequence from any correct sort. Between
+  // force passes the particles move little and the last pass's order is nearly sorted: an
+  // insertion sort from it does in ~0.1 ms what the radix sort below needs ~2 ms for, and gives
+  // the same sequence. It gives up after 8 moves per particle on average (a body torn apart).
   sorted_.resize(n);
+  bool sorted = false;
+  if (have_order_) {
+#pragma omp parallel for schedule(static) if (parallel)
+    for (std::size_t k = 0; k < n; ++k) sorted_[k] = keyed[order_[k]];
+    const auto before = [](const Keyed& a, const Keyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); };
+    std::size_t budget = 8 * n;
+    sorted = true;
+    for (std::size_t k = 1; k < n && sorted; ++k) {
+      const Keyed item = sorted_[k];
+      std::size_t at = k;
+      for (; at > 0 && before(item, sorted_[at - 1]); --at) sorted_[at] = sorted_[at - 1];
+      sorted_[at] = item;
+      if (k - at > budget) sorted = false;
+      budget -= std::min(budget, k - at);
+    }
+    if (sorted) keyed.swap(sorted_);
+  }
+  sorted_from_previous_order_ = sorted;
+  // Otherwise from the index order (the first pass, or after giving up): a stable
+  // least-significant-digit radix sort, 11 bits a pass, keeps the index order of equal keys and is
+  // several times faster than a comparison sort at large N; passes whose digit is the same for
+  // every particle are skipped.
   constexpr int digit_bits = 11;
   constexpr std::size_t buckets = std::size_t{1} << digit_bits;
   std::vector<std::uint32_t> count(buckets);
-  for (int shift = 0; shift < 3 * key_bits; shift += digit_bits) {
+  for (int shift = 0; !sorted && shift < 3 * key_bits; shift += digit_bits) {
     std::fill(count.begin(), count.end(), 0u);
     for (const Keyed& k : keyed) ++count[(k.key >> shift) & (buckets - 1)];
     if (*std::max_element(count.begin(), count.end()) == n) continue;
@@ -425,6 +447,7 @@ void TreeGravity::build(const double* position) {
     for (const Keyed& k : keyed) sorted_[count[(k.key >> shift) & (buckets - 1)]++] = k;
     keyed.swap(sorted_);
   }
+  have_order_ = true;
 #pragma omp parallel for schedule(static) if (parallel)
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t i = keyed[k].index;

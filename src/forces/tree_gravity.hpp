@@ -31,7 +31,9 @@ double opening_angle_for(double force_error);
 /// * Tree: Morton keys (21 bits per axis in the particles' bounding cube) sorted with the
 ///   particle index breaking ties, so the order, the nodes, their moments and everything below
 ///   are a pure function of positions and masses (rebuilt every call, no refit: a resumed run
-///   rebuilds the same tree), by a stable radix sort. Leaves hold <= leaf_capacity particles.
+///   rebuilds the same tree), by a stable radix sort, or by an insertion sort from the previous
+///   call's order when that is nearly sorted (the same unique sequence, ~20x faster between
+///   steps). Leaves hold <= leaf_capacity particles.
 /// * Moments of each node about its centre of mass c: mass M, the second moments
 ///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
 ///   b_max = max |x - c|: a leaf's from its particles, an inner node's M, c, S and O from its
@@ -109,6 +111,9 @@ class TreeGravity {
   /// total mass (to rounding) when the walk takes every particle exactly once (a check).
   double covered_mass(std::size_t group) const;
   std::size_t group_count() const { return groups_.size(); }
+  /// Whether the last build() sorted by an insertion sort from the previous call's order (true)
+  /// or by the radix sort from the index order (false): the same tree either way.
+  bool sorted_from_previous_order() const { return sorted_from_previous_order_; }
 
   double opening_angle() const { return theta_; }
   /// theta_q = theta^(5/3): a cell with b_max < theta_q d is summed to quadrupole order.
@@ -199,6 +204,8 @@ class TreeGravity {
   };
   std::vector<Keyed> keyed_, sorted_;  ///< [N] Morton keys being sorted (kept to save allocations)
   std::vector<std::uint32_t> order_;  ///< order_[k] = original index of the k-th particle in Morton order
+  bool have_order_ = false;           ///< order_ holds a pass's order (the next sort starts from it)
+  bool sorted_from_previous_order_ = false;
   std::vector<double> x_, y_, z_, m_; ///< positions and masses in Morton order
   std::vector<Node> nodes_;
   std::vector<Expansion> expansion_;  ///< [nodes_.size()]

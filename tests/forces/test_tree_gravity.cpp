@@ -195,6 +195,33 @@ TEST(TreeGravity, EveryGroupsInteractionListCoversEachParticleOnce) {
   }
 }
 
+TEST(TreeGravity, SortFromThePreviousOrderBuildsTheSameTreeAsAFreshSort) {
+  // The second build starts from the first one's order (an insertion sort); a fresh TreeGravity
+  // sorts from the index order (radix): the sorted sequence is unique, so the bits must agree.
+  // A small step keeps the previous order nearly sorted; a shuffle makes the insertion sort give
+  // up and fall back to the radix sort, with the same result.
+  const std::size_t n = 20000;
+  const Cloud c = random_ball(n, 21);
+  Random random(22);
+  std::vector<double> moved = c.position, shuffled = c.position;
+  for (double& x : moved) x += random.uniform(-1e-4, 1e-4);
+  for (std::size_t i = n - 1; i > 0; --i) {
+    const auto j = static_cast<std::size_t>(random.uniform() * static_cast<double>(i + 1));
+    for (std::size_t k = 0; k < 3; ++k) std::swap(shuffled[3 * i + k], shuffled[3 * j + k]);
+  }
+  for (const auto* next : {&moved, &shuffled}) {
+    TreeGravity stepping(c.mass, 0.01, 1e-4), fresh(c.mass, 0.01, 1e-4);
+    std::vector<double> a(3 * n), b(3 * n);
+    stepping.accelerations(c.position.data(), a.data());
+    EXPECT_FALSE(stepping.sorted_from_previous_order());  // nothing to start from
+    stepping.accelerations(next->data(), a.data());
+    EXPECT_EQ(stepping.sorted_from_previous_order(), next == &moved);
+    fresh.accelerations(next->data(), b.data());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+    EXPECT_EQ(stepping.potential_energy(next->data()), fresh.potential_energy(next->data()));
+  }
+}
+
 TEST(TreeGravity, SameBitsOnOneAndTwoThreads) {
   const Cloud c = random_ball(6000, 17);
   omp_set_num_threads(1);
