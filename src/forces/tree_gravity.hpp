@@ -59,8 +59,9 @@ double opening_angle_for(double force_error);
 ///   below the target error); the potential (energy samples) keeps double precision.
 /// * Groups: runs of group_size particles consecutive in Morton order (spatially compact, all
 ///   vectors full) walk the tree once for all their particles; each particle then sums its
-///   group's cells in walk order and, apart, its group's particles in walk order (both 16 per
-///   vector of floats), then adds the two in double. Every particle's sum
+///   group's quadrupole-order cells, then its octupole-order cells, each in walk order, and,
+///   apart, its group's particles in walk order (all 16 per vector of floats), then adds the
+///   two in double. Every particle's sum
 ///   has one fixed order: the same bits for any thread count, no atomics.
 /// * Walk: breadth first over child blocks (each inner node's <= 8 children side by side), the
 ///   acceptance test of a whole block in one vector (AVX-512) or lane by lane (portable path,
