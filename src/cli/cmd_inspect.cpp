@@ -15,8 +15,7 @@
 namespace tidalcrust {
 
 int command_inspect(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust inspect", "Validate a checkpoint and print its stage, counts, Table 3 "
-                                                 "quantities and conservation totals");
+  cxxopts::Options options = command_options("inspect");
   options.add_options()("json", "print one JSON object (values, their units, the full fingerprint)")(
       "fingerprint", "print the stage fingerprint's full text (the table shows its hash)")("h,help", "show this help")(
       "checkpoint", "checkpoint file", cxxopts::value<std::vector<std::string>>());
