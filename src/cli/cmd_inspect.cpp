@@ -35,7 +35,9 @@ int command_inspect(int argc, char** argv) {
   const Checkpoint checkpoint = read_checkpoint(file);
   if (parsed.count("fingerprint")) {
     const std::string& text = checkpoint.stage.fingerprint;
-    fmt::print("{}", text.empty() ? "none (not written by run)\n" : text.back() == '\n' ? text : text + "\n");
+    fmt::print("{}", text.empty()          ? "none (written by a single-stage command of an older version)\n"
+                     : text.back() == '\n' ? text
+                                           : text + "\n");
     return exit_ok;
   }
   const InspectReport report = build_inspect_report(checkpoint, file);
