@@ -42,8 +42,9 @@ constexpr std::array<StageKind, stage_count> kinds = {{
      .prepare = nullptr,
      .doing =
          [](const Config& config) -> std::string {
-           return config.stretch.hydrostatic_support == "compress" ? "stretching (interior compressed to its pressure)"
-                                                                   : "stretching and strengthening";
+           return config.stretch.hydrostatic_support == HydrostaticSupport::compress
+                      ? "stretching (interior compressed to its pressure)"
+                      : "stretching and strengthening";
          },
      .written =
          [](const Checkpoint& c) {

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <concepts>
 #include <fstream>
-#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <set>
@@ -54,16 +53,17 @@ constexpr Readers changes_no_result{};
 // a direct run's fingerprints stay what they were before the tree code existed. A [material]
 // body derives interior.radius (read by stretch) from shell.enabled (resolve_material).
 constexpr Condition tree_gravity{"gravity.method = \"tree\"",
-                                 [](const Config& c) { return c.gravity.method == "tree"; }};
+                                 [](const Config& c) { return c.gravity.method == GravityMethod::tree; }};
 constexpr Condition material_body{"a [material] body", [](const Config& c) { return c.from_material(); }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
 /// The description of one configuration key whose value has type T (double, std::int64_t,
-/// std::uint64_t, bool or std::string): where it lives in the TOML, the stages whose results it
-/// changes (the stage fingerprints are made of it: model/stage_fingerprint.cpp), its unit and
-/// meaning (the comment to_toml writes; none when `unit` is empty), and for numbers the accepted
-/// range [min, max], or (min, max] when `open_min`.
+/// std::uint64_t, bool, std::string or a closed choice of model/choices.hpp): where it lives in
+/// the TOML, the stages whose results it changes (the stage fingerprints are made of it:
+/// model/stage_fingerprint.cpp), its unit and meaning (the comment to_toml writes; none when `unit`
+/// is empty; a choice's is its table's, choice_doc), and for numbers the accepted range [min, max],
+/// or (min, max] when `open_min`.
 template <class T>
 struct Key {
   using type = T;
@@ -162,9 +162,7 @@ void visit_keys(C& c, V&& visit) {
   key(c.stretch.cross_compression,
       {"stretch", "cross_compression", reads(stretch), "-", "extra compressive strain given to cross springs", 0, 0.5});
   key(c.stretch.hydrostatic_support,
-      {"stretch", "hydrostatic_support", reads(stretch), "-",
-       "\"strengthen\" (paper: stiffer core springs) or \"compress\" (pre-strain at the material's stiffness; "
-       "default for [material])"});
+      {"stretch", "hydrostatic_support", reads(stretch), "-", choice_doc<HydrostaticSupport>()});
 
   key(c.relax.damping, {"relax", "damping", reads(relax), "1/t_grav", "gamma during relaxation", 0, 1e4});
   key(c.relax.duration, {"relax", "duration", reads(relax), "t_grav", "T, length of the relaxation run", 0, 1e4});
@@ -190,9 +188,7 @@ void visit_keys(C& c, V&& visit) {
       {"relax", "probe_damping", reads(relax), "1/t_grav", "gamma of the stability probe", 0, 1e4});
   key(c.relax.probe_duration,
       {"relax", "probe_duration", reads(relax), "t_grav", "length of the stability probe", 0, 1e4});
-  key(c.relax.crust_support,
-      {"relax", "crust_support", reads(relax), "-",
-       "\"paper\" (crust carries the cross springs' sideways push) or \"balanced\" (no crust pre-stress)"});
+  key(c.relax.crust_support, {"relax", "crust_support", reads(relax), "-", choice_doc<CrustSupport>()});
 
   // The stability probe of relax fails springs as an encounter does: it reads the failure rule's keys.
   key(c.encounter.damping, {"encounter", "damping", reads(encounter), "1/t_grav", "gamma during encounters", 0, 1e4});
@@ -212,8 +208,7 @@ void visit_keys(C& c, V&& visit) {
       {"encounter", "sample_interval", reads(relax, encounter), "steps", "steps between timeseries samples", 1,
        1'000'000'000});
   key(c.encounter.failure_rule,
-      {"encounter", "failure_rule", reads(relax, encounter), "-",
-       "\"paper\" (one spring per fail_interval) or \"local\" (one per neighbourhood per relaxation interval)"});
+      {"encounter", "failure_rule", reads(relax, encounter), "-", choice_doc<FailureRuleKind>()});
   key(c.encounter.exclusion_radius,
       {"encounter", "exclusion_radius", reads(relax, encounter), "L_S",
        "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3, true});
@@ -223,11 +218,9 @@ void visit_keys(C& c, V&& visit) {
 
   // The kernel gives other bits but the same physics: it is recorded and checked on its own
   // (stages/gravity_kernel_check.hpp), not a fingerprint key.
-  key(c.gravity.kernel,
-      {"gravity", "kernel", changes_no_result, "-",
-       "\"fast\" (AVX-512 estimates where available) or \"portable\" (the same bits on every x86-64 CPU)"});
+  key(c.gravity.kernel, {"gravity", "kernel", changes_no_result, "-", choice_doc<GravityKernel>()});
   key(c.gravity.method, {"gravity", "method", changes_no_result.and_when(tree_gravity, stretch, relax, encounter), "-",
-                         "\"direct\" (every pair, the reference) or \"tree\" (octree, quadrupoles)"});
+                         choice_doc<GravityMethod>()});
   key(c.gravity.force_error,
       {"gravity", "force_error", changes_no_result.and_when(tree_gravity, stretch, relax, encounter), "-",
        "tree: target median relative force error per particle", 0, 0.5, true});
@@ -331,6 +324,10 @@ std::string toml_text(const std::string& s) {
   out << toml::value<std::string>(s);
   return out.str();
 }
+template <Choice E>
+std::string toml_text(E value) {
+  return toml_text(std::string(choice_name(value)));
+}
 
 /// "name = value  # [unit] doc\n" ("name = value\n" without a unit); nothing for an unset
 /// optional key.
@@ -347,9 +344,10 @@ std::string toml_line(const F& field, const Key<T>& key) {
 
 // ---- reading and checking values --------------------------------------------------------------
 
-/// The value of a TOML node for `key`; `where` prefixes the message of a wrong type.
+/// The value of a TOML node for `key`; `where` prefixes the message of a wrong type, `origin`
+/// (the file or --set) that of a value that is not one of a choice's.
 template <class T>
-T read_value(const toml::node& node, const Key<T>& key, const std::string& where) {
+T read_value(const toml::node& node, const Key<T>& key, const std::string& where, const std::string& origin) {
   auto wrong = [&](const char* expected) {
     return InputError(fmt::format("{}: '{}' must be {}", where, key.name, expected));
   };
@@ -368,6 +366,10 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
   } else if constexpr (std::is_same_v<T, bool>) {
     if (auto b = node.value_exact<bool>()) return *b;
     throw wrong("true or false");
+  } else if constexpr (Choice<T>) {
+    if (auto s = node.value_exact<std::string>())
+      return parse_choice<T>(*s, fmt::format("{}: {}.{}", origin, key.section, key.name));
+    throw wrong(fmt::format("one of: {}", choice_names<T>()).c_str());
   } else {
     static_assert(std::is_same_v<T, std::string>);
     if (auto s = node.value_exact<std::string>()) return *s;
@@ -376,14 +378,14 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
 }
 
 /// Sets the key `name` of `section` in `target` (a Config or an Encounter) from a TOML node;
-/// false when there is no such key.
+/// false when there is no such key. `where` and `origin`: as for read_value.
 template <class Target>
 bool set_key(Target& target, std::string_view section, std::string_view name, const toml::node& node,
-             const std::string& where) {
+             const std::string& where, const std::string& origin) {
   bool found = false;
   visit_keys(target, [&](auto& field, const auto& key) {
     if (key.section != section || key.name != name) return;
-    field = read_value(node, key, where);
+    field = read_value(node, key, where, origin);
     found = true;
   });
   return found;
@@ -404,13 +406,6 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
   }
 }
 
-void check_choice(const std::string& value, std::initializer_list<std::string_view> choices,
-                  const std::string& what) {
-  for (std::string_view choice : choices)
-    if (value == choice) return;
-  throw InputError(fmt::format("{} = \"{}\" is not one of: {}", what, value, fmt::join(choices, ", ")));
-}
-
 void check_encounter_name(const std::string& name, const std::string& origin) {
   if (name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", origin));
   for (char ch : name)
@@ -429,7 +424,7 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
     if (!table) throw InputError(where + ": must be a table");
     Encounter& e = encounters.emplace_back();
     for (auto&& [k, value] : *table)
-      if (!set_key(e, "encounters", k.str(), value, where))
+      if (!set_key(e, "encounters", k.str(), value, where, origin))
         throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
                                      known_keys<Encounter>("encounters")));
   }
@@ -661,13 +656,7 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.settle_duration > config.relax.duration)
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
-  check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
-  check_choice(config.stretch.hydrostatic_support, {"strengthen", "compress"},
-               fmt::format("{}: stretch.hydrostatic_support", origin));
-  check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
-  check_choice(config.gravity.kernel, {"fast", "portable"}, fmt::format("{}: gravity.kernel", origin));
-  check_choice(config.gravity.method, {"direct", "tree"}, fmt::format("{}: gravity.method", origin));
-  if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
+  if (config.relax.crust_support == CrustSupport::balanced && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
                                  origin));
@@ -710,7 +699,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));
     for (auto&& [k, node] : *table)
-      if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section)))
+      if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section), origin))
         throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
                                      known_keys<Config>(section)));
   }
@@ -724,7 +713,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   // A [material] body keeps its moduli at every resolution unless the file asks otherwise.
   const toml::table* stretch = root["stretch"].as_table();
   if (config.from_material() && !(stretch && stretch->get("hydrostatic_support") != nullptr))
-    config.stretch.hydrostatic_support = "compress";
+    config.stretch.hydrostatic_support = HydrostaticSupport::compress;
   validate(config, origin);
   return config;
 }
@@ -759,7 +748,7 @@ void apply_override(Config& config, const std::string& assignment) {
   }
   const toml::node& node = *parsed.get("v");
   if (section != "encounters") {
-    if (!set_key(config, section, key, node, "--set"))
+    if (!set_key(config, section, key, node, "--set", "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
     refuse_derived_key(config, section, key, where);
     if (section == "integrator" && key == "dt") config.choose_dt = false;
@@ -773,7 +762,7 @@ void apply_override(Config& config, const std::string& assignment) {
   const auto e = std::find_if(config.encounters.begin(), config.encounters.end(),
                               [&](const Encounter& spec) { return spec.name == name; });
   if (e == config.encounters.end()) throw InputError(fmt::format("{}: no encounter named '{}'", where, name));
-  if (!set_key(*e, "encounters", key, node, where))
+  if (!set_key(*e, "encounters", key, node, where, where))
     throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
 }
 
@@ -784,6 +773,7 @@ constexpr const char* type_name() {
   if constexpr (std::is_same_v<T, double>) return "number";
   else if constexpr (std::is_same_v<T, bool>) return "boolean";
   else if constexpr (std::is_same_v<T, std::string>) return "string";
+  else if constexpr (Choice<T>) return "choice";
   else return "integer";
 }
 
@@ -805,6 +795,7 @@ KeyInfo key_info(const F& field, const Key<T>& key, const Config& config) {
   info.doc = key.doc;
   if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
     info.range = fmt::format("{}{}, {}]", key.open_min ? '(' : '[', range_text(key.min), range_text(key.max));
+  if constexpr (Choice<T>) info.range = fmt::format("one of: {}", choice_names<T>());
   info.optional = is_optional<F>;
   if constexpr (is_optional<F>) {
     if (field) info.value = toml_text(*field);

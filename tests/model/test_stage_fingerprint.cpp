@@ -53,16 +53,18 @@ std::string changed_by(const std::string& assignment) {
 /// Other values to try for a key: flipped, scaled, shifted, the middle of its range, and for the
 /// closed choices their other names.
 std::vector<std::string> other_values(const KeyInfo& key) {
-  static const std::map<std::string, std::vector<std::string>> choices = {
-      {"workflow.name", {"other"}},
-      {"stretch.hydrostatic_support", {"compress", "strengthen"}},
-      {"relax.crust_support", {"balanced", "paper"}},
-      {"encounter.failure_rule", {"local", "paper"}},
-      {"gravity.kernel", {"portable", "fast"}},
-      {"gravity.method", {"tree", "direct"}},
-      {"encounters.name", {"renamed"}}};
   if (key.type == "boolean") return {key.value == "true" ? "false" : "true"};
-  if (key.type == "string") return choices.at(key.section + "." + key.name);
+  if (key.type == "string") return {"renamed"};  // workflow.name, encounters.name
+  if (key.type == "choice") {  // the other names of its table, from "one of: a, b"
+    std::vector<std::string> names;
+    std::string list = key.range.substr(key.range.find(": ") + 2);
+    for (std::size_t at = 0; at != std::string::npos;) {
+      const auto comma = list.find(", ", at);
+      names.push_back(list.substr(at, comma == std::string::npos ? comma : comma - at));
+      at = comma == std::string::npos ? comma : comma + 2;
+    }
+    return names;
+  }
   std::vector<std::string> out;
   if (key.type == "integer") {
     const long long v = key.value ? std::stoll(*key.value) : 2;
@@ -124,7 +126,7 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
       const std::string full = key.section + "." + key.name;
       covered.try_emplace(full, 0);
       for (const std::string& value : other_values(key)) {
-        if ((key.type == "string" ? "'" + value + "'" : value) == key.value) continue;
+        if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) continue;
         Config changed = base;
         try {
           apply_override(changed, path + "=" + value);
