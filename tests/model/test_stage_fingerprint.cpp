@@ -16,6 +16,7 @@
 #include "model/config.hpp"
 #include "model/stage_fingerprint.hpp"
 #include "support/files.hpp"
+#include "support/key_values.hpp"
 
 using namespace tidalcrust;
 
@@ -48,32 +49,6 @@ std::string changed_by(const std::string& assignment) {
   Config changed = base;
   apply_override(changed, assignment);
   return stage_list(changed_between(base, changed));
-}
-
-/// Other values to try for a key: flipped, scaled, shifted, the middle of its range, and for the
-/// closed choices their other names.
-std::vector<std::string> other_values(const KeyInfo& key) {
-  if (key.type == "boolean") return {key.value == "true" ? "false" : "true"};
-  if (key.type == "string") return {"renamed"};  // workflow.name, encounters.name
-  if (key.type == "choice") {  // the other names of its table, from "one of: a, b"
-    std::vector<std::string> names;
-    std::string list = key.range.substr(key.range.find(": ") + 2);
-    for (std::size_t at = 0; at != std::string::npos;) {
-      const auto comma = list.find(", ", at);
-      names.push_back(list.substr(at, comma == std::string::npos ? comma : comma - at));
-      at = comma == std::string::npos ? comma : comma + 2;
-    }
-    return names;
-  }
-  std::vector<std::string> out;
-  if (key.type == "integer") {
-    const long long v = key.value ? std::stoll(*key.value) : 2;
-    for (long long w : {v + 1, v - 1, 2 * v, 1LL, 3LL}) out.push_back(fmt::format("{}", w));
-  } else {
-    const double v = key.value ? std::stod(*key.value) : 0.3;
-    for (double w : {v * 1.25, v * 0.8, v + 0.01, 0.3, 0.05, 1.5}) out.push_back(fmt::format("{}", w));
-  }
-  return out;
 }
 
 /// The configurations the key test starts from: paper-T (direct gravity, the paper's failure rule,
@@ -125,7 +100,7 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
     for (const auto& [key, path] : keys) {
       const std::string full = key.section + "." + key.name;
       covered.try_emplace(full, 0);
-      for (const std::string& value : other_values(key)) {
+      for (const std::string& value : test_support::other_key_values(key)) {
         if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) continue;
         Config changed = base;
         try {

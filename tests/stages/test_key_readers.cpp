@@ -21,6 +21,7 @@
 #include "model/config.hpp"
 #include "model/stage_fingerprint.hpp"
 #include "stages/stage_kinds.hpp"
+#include "support/key_values.hpp"
 #include "support/quick_workflow.hpp"
 
 using namespace tidalcrust;
@@ -192,31 +193,6 @@ Chain chain_of(const Config& config) {
   return chain;
 }
 
-/// Other values to try for a key (the first valid one is used).
-std::vector<std::string> other_values(const KeyInfo& key) {
-  if (key.type == "boolean") return {key.value == "true" ? "false" : "true"};
-  if (key.type == "string") return {"renamed"};  // workflow.name, encounters.name
-  if (key.type == "choice") {  // the other names of its table, from "one of: a, b"
-    std::vector<std::string> names;
-    std::string list = key.range.substr(key.range.find(": ") + 2);
-    for (std::size_t at = 0; at != std::string::npos;) {
-      const auto comma = list.find(", ", at);
-      names.push_back(list.substr(at, comma == std::string::npos ? comma : comma - at));
-      at = comma == std::string::npos ? comma : comma + 2;
-    }
-    return names;
-  }
-  std::vector<std::string> out;
-  if (key.type == "integer") {
-    const long long v = key.value ? std::stoll(*key.value) : 2;
-    for (long long w : {v + 1, v - 1, 2 * v, 3LL}) out.push_back(fmt::format("{}", w));
-  } else {
-    const double v = key.value ? std::stod(*key.value) : 0.3;
-    for (double w : {v * 1.25, v * 0.8, v + 0.01, 0.3}) out.push_back(fmt::format("{}", w));
-  }
-  return out;
-}
-
 /// Keys that change bits but are deliberately no fingerprint key, and why.
 const std::set<std::string> not_a_result = {
     // Other bits with AVX-512 (the same physics); recorded in each checkpoint and checked on its own
@@ -267,7 +243,7 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
     for (const auto& [key, path] : keys) {
       const std::string full = key.section + "." + key.name;
       if (!only_section.empty() && key.section != only_section) continue;
-      for (const std::string& value : other_values(key)) {
+      for (const std::string& value : test_support::other_key_values(key)) {
         if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) continue;
         Config changed = base;
         try {
