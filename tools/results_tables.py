@@ -127,6 +127,12 @@ class Program:
     def compare(self, a, b):
         return self.json_of("compare", a, b, "--json")
 
+    def load_text(self, path):
+        path = Path(path)
+        if not path.is_file():
+            raise Failure(f"{path}: missing (run the command its table names)")
+        return path.read_text()
+
     def load(self, path):
         path = Path(path)
         if path not in self.cache:
@@ -751,6 +757,53 @@ def validate_material(p):
                      "tidalcrust validate workflows/material-L6.toml --measure love")
             + measured_line(p, *[f / "body" / "relax.h5" for _, f in columns])
             + validation_lines(p, columns))
+
+
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    return None if not n else (v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2]))
+
+
+BENCH_RUNS = [("paper-T", "tidalcrust bench --config workflows/paper-T.toml --steps 20 --json"),
+              ("paper-T-tree", "tidalcrust bench --config workflows/paper-T.toml --steps 20 --set gravity.method=tree "
+                               "--json"),
+              ("bench-L5", "tidalcrust bench --config workflows/bench-L5.toml --steps 10 --repeats 3 "
+                           "--textbook-steps 0 --json"),
+              ("bench-L6", "tidalcrust bench --config workflows/bench-L6.toml --steps 5 --repeats 3 "
+                           "--textbook-steps 0 --direct-steps 1 --json")]
+
+
+@full_table("speed-here")
+def speed_here(p):
+    """Medians over the runs bench/NAME-<i>.json of the runs folder; ratios taken run by run."""
+    rows, lines = [], []
+    for name, command in BENCH_RUNS:
+        runs = [json.loads(f.read_text()) for f in sorted((p.work / "bench").glob(f"{name}-*.json"))]
+        if not runs:
+            continue
+        lines.append(command + f"   ({len(runs)} runs)")
+        step = [r["ms_per_step"] for r in runs]
+        tree = runs[0]["gravity_method"] == "tree"
+        other = [r["direct_ms_per_step"] if tree else r.get("textbook_ms_per_step") for r in runs]
+        ratio = [r["speedup_vs_direct"] if tree else r.get("speedup") for r in runs]
+        portable = [r["portable_over_fast"] for r in runs if r.get("portable_over_fast")]
+        rows.append([name, count(runs[0]["particles"]), runs[0]["gravity_method"], str(len(runs)),
+                     f"{sig(median(step), 3)} ({sig(min(step), 3)}-{sig(max(step), 3)})",
+                     "-" if None in other else f"{sig(median(other), 3)} ({'direct' if tree else 'textbook'})",
+                     "-" if None in ratio else fixed(median(ratio), 2) + "x",
+                     f"{sci(median([r['force_error']['median'] for r in runs]), 1)} / "
+                     f"{sci(median([r['force_error']['p99'] for r in runs]), 1)}" if tree else "-",
+                     fixed(median(portable), 2) + "x" if portable else "-",
+                     fixed(max(r["peak_memory_mb"] for r in runs), 0) + " MB"])
+    kernel = runs[0]["gravity_kernel"] if rows else "-"
+    version = p.load_text(p.work / "bench" / "version.txt").strip()
+    return (commands(*lines) + [f"Measured with `{version}`.", "",
+                                f"Gravity kernel {kernel}, {runs[0]['threads']} threads; ms per full step "
+                                "(springs with damping, hinges, gravity, perturber), median and range over the runs.", ""]
+            + table(["body", "N", "gravity", "runs", "full step (ms)", "the other step (ms)",
+                     "speed-up (median of the runs' ratios)", "tree force error median / p99",
+                     "portable kernel / fast", "peak memory"], rows))
 
 
 # ---------------------------------------------------------------- pages
