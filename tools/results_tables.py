@@ -166,7 +166,10 @@ FAILURE_COLUMNS = ["failed shell springs", "failed area", "total crack length", 
 def measured_by(p, checkpoint):
     """Which code and kernel wrote a checkpoint: 'commit c5d9b8c26cb7, gravity kernel fast/generic'."""
     prov = p.inspect(checkpoint)["provenance"]
-    return f"commit {prov['git_commit']}, gravity kernel {prov['gravity_kernel']}"
+    kernel = prov.get("gravity_kernel", "")
+    if not kernel or kernel.startswith("none"):  # a build: no gravity computed yet
+        return f"commit {prov['git_commit']}"
+    return f"commit {prov['git_commit']}, gravity kernel {kernel}"
 
 
 # ---------------------------------------------------------------- the quick tables
