@@ -152,7 +152,7 @@ def failures_row(f):
         count(f["count"]),
         pct(f["failed_area_fraction"]),
         fixed(f["total_crack_length"], 2) + " R",
-        fixed(f["longest_crack"], 2) + " R",
+        fixed(f["longest_crack"], 2) + " R" if f["count"] else "-",
         count(f["clusters"]),
         pct(f["hemisphere_fraction"]) if f["count"] else "-",
         fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg" if f["count"] else "-",
@@ -284,7 +284,8 @@ def quick_paper(p):
 def relaxed_row(p, label, relax):
     r = p.inspect(relax)["record"]
     probe = f"{r['probe_failures']} at eps_S = {short(r['probe_failure_strain'])}"
-    for eps, n in zip(r.get("probe_other_strains", []), r.get("probe_other_failures", [])):
+    others = sorted(zip(r.get("probe_other_strains", []), r.get("probe_other_failures", [])), reverse=True)
+    for eps, n in others:  # largest strain first, as the stored order is the configuration's
         probe += f", {int(n)} at {short(eps)}"
     return [label, sci(r["max_shell_strain"], 1), sci(r["internal_kinetic_energy"], 1),
             fixed(r["mean_shell_radius"], 4) + " R", probe, sci(r["probe_max_shell_strain"], 1)]
