@@ -381,8 +381,9 @@ def validation_lines(p, columns):
         out += [r for k, r in extra if k == key_row[0]]
     lines = table(header, out)
     materials = [f"{label} E_I = {fixed(d['material']['youngs_modulus'], 3)} e_g, "
-                 f"V_IP = {fixed(d['material']['p_wave_speed'], 3)}, L_S = {fixed(d['material']['shell_spacing'], 4)} R"
-                 for label, d in docs]
+                 f"V_IP = {fixed(d['material']['p_wave_speed'], 3)}"
+                 + (f", L_S = {fixed(d['material']['shell_spacing'], 4)} R" if d['material']['shell_spacing'] else "")
+                 for label, d in docs]  # a body without a crust has no L_S
     lines += ["", "Material (eq. 15 on the relaxed interior): " + "; ".join(materials) + "."]
     measured = [(label, d["network_moduli"]) for label, d in docs if "youngs_factor" in d.get("network_moduli", {})]
     if measured:
