@@ -25,6 +25,7 @@
 #include "io/checkpoint_names.hpp"
 #include "io/state_hash.hpp"
 #include "io/checkpoint_file.hpp"
+#include "model/stage_fingerprint.hpp"
 
 namespace tidalcrust {
 
@@ -52,7 +53,7 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
         throw InputError(fmt::format("{}: stage '{}' is not an encounter", found.file.string(), c->stage.name()));
       require_same_body(final_checkpoint.body, c->body, from.string(), found.file.string());
       // A snapshot left by a superseded run of this encounter (other values, dt or parent).
-      if (c->stage.fingerprint != final_checkpoint.stage.fingerprint ||
+      if (!same_fingerprint(c->stage.fingerprint, final_checkpoint.stage.fingerprint) ||
           c->stage.parent_hash != final_checkpoint.stage.parent_hash)
         throw InputError(fmt::format("{}: belongs to another run of the encounter (its fingerprint or parent differs "
                                      "from {})", found.file.string(), from.string()));

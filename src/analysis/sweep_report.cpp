@@ -59,7 +59,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
       if (!c.stage.complete) {
         row.status = SweepStatus::unreadable;
         row.note = file.string() + " is not a finished checkpoint";
-      } else if (c.stage.fingerprint != encounter_fingerprint(encounter_config, spec) ||
+      } else if (!same_fingerprint(c.stage.fingerprint, stage_fingerprint(encounter_config, StageId::encounter, &spec)) ||
                  c.stage.parent_hash != relaxed_hash) {
         row.status = SweepStatus::stale;
         row.note = c.stage.parent_hash != relaxed_hash ? "branched from another relaxed body; rerun to refresh"

@@ -18,9 +18,8 @@ namespace tidalcrust {
 namespace fs = std::filesystem;
 
 int command_analyze(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust analyze",
-                           "Fracture statistics, figures (PNG + SVG) and summary.json of an encounter checkpoint.\n"
-                           "Snapshots ENC.snap-<step>.h5 beside ENC.h5 form the hemisphere snapshot row.");
+  cxxopts::Options options =
+      command_options("analyze", "Snapshots ENC.snap-<step>.h5 beside ENC.h5 form the hemisphere snapshot row.");
   options.add_options()
       ("from", "encounter checkpoint (ENC.h5)", cxxopts::value<std::string>())
       ("out", "output folder for figures and summary.json", cxxopts::value<std::string>())

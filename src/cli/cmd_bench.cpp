@@ -155,10 +155,9 @@ int bench_random(std::int64_t count, const Config& config, int repeats, bool jso
 }  // namespace
 
 int command_bench(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust bench",
-                           "Time full integration steps (springs, hinges, gravity, perturber) of the body built "
-                           "from --config (default workflows/paper-T.toml, relative to the current folder), and the "
-                           "textbook step at the same N in the same run.");
+  cxxopts::Options options =
+      command_options("bench", "All forces (springs, hinges, gravity, perturber) of the body built from --config "
+                               "(default workflows/paper-T.toml, relative to the current folder).");
   add_common_options(options);
   options.add_options("bench")
       ("steps", "steps per timed repeat", cxxopts::value<std::int64_t>()->default_value("20"))

@@ -105,12 +105,12 @@ int compare_resolutions(const cxxopts::ParseResult& parsed, const std::vector<st
 }  // namespace
 
 int command_compare(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust compare",
-                           "Compare the fractures of two encounter checkpoints branched from the same body:\n"
-                           "overlap of failed springs (Jaccard index), angular distributions about the\n"
-                           "subsatellite point (Kolmogorov-Smirnov distance), cracks and state hashes.\n"
-                           "With --resolution: the same encounter at several shell levels (two or more\n"
-                           "checkpoints, any order), a convergence table and, with --out, its files.");
+  cxxopts::Options options =
+      command_options("compare",
+                      "Two checkpoints: overlap of failed springs (Jaccard index), angular distributions about the\n"
+                      "subsatellite point (Kolmogorov-Smirnov distance), cracks and state hashes.\n"
+                      "With --resolution: the same encounter at several shell levels (two or more\n"
+                      "checkpoints, any order), a convergence table and, with --out, its files.");
   options.add_options()
       ("json", "print one JSON object")
       ("resolution", "compare one encounter at several resolutions: rows sorted by shell node count")

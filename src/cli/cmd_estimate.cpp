@@ -176,9 +176,7 @@ Json layered_json(double core_radius, double density_ratio) {
 }  // namespace
 
 int command_estimate(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust estimate",
-                           "Physical units of a body (paper Table 1) and the impulse estimates of a tidal "
-                           "encounter (paper section 1.1). Without --body or --mass: all Table 1 bodies.");
+  cxxopts::Options options = command_options("estimate", "Without --body or --mass: all Table 1 bodies.");
   options.add_options()
       ("body", "a Table 1 body: Tethys, Dione, Rhea, Ariel, Titania, Charon, Mars", cxxopts::value<std::string>())
       ("mass", "body mass (kg), with --radius", cxxopts::value<std::string>())

@@ -15,8 +15,7 @@
 namespace tidalcrust {
 
 int command_inspect(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust inspect", "Validate a checkpoint and print its stage, counts, Table 3 "
-                                                 "quantities and conservation totals");
+  cxxopts::Options options = command_options("inspect");
   options.add_options()("json", "print one JSON object (values, their units, the full fingerprint)")(
       "fingerprint", "print the stage fingerprint's full text (the table shows its hash)")("h,help", "show this help")(
       "checkpoint", "checkpoint file", cxxopts::value<std::vector<std::string>>());
@@ -36,7 +35,9 @@ int command_inspect(int argc, char** argv) {
   const Checkpoint checkpoint = read_checkpoint(file);
   if (parsed.count("fingerprint")) {
     const std::string& text = checkpoint.stage.fingerprint;
-    fmt::print("{}", text.empty() ? "none (not written by run)\n" : text.back() == '\n' ? text : text + "\n");
+    fmt::print("{}", text.empty()          ? "none (written by a single-stage command of an older version)\n"
+                     : text.back() == '\n' ? text
+                                           : text + "\n");
     return exit_ok;
   }
   const InspectReport report = build_inspect_report(checkpoint, file);

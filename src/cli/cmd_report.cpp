@@ -35,9 +35,8 @@ std::string q_text(double q) { return std::isfinite(q) ? fmt::format("{:g}", q) 
 }  // namespace
 
 int command_report(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust report",
-                           "Table (CSV, JSON) and phase diagrams of every encounter of a workflow that run has "
-                           "computed; unfinished or missing ones are listed as such.");
+  cxxopts::Options options =
+      command_options("report", "The table as CSV and JSON; unfinished or missing encounters are listed as such.");
   options.positional_help("WORKFLOW.toml");
   options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
       "out", "the output root run used (default checkpoints/<workflow name>)", cxxopts::value<std::string>())(

@@ -117,7 +117,7 @@ int run_encounters_in_parallel(const ParallelEncounters& p, const std::vector<En
 }  // namespace
 
 int command_run(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust run", "Run a whole workflow; rerun the same command to resume.");
+  cxxopts::Options options = command_options("run");
   options.positional_help("WORKFLOW.toml");
   options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
       "out", "output root (default checkpoints/<workflow name>)", cxxopts::value<std::string>())(

@@ -226,8 +226,7 @@ std::string sbatch(const fs::path& program, const std::vector<std::string>& extr
 }  // namespace
 
 int command_submit(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust submit",
-                           "Submit a workflow as Slurm jobs: the body chain, then a job array of its encounters.");
+  cxxopts::Options options = command_options("submit");
   options.positional_help("WORKFLOW.toml --slurm");
   options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
       "slurm", "submit to Slurm with sbatch (the one batch system supported)")(

@@ -103,9 +103,9 @@ Json row_json(const Row& r) {
 }  // namespace
 
 int command_validate(int argc, char** argv) {
-  cxxopts::Options options("tidalcrust validate",
-                           "Run (or reuse) the workflow's body chain and compare the relaxed body with continuum "
-                           "elasticity: breathing period, Love number h2, flexural rigidity, P-wave travel time.");
+  cxxopts::Options options = command_options(
+      "validate", "Runs (or reuses) the body chain; measures the breathing period, Love number h2, flexural "
+                  "rigidity and P-wave travel time.");
   options.positional_help("WORKFLOW.toml");
   options.add_options()("workflow", "workflow TOML file", cxxopts::value<std::string>())(
       "out", "output root (default checkpoints/<workflow name>); results in <out>/validate/",

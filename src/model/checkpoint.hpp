@@ -68,7 +68,8 @@ struct StageInfo {
   StepClock clock;             ///< time axis: clock.start_step is where the stage began, clock.dt its time step
   std::int64_t end_step = 0;   ///< global step at which the stage ends
   std::string parent_hash;     ///< state_hash of the checkpoint the stage started from ("" for build)
-  std::string fingerprint;     ///< what the result depends on (model/stage_fingerprint.hpp); "" outside `run`
+  std::string fingerprint;     ///< what the result depends on (model/stage_fingerprint.hpp); "" in files written by
+                               ///< a single-stage command before it recorded one
   std::string diagnostic;      ///< on a diagnostic checkpoint, what went wrong; else ""
   /// The gravity kernel that computed the state (forces/gravity.hpp: "fast/avx512", "fast/generic"
   /// or "portable"); "" for a build checkpoint (no forces) and files written before it was

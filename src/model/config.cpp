@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 #include <sstream>
 #include <toml++/toml.h>
 #include <type_traits>
@@ -24,16 +25,51 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 /// TOML integers are signed 64-bit: a larger seed could not be written back.
 constexpr std::uint64_t max_toml_integer = std::numeric_limits<std::int64_t>::max();
 
+/// When a key's conditional readers read it: `text` for the key reference, `holds` decides.
+struct Condition {
+  std::string_view text;
+  bool (*holds)(const Config&);
+};
+
+/// The stages whose results a key changes: `always`, and `conditional` too when `*condition`
+/// holds. Empty: the key changes no result.
+struct Readers {
+  StageSet always;
+  StageSet conditional{};
+  const Condition* condition = nullptr;
+
+  /// These readers, and `stages` when `when` holds.
+  constexpr Readers and_when(const Condition& when, std::same_as<StageId> auto... stages) const {
+    return {always, StageSet{stages...}, &when};
+  }
+};
+
+/// The key changes the results of these stages.
+constexpr Readers reads(std::same_as<StageId> auto... stages) { return {StageSet{stages...}}; }
+/// A name, a checkpoint interval, a choice of kernel: no stage gives other results for it.
+constexpr Readers changes_no_result{};
+
+// The conditions under which a stage reads a key only in some configurations. The tree-code keys:
+// a direct run's fingerprints stay what they were before the tree code existed. A [material]
+// body derives interior.radius (read by stretch) from shell.enabled (resolve_material).
+constexpr Condition tree_gravity{"gravity.method = \"tree\"",
+                                 [](const Config& c) { return c.gravity.method == GravityMethod::tree; }};
+constexpr Condition material_body{"a [material] body", [](const Config& c) { return c.from_material(); }};
+/// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
+constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
+
 /// The description of one configuration key whose value has type T (double, std::int64_t,
 /// std::uint64_t, bool, std::string or a closed choice of model/choices.hpp): where it lives in
-/// the TOML, its unit and meaning (the comment to_toml writes; none when `unit` is empty; a
-/// choice's is its table's, choice_doc), and for numbers the accepted range [min, max], or
-/// (min, max] when `open_min`.
+/// the TOML, the stages whose results it changes (the stage fingerprints are made of it:
+/// model/stage_fingerprint.cpp), its unit and meaning (the comment to_toml writes; none when `unit`
+/// is empty; a choice's is its table's, choice_doc), and for numbers the accepted range [min, max],
+/// or (min, max] when `open_min`.
 template <class T>
 struct Key {
   using type = T;
   std::string_view section;
   std::string_view name;
+  Readers readers;
   std::string_view unit;
   std::string_view doc;
   T min{};
@@ -50,161 +86,203 @@ template <class F> constexpr bool is_optional = !std::is_same_v<value_of<F>, std
 
 // The one description of the configuration: visit_keys calls visit(field, key) for every key, in
 // to_toml order, with the field of `c` (const for a const Config) and its Key. parse_config,
-// apply_override, validate, to_toml, scale_time_step and the fingerprints (section_values) all
-// go through it; the field's type is the key's type.
+// apply_override, validate, to_toml, scale_time_step, the key reference and the fingerprints
+// (describe_keys) all go through it; the field's type is the key's type.
+//
+// Readers: every stage whose result (state, record or observables) changes when the value changes
+// with everything else equal, also when the same change would change its parent too (stretch reads
+// interior.radius). tests/stages/test_key_readers.cpp reruns every stage for a changed value of
+// every key and fails when a stage whose result changed does not declare the key.
 
 template <class C, class V>
   requires std::same_as<std::remove_const_t<C>, Config>
 void visit_keys(C& c, V&& visit) {
+  using enum StageId;
   auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
-  key(c.workflow.name, {"workflow", "name", "-", "workflow name; default output folder checkpoints/<name>/"});
+  key(c.workflow.name, {"workflow", "name", changes_no_result, "-", "workflow name; default output folder checkpoints/<name>/"});
   key(c.workflow.seed,
-      {"workflow", "seed", "-", "seed of the random interior (std::mt19937_64)", 0, max_toml_integer});
+      {"workflow", "seed", reads(build), "-", "seed of the random interior (std::mt19937_64)", 0, max_toml_integer});
 
-  key(c.interior.count, {"interior", "count", "-", "N_I, target number of interior nodes", 1, 1'000'000});
-  key(c.interior.radius, {"interior", "radius", "R", "r_I, radius of the sphere the interior nodes fill", 0.05, 1.0});
+  key(c.interior.count, {"interior", "count", reads(build), "-", "N_I, target number of interior nodes", 1, 1'000'000});
+  key(c.interior.radius, {"interior", "radius", reads(build, stretch), "R",
+                          "r_I, radius of the sphere the interior nodes fill", 0.05, 1.0});
   key(c.interior.min_separation,
-      {"interior", "min_separation", "R", "d_IS, minimum distance between interior nodes", 1e-3, 1.0});
+      {"interior", "min_separation", reads(build), "R", "d_IS, minimum distance between interior nodes", 1e-3, 1.0});
   key(c.interior.spring_distance,
-      {"interior", "spring_distance", "R", "d_I, interior nodes closer than this are joined by a spring", 1e-3, 2.0});
+      {"interior", "spring_distance", reads(build).and_when(no_shell, stretch), "R",
+       "d_I, interior nodes closer than this are joined by a spring", 1e-3, 2.0});
   key(c.interior.spring_constant,
-      {"interior", "spring_constant", "G M^2/R^3", "k_I, interior spring constant", 0, inf});
+      {"interior", "spring_constant", reads(build), "G M^2/R^3", "k_I, interior spring constant", 0, inf});
   key(c.interior.max_trials,
-      {"interior", "max_trials", "-",
+      {"interior", "max_trials", reads(build), "-",
        "random sequential addition stops after this many trial points", 1, 1'000'000'000'000});
 
-  key(c.shell.enabled, {"shell", "enabled", "-", "false for an interior-only body (paper run N)"});
-  key(c.shell.level, {"shell", "level", "-", "L, icosahedron subdivision level: 10*4^L+2 nodes", 0, 7});
-  key(c.shell.mass, {"shell", "mass", "M", "M_S, total shell mass", 0, 0.99});
-  key(c.shell.spring_constant, {"shell", "spring_constant", "G M^2/R^3", "k_S, shell spring constant", 0, inf});
+  key(c.shell.enabled, {"shell", "enabled", reads(build).and_when(material_body, stretch), "-",
+                        "false for an interior-only body (paper run N)"});
+  key(c.shell.level, {"shell", "level", reads(build), "-", "L, icosahedron subdivision level: 10*4^L+2 nodes", 0, 7});
+  key(c.shell.mass, {"shell", "mass", reads(build), "M", "M_S, total shell mass", 0, 0.99});
+  key(c.shell.spring_constant,
+      {"shell", "spring_constant", reads(build), "G M^2/R^3", "k_S, shell spring constant", 0, inf});
   key(c.shell.bending_constant,
-      {"shell", "bending_constant", "G M^2/R^2", "k_e, hinge (bending) force constant", 0, inf});
+      {"shell", "bending_constant", reads(build), "G M^2/R^2", "k_e, hinge (bending) force constant", 0, inf});
   key(c.shell.failure_strain,
-      {"shell", "failure_strain", "-", "eps_S, tensile strain at which a shell spring fails", 1e-9, 10});
+      {"shell", "failure_strain", reads(relax, encounter), "-", "eps_S, tensile strain at which a shell spring fails",
+       1e-9, 10});
   key(c.shell.failed_stiffness_factor,
-      {"shell", "failed_stiffness_factor", "-",
+      {"shell", "failed_stiffness_factor", reads(relax, encounter), "-",
        "F_Sk, a failed spring keeps this fraction of its stiffness (never 0)", 1e-9, 1});
 
   key(c.cross.distance,
-      {"cross", "distance", "R", "d_C, shell-interior pairs closer than this are joined by a cross spring", 0, 2.0});
-  key(c.cross.spring_constant, {"cross", "spring_constant", "G M^2/R^3", "k_C, cross spring constant", 0, inf});
-  key(c.cross.nonlinear, {"cross", "nonlinear", "-", "apply the softening law f(eps) of eq. 26 to cross springs"});
-  key(c.cross.strain_scale, {"cross", "strain_scale", "-", "eps_C of eq. 26", 1e-9, 10});
-  key(c.cross.min_force_factor, {"cross", "min_force_factor", "-", "F_Ck of eq. 26", 1e-9, 1});
+      {"cross", "distance", reads(build), "R", "d_C, shell-interior pairs closer than this are joined by a cross spring",
+       0, 2.0});
+  key(c.cross.spring_constant,
+      {"cross", "spring_constant", reads(build), "G M^2/R^3", "k_C, cross spring constant", 0, inf});
+  key(c.cross.nonlinear, {"cross", "nonlinear", reads(stretch, relax, encounter), "-",
+                          "apply the softening law f(eps) of eq. 26 to cross springs"});
+  key(c.cross.strain_scale, {"cross", "strain_scale", reads(stretch, relax, encounter), "-", "eps_C of eq. 26", 1e-9, 10});
+  key(c.cross.min_force_factor,
+      {"cross", "min_force_factor", reads(stretch, relax, encounter), "-", "F_Ck of eq. 26", 1e-9, 1});
   key(c.cross.min_per_shell_node,
-      {"cross", "min_per_shell_node", "-",
+      {"cross", "min_per_shell_node", reads(build), "-",
        "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
        12});
 
-  key(c.integrator.dt, {"integrator", "dt", "t_grav", "leapfrog time step", 1e-7, 1.0});
+  key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", 1e-7, 1.0});
   key(c.integrator.softening_fraction,
-      {"integrator", "softening_fraction", "-",
+      {"integrator", "softening_fraction", reads(build), "-",
        "Plummer softening as a fraction of the minimum initial spacing", 0, 1});
 
-  key(c.stretch.enabled, {"stretch", "enabled", "-", "false skips stretching and strengthening (for comparisons)"});
+  key(c.stretch.enabled,
+      {"stretch", "enabled", reads(stretch), "-", "false skips stretching and strengthening (for comparisons)"});
   key(c.stretch.max_iterations,
-      {"stretch", "max_iterations", "-", "iterations allowed to find the common stretch factor", 1, 10'000});
+      {"stretch", "max_iterations", reads(stretch), "-", "iterations allowed to find the common stretch factor", 1,
+       10'000});
   key(c.stretch.tolerance,
-      {"stretch", "tolerance", "G M/R^2", "target |mean radial acceleration| of the surface", 0, 1});
+      {"stretch", "tolerance", reads(stretch), "G M/R^2", "target |mean radial acceleration| of the surface", 0, 1});
   key(c.stretch.cross_compression,
-      {"stretch", "cross_compression", "-", "extra compressive strain given to cross springs", 0, 0.5});
+      {"stretch", "cross_compression", reads(stretch), "-", "extra compressive strain given to cross springs", 0, 0.5});
   key(c.stretch.hydrostatic_support,
-      {"stretch", "hydrostatic_support", "-", choice_doc<HydrostaticSupport>()});
+      {"stretch", "hydrostatic_support", reads(stretch), "-", choice_doc<HydrostaticSupport>()});
 
-  key(c.relax.damping, {"relax", "damping", "1/t_grav", "gamma during relaxation", 0, 1e4});
-  key(c.relax.duration, {"relax", "duration", "t_grav", "T, length of the relaxation run", 0, 1e4});
+  key(c.relax.damping, {"relax", "damping", reads(relax), "1/t_grav", "gamma during relaxation", 0, 1e4});
+  key(c.relax.duration, {"relax", "duration", reads(relax), "t_grav", "T, length of the relaxation run", 0, 1e4});
   key(c.relax.rest_length_interval,
-      {"relax", "rest_length_interval", "steps",
+      {"relax", "rest_length_interval", reads(relax), "steps",
        "steps between moves of shell rest lengths toward current lengths", 1, 1'000'000'000});
   key(c.relax.rest_length_rate,
-      {"relax", "rest_length_rate", "-", "fraction of (L - L0) a shell rest length moves per update", 0, 1});
+      {"relax", "rest_length_rate", reads(relax), "-", "fraction of (L - L0) a shell rest length moves per update", 0,
+       1});
   key(c.relax.hinge_reset_interval,
-      {"relax", "hinge_reset_interval", "steps",
+      {"relax", "hinge_reset_interval", reads(relax), "steps",
        "steps between resets of hinge rest angles to current angles", 1, 1'000'000'000});
   key(c.relax.settle_duration,
-      {"relax", "settle_duration", "t_grav",
+      {"relax", "settle_duration", reads(relax), "t_grav",
        "last part of T: the crust is reset to zero stress, then the body settles without creep or resets", 0, 1e4});
   key(c.relax.checkpoint_interval,
-      {"relax", "checkpoint_interval", "steps",
-       "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
+      {"relax", "checkpoint_interval", changes_no_result, "steps", "steps between mid-stage checkpoints (0: none)", 0,
+       1'000'000'000'000});
   key(c.relax.stability_probe,
-      {"relax", "stability_probe", "-",
+      {"relax", "stability_probe", reads(relax), "-",
        "run the stability probe (encounter damping, failures on, no perturber) after relaxing"});
-  key(c.relax.probe_damping, {"relax", "probe_damping", "1/t_grav", "gamma of the stability probe", 0, 1e4});
-  key(c.relax.probe_duration, {"relax", "probe_duration", "t_grav", "length of the stability probe", 0, 1e4});
-  key(c.relax.crust_support, {"relax", "crust_support", "-", choice_doc<CrustSupport>()});
+  key(c.relax.probe_damping,
+      {"relax", "probe_damping", reads(relax), "1/t_grav", "gamma of the stability probe", 0, 1e4});
+  key(c.relax.probe_duration,
+      {"relax", "probe_duration", reads(relax), "t_grav", "length of the stability probe", 0, 1e4});
+  key(c.relax.crust_support, {"relax", "crust_support", reads(relax), "-", choice_doc<CrustSupport>()});
 
-  key(c.encounter.damping, {"encounter", "damping", "1/t_grav", "gamma during encounters", 0, 1e4});
+  // The stability probe of relax fails springs as an encounter does: it reads the failure rule's keys.
+  key(c.encounter.damping, {"encounter", "damping", reads(encounter), "1/t_grav", "gamma during encounters", 0, 1e4});
   key(c.encounter.fail_interval,
-      {"encounter", "fail_interval", "steps",
+      {"encounter", "fail_interval", reads(relax, encounter), "steps",
        "t_fail: at most one shell spring fails per this many steps", 1, 1'000'000'000});
   key(c.encounter.start_distance,
-      {"encounter", "start_distance", "R",
+      {"encounter", "start_distance", reads(encounter), "R",
        "perturber distance when the encounter starts (before pericenter)", 1e-3, 1e6});
   key(c.encounter.end_distance,
-      {"encounter", "end_distance", "R", "perturber distance when the encounter ends (after pericenter)", 1e-3, 1e6});
+      {"encounter", "end_distance", reads(encounter), "R",
+       "perturber distance when the encounter ends (after pericenter)", 1e-3, 1e6});
   key(c.encounter.checkpoint_interval,
-      {"encounter", "checkpoint_interval", "steps",
-       "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
+      {"encounter", "checkpoint_interval", changes_no_result, "steps", "steps between mid-stage checkpoints (0: none)",
+       0, 1'000'000'000'000});
   key(c.encounter.sample_interval,
-      {"encounter", "sample_interval", "steps", "steps between timeseries samples", 1, 1'000'000'000});
-  key(c.encounter.failure_rule, {"encounter", "failure_rule", "-", choice_doc<FailureRuleKind>()});
+      {"encounter", "sample_interval", reads(relax, encounter), "steps", "steps between timeseries samples", 1,
+       1'000'000'000});
+  key(c.encounter.failure_rule,
+      {"encounter", "failure_rule", reads(relax, encounter), "-", choice_doc<FailureRuleKind>()});
   key(c.encounter.exclusion_radius,
-      {"encounter", "exclusion_radius", "L_S", "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3,
-       true});
+      {"encounter", "exclusion_radius", reads(relax, encounter), "L_S",
+       "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3, true});
   key(c.encounter.relaxation_crossings,
-      {"encounter", "relaxation_crossings", "L_S/V_SP",
+      {"encounter", "relaxation_crossings", reads(relax, encounter), "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
 
-  key(c.gravity.kernel, {"gravity", "kernel", "-", choice_doc<GravityKernel>()});
-  key(c.gravity.method, {"gravity", "method", "-", choice_doc<GravityMethod>()});
+  // The kernel gives other bits but the same physics: it is recorded and checked on its own
+  // (stages/gravity_kernel_check.hpp), not a fingerprint key.
+  key(c.gravity.kernel, {"gravity", "kernel", changes_no_result, "-", choice_doc<GravityKernel>()});
+  key(c.gravity.method, {"gravity", "method", changes_no_result.and_when(tree_gravity, stretch, relax, encounter), "-",
+                         choice_doc<GravityMethod>()});
   key(c.gravity.force_error,
-      {"gravity", "force_error", "-", "tree: target median relative force error per particle", 0, 0.5, true});
+      {"gravity", "force_error", changes_no_result.and_when(tree_gravity, stretch, relax, encounter), "-",
+       "tree: target median relative force error per particle", 0, 0.5, true});
 
-  // issue 12: [material], [resolution], [core] (docs/material.md); all optional.
+  // issue 12: [material], [resolution], [core] (docs/material.md); all optional. They derive keys
+  // of [interior], [shell], [cross] (resolve_material), so they reach the stages that read those.
   key(c.material.youngs_modulus,
-      {"material", "youngs_modulus", "e_g", "E_I, interior Young's modulus (eq. 15); gives the body by its material", 0,
-       1e6, true});
+      {"material", "youngs_modulus", reads(build), "e_g",
+       "E_I, interior Young's modulus (eq. 15); gives the body by its material", 0, 1e6, true});
   key(c.material.crust_thickness,
-      {"material", "crust_thickness", "R", "h_S, crust thickness: E_2D = E_I h_S (eq. 21)", 0, 0.5, true});
+      {"material", "crust_thickness", reads(build), "R", "h_S, crust thickness: E_2D = E_I h_S (eq. 21)", 0, 0.5, true});
   key(c.material.crust_modulus_2d,
-      {"material", "crust_modulus_2d", "e_g R", "E_2D, crust 2D Young's modulus (instead of crust_thickness)", 0, 1e6,
-       true});
+      {"material", "crust_modulus_2d", reads(build), "e_g R",
+       "E_2D, crust 2D Young's modulus (instead of crust_thickness)", 0, 1e6, true});
   key(c.material.flexural_rigidity,
-      {"material", "flexural_rigidity", "e_g R^3",
+      {"material", "flexural_rigidity", reads(build), "e_g R^3",
        "D_F, crust flexural rigidity (eq. 23); default E_I h_S^3/(12 (1 - nu^2)), nu = 1/4", 0, 1e6, true});
-  key(c.material.crust_mass, {"material", "crust_mass", "M", "M_S, crust mass", 0, 0.99, true});
+  key(c.material.crust_mass, {"material", "crust_mass", reads(build), "M", "M_S, crust mass", 0, 0.99, true});
   key(c.material.crust_density,
-      {"material", "crust_density", "M/R^3", "rho_S, crust density (instead of crust_mass): M_S = 4 pi h_S rho_S", 0,
-       100, true});
+      {"material", "crust_density", reads(build), "M/R^3",
+       "rho_S, crust density (instead of crust_mass): M_S = 4 pi h_S rho_S", 0, 100, true});
   key(c.material.coupling_speed_ratio,
-      {"material", "coupling_speed_ratio", "-", "V_Co / V_IP (eqs. 25, 16); default 1", 0, 100, true});
+      {"material", "coupling_speed_ratio", reads(build), "-", "V_Co / V_IP (eqs. 25, 16); default 1", 0, 100, true});
+  // eps_S becomes shell.failure_strain; build is kept so that material bodies keep their fingerprints.
   key(c.material.failure_strain,
-      {"material", "failure_strain", "-", "eps_S, tensile strain at which the crust fails", 0, 10, true});
-  key(c.resolution.shell_level, {"resolution", "shell_level", "-", "L, icosahedron level; default 4", 1, 7});
+      {"material", "failure_strain", reads(build, relax, encounter), "-",
+       "eps_S, tensile strain at which the crust fails", 0, 10, true});
+  key(c.resolution.shell_level,
+      {"resolution", "shell_level", reads(build, stretch), "-",
+       "L, icosahedron level; default 4", 1, 7});
   key(c.resolution.interior_spacing,
-      {"resolution", "interior_spacing", "R", "d_IS, interior node spacing; default 0.10 * 2^((4 - L)/2)", 1e-3, 0.5});
+      {"resolution", "interior_spacing", reads(build, stretch), "R",
+       "d_IS, interior node spacing; default 0.10 * 2^((4 - L)/2)", 1e-3, 0.5});
   key(c.resolution.interior_count,
-      {"resolution", "interior_count", "-", "N_I; default paper-T's packing of d_IS spheres", 1, 1'000'000});
+      {"resolution", "interior_count", reads(build), "-", "N_I; default paper-T's packing of d_IS spheres", 1,
+       1'000'000});
   key(c.resolution.cross_per_shell_node,
-      {"resolution", "cross_per_shell_node", "-", "N_C / N_S from d_C; default 2.33 (paper-T)", 0, 12, true});
-  key(c.core.radius, {"core", "radius", "R", "r_c, radius of a denser, stiffer core", 0, 0.95, true});
-  key(c.core.density_ratio, {"core", "density_ratio", "-", "rho_core / rho_mantle; default 1", 0, 100, true});
-  key(c.core.modulus_ratio, {"core", "modulus_ratio", "-", "E_core / E_mantle; default 1", 0, 1000, true});
+      {"resolution", "cross_per_shell_node", reads(build), "-", "N_C / N_S from d_C; default 2.33 (paper-T)", 0, 12,
+       true});
+  key(c.core.radius, {"core", "radius", reads(build, stretch), "R", "r_c, radius of a denser, stiffer core", 0, 0.95, true});
+  key(c.core.density_ratio,
+      {"core", "density_ratio", reads(build, stretch), "-", "rho_core / rho_mantle; default 1", 0, 100, true});
+  key(c.core.modulus_ratio,
+      {"core", "modulus_ratio", reads(build, stretch), "-", "E_core / E_mantle; default 1", 0, 1000, true});
 }
 
-/// The keys of one [[encounters]] table (paper Table 4).
+/// The keys of one [[encounters]] table (paper Table 4). The encounter stage reads its own table
+/// (its name is in its record); the stability probe of relax also probes every encounter's eps_S.
 template <class E, class V>
   requires std::same_as<std::remove_const_t<E>, Encounter>
 void visit_keys(E& e, V&& visit) {
+  using enum StageId;
   auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
-  key(e.name, {"encounters", "name", "", ""});
-  key(e.perturber_mass, {"encounters", "perturber_mass", "M", "M2", 0, inf, true});
-  key(e.pericenter, {"encounters", "pericenter", "R", "q", 1, inf, true});  // outside the body
-  key(e.pericenter_speed, {"encounters", "pericenter_speed", "sqrt(GM/R)", "V_q", 0, inf, true});
-  key(e.failure_strain, {"encounters", "failure_strain", "-", "eps_S override", 0, inf, true});
+  key(e.name, {"encounters", "name", reads(encounter), "", "name of the encounter (required): its folder and label"});
+  key(e.perturber_mass, {"encounters", "perturber_mass", reads(encounter), "M", "M2", 0, inf, true});
+  key(e.pericenter, {"encounters", "pericenter", reads(encounter), "R", "q", 1, inf, true});  // outside the body
+  key(e.pericenter_speed,
+      {"encounters", "pericenter_speed", reads(encounter), "sqrt(GM/R)", "V_q", 0, inf, true});
+  key(e.failure_strain, {"encounters", "failure_strain", reads(relax, encounter), "-", "eps_S override", 0, inf, true});
   key(e.relaxation_crossings,
-      {"encounters", "relaxation_crossings", "L_S/V_SP", "local failure rule: relaxation interval override", 0, 1e6, true});
+      {"encounters", "relaxation_crossings", reads(encounter), "L_S/V_SP",
+       "local failure rule: relaxation interval override", 0, 1e6, true});
 }
 
 /// The sections of Config in to_toml order (without "encounters").
@@ -688,16 +766,74 @@ void apply_override(Config& config, const std::string& assignment) {
     throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
 }
 
-std::vector<std::pair<std::string, std::string>> section_values(const Config& config, std::string_view section) {
-  std::vector<std::pair<std::string, std::string>> values;
+namespace {
+
+template <class T>
+constexpr const char* type_name() {
+  if constexpr (std::is_same_v<T, double>) return "number";
+  else if constexpr (std::is_same_v<T, bool>) return "boolean";
+  else if constexpr (std::is_same_v<T, std::string>) return "string";
+  else if constexpr (Choice<T>) return "choice";
+  else return "integer";
+}
+
+std::string range_text(double v) {
+  if (v == inf) return "inf";
+  return fmt::format("{}", v);
+}
+std::string range_text(std::int64_t v) { return fmt::format("{}", v); }
+std::string range_text(std::uint64_t v) { return fmt::format("{}", v); }
+
+/// The KeyInfo of one key of `visit_keys`, with the value of `field`.
+template <class F, class T>
+KeyInfo key_info(const F& field, const Key<T>& key, const Config& config) {
+  KeyInfo info;
+  info.section = key.section;
+  info.name = key.name;
+  info.type = type_name<T>();
+  info.unit = key.unit;
+  info.doc = key.doc;
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
+    info.range = fmt::format("{}{}, {}]", key.open_min ? '(' : '[', range_text(key.min), range_text(key.max));
+  if constexpr (Choice<T>) info.range = fmt::format("one of: {}", choice_names<T>());
+  info.optional = is_optional<F>;
+  if constexpr (is_optional<F>) {
+    if (field) info.value = toml_text(*field);
+  } else {
+    info.value = toml_text(field);
+  }
+  info.readers = key.readers.always;
+  info.read_by = key.readers.always;
+  if (key.readers.condition) {
+    info.conditional_readers = key.readers.conditional;
+    info.condition = key.readers.condition->text;
+    if (key.readers.condition->holds(config)) info.read_by = info.read_by | key.readers.conditional;
+  }
+  return info;
+}
+
+}  // namespace
+
+std::vector<KeyInfo> describe_keys(const Config& config) {
+  std::vector<KeyInfo> keys;
+  visit_keys(config, [&](const auto& field, const auto& key) { keys.push_back(key_info(field, key, config)); });
+  return keys;
+}
+
+std::vector<KeyInfo> describe_keys(const Encounter& encounter, const Config& config) {
+  std::vector<KeyInfo> keys;
+  visit_keys(encounter, [&](const auto& field, const auto& key) { keys.push_back(key_info(field, key, config)); });
+  return keys;
+}
+
+std::int64_t integer_key_value(const Config& config, std::string_view section, std::string_view name) {
+  std::optional<std::int64_t> value;
   visit_keys(config, [&](const auto& field, const auto& key) {
-    if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>) {
-      if (key.section == section && field) values.emplace_back(key.name, toml_text(*field));
-    } else {
-      if (key.section == section) values.emplace_back(key.name, toml_text(field));
-    }
+    if constexpr (std::is_same_v<std::remove_cvref_t<decltype(field)>, std::int64_t>)
+      if (key.section == section && key.name == name) value = field;
   });
-  return values;
+  if (!value) throw std::invalid_argument(fmt::format("no integer configuration key {}.{}", section, name));
+  return *value;
 }
 
 std::string encounter_toml(const Encounter& encounter) {

@@ -1,9 +1,10 @@
 #pragma once
 // The workflow configuration: every parameter of the paper with a default, a unit and a range.
 // Read from TOML (toml++); unknown keys and out-of-range values are InputErrors naming the key.
-// Each key (section, name, type, unit, range, meaning) is described once, in config.cpp
-// (visit_keys), and parsing, --set, validation, the resolved TOML text and the stage
-// fingerprints all read that description.
+// Each key (section, name, the stages whose results it changes, type, unit, range, meaning) is
+// described once, in config.cpp (visit_keys), and parsing, --set, validation, the resolved TOML
+// text, the key reference (`tidalcrust config --defaults`, docs/configuration.md) and the stage
+// fingerprints (model/stage_fingerprint.hpp) all read that description.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -14,6 +15,7 @@
 
 #include "model/choices.hpp"
 #include "model/encounter.hpp"
+#include "model/stage_records.hpp"
 
 namespace tidalcrust {
 
@@ -187,10 +189,36 @@ void apply_override(Config& config, const std::string& assignment);
 /// The resolved configuration, every key with its default, as TOML with unit comments.
 /// parse_config(to_toml(c)) == c, and equal configs give equal text.
 std::string to_toml(const Config& config);
-/// The (key, value) pairs of one section ("interior", "shell", ...) in to_toml order, values as
-/// to_toml writes them: the stage fingerprints record the keys a stage reads, so that a changed
-/// value reruns exactly the stages it affects. Empty for an unknown section.
-std::vector<std::pair<std::string, std::string>> section_values(const Config& config, std::string_view section);
+/// One configuration key as visit_keys (config.cpp) describes it, with its value in one
+/// configuration: what the key reference prints and the stage fingerprints are made of.
+struct KeyInfo {
+  std::string section;  ///< "interior", ...; "encounters" for a key of an [[encounters]] table
+  std::string name;
+  std::string type;     ///< "number", "integer", "boolean", "string" or "choice" (model/choices.hpp)
+  std::string unit;     ///< "-" for a pure number, "" for none (a name)
+  std::string doc;      ///< meaning, one line
+  std::string range;    ///< accepted values: of a number "[min, max]" or "(min, max]", of a choice
+                        ///< "one of: a, b"; "" for others
+  bool optional = false;  ///< may be left unset (then nothing is derived from it)
+  std::optional<std::string> value;  ///< as to_toml writes it; none for an unset optional key
+  /// The stages whose results the key changes: `readers` always, `conditional_readers` too when
+  /// `condition` holds (e.g. gravity.force_error: stretch, relax and encounter when
+  /// gravity.method = "tree"). Both empty: the key changes no result (a name, a checkpoint interval).
+  StageSet readers;
+  StageSet conditional_readers;
+  std::string condition;  ///< "" or the condition, as text ("gravity.method = \"tree\"")
+  /// The stages that read the key in this configuration: readers, and conditional_readers when
+  /// the condition holds. A stage's fingerprint holds exactly the keys it reads, when set.
+  StageSet read_by;
+};
+
+/// Every key of the configuration in to_toml order ([workflow] ... [core]), with its value in `config`.
+std::vector<KeyInfo> describe_keys(const Config& config);
+/// The keys of one [[encounters]] table, with the values of `encounter` (conditions evaluated on `config`).
+std::vector<KeyInfo> describe_keys(const Encounter& encounter, const Config& config);
+/// The value of the integer key `section.name` (e.g. relax.checkpoint_interval);
+/// std::invalid_argument when there is no such integer key.
+std::int64_t integer_key_value(const Config& config, std::string_view section, std::string_view name);
 /// One [[encounters]] table of to_toml.
 std::string encounter_toml(const Encounter& encounter);
 /// Scales the time step by `factor` (--dt-factor) and every schedule counted in steps (the keys

@@ -3,93 +3,77 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <initializer_list>
 #include <sstream>
 #include <string_view>
+#include <vector>
 
 namespace tidalcrust {
 namespace {
 
-enum class Keys { only, all_but };
-
-/// The "section.key = value" lines of one section of the resolved configuration, restricted to
-/// (or excluding) the given keys.
-std::string keys_of(const Config& config, std::string_view section, Keys mode,
-                    std::initializer_list<std::string_view> keys) {
-  std::string out;
-  for (const auto& [key, value] : section_values(config, section)) {
-    const bool listed = std::find(keys.begin(), keys.end(), key) != keys.end();
-    if (listed == (mode == Keys::only)) out += fmt::format("{}.{} = {}\n", section, key, value);
+/// The lines of a fingerprint, each without its trailing comment, sorted.
+std::vector<std::string> canonical_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (const auto comment = line.find("  # "); comment != std::string::npos) line.erase(comment);
+    if (!line.empty()) lines.push_back(std::move(line));
   }
-  return out;
+  std::sort(lines.begin(), lines.end());
+  return lines;
 }
 
-/// What the force law reads beyond the stored springs (the optional cross-spring law, eq. 26;
-/// the self-gravity method: tree gravity gives other bits than the direct sum, so it is another
-/// stage; written only for the tree, so every fingerprint of a direct run stays as it was).
-std::string force_law(const Config& config) {
-  std::string text = keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
-  if (config.gravity.method != GravityMethod::direct)
-    text += keys_of(config, "gravity", Keys::only, {"method", "force_error"});
-  return text;
-}
-
-/// What the force law and the failure rule read during a time-stepping stage.
-std::string dynamics(const Config& config) {
-  return force_law(config) + keys_of(config, "shell", Keys::only, {"failure_strain", "failed_stiffness_factor"});
-}
-
-/// [material], [resolution], [core] (issue 12): only the keys given, so a body without them keeps
-/// its fingerprint.
-std::string material_keys(const Config& config) {
-  return keys_of(config, "material", Keys::all_but, {}) + keys_of(config, "resolution", Keys::all_but, {}) +
-         keys_of(config, "core", Keys::all_but, {});
-}
+/// "section.key" of a line "section.key = value".
+std::string_view key_of(std::string_view line) { return line.substr(0, line.find(" = ")); }
 
 }  // namespace
 
-// Each later stage also records its parent's state_hash, so a fingerprint only needs what the
-// stage itself reads. Checkpoint intervals change no result and are left out.
-
-std::string build_fingerprint(const Config& config) {
-  return fmt::format("workflow.seed = {}\nintegrator.softening_fraction = {}\n", config.workflow.seed,
-                     config.integrator.softening_fraction) +
-         keys_of(config, "interior", Keys::all_but, {}) +
-         keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
-         keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"}) +
-         material_keys(config);
-}
-
-std::string stretch_fingerprint(const Config& config) {
-  return keys_of(config, "stretch", Keys::all_but, {}) + force_law(config) +
-         keys_of(config, "core", Keys::all_but, {});  // the layered hydrostatic pressure
-}
-
-std::string relax_fingerprint(const Config& config) {
-  // The stability probe uses the encounter failure interval and every eps_S an encounter asks for.
-  std::string text = keys_of(config, "relax", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
-                     keys_of(config, "encounter", Keys::only,
-                             {"fail_interval", "sample_interval", "failure_rule", "exclusion_radius",
-                              "relaxation_crossings"}) +
-                     fmt::format("integrator.dt = {}\n", config.integrator.dt);
-  for (const auto& e : config.encounters)
-    if (e.failure_strain) text += fmt::format("encounters.{}.failure_strain = {}\n", e.name, *e.failure_strain);
+std::string stage_fingerprint(const Config& config, StageId stage, const Encounter* own) {
+  std::string text;
+  for (const KeyInfo& key : describe_keys(config))
+    if (key.read_by.contains(stage) && key.value) text += fmt::format("{}.{} = {}\n", key.section, key.name, *key.value);
+  if (own) {
+    text += "[[encounters]]\n";
+    for (const KeyInfo& key : describe_keys(*own, config))
+      if (key.read_by.contains(stage) && key.value) text += fmt::format("{} = {}\n", key.name, *key.value);
+    return text;
+  }
+  for (const Encounter& e : config.encounters)
+    for (const KeyInfo& key : describe_keys(e, config))
+      if (key.read_by.contains(stage) && key.value)
+        text += fmt::format("encounters.{}.{} = {}\n", e.name, key.name, *key.value);
   return text;
 }
 
-std::string encounter_fingerprint(const Config& config, const Encounter& spec) {
-  return keys_of(config, "encounter", Keys::all_but, {"checkpoint_interval"}) + dynamics(config) +
-         encounter_toml(spec) + fmt::format("integrator.dt = {}\n", config.integrator.dt);
-}
+bool same_fingerprint(const std::string& a, const std::string& b) { return canonical_lines(a) == canonical_lines(b); }
 
 std::string first_difference(const std::string& old_text, const std::string& new_text) {
-  std::istringstream a(old_text), b(new_text);
-  std::string la, lb;
-  while (true) {
-    const bool ga = static_cast<bool>(std::getline(a, la)), gb = static_cast<bool>(std::getline(b, lb));
-    if (!ga && !gb) return "";
-    if (la != lb) return fmt::format("'{}' -> '{}'", ga ? la : "", gb ? lb : "");
+  const std::vector<std::string> old_lines = canonical_lines(old_text), new_lines = canonical_lines(new_text);
+  auto has = [](const std::vector<std::string>& lines, const std::string& line) {
+    return std::binary_search(lines.begin(), lines.end(), line);
+  };
+  auto line_of_key = [](const std::vector<std::string>& lines, std::string_view key) {
+    for (const auto& line : lines)
+      if (key_of(line) == key) return line;
+    return std::string();
+  };
+  std::istringstream in(new_text);  // in the new text's order
+  for (std::string line; std::getline(in, line);) {
+    if (const auto comment = line.find("  # "); comment != std::string::npos) line.erase(comment);
+    if (!line.empty() && !has(old_lines, line))
+      return fmt::format("'{}' -> '{}'", line_of_key(old_lines, key_of(line)), line);
   }
+  for (const auto& line : old_lines)
+    if (!has(new_lines, line)) return fmt::format("'{}' -> ''", line);
+  return "";
+}
+
+std::string recomputed_fingerprint(const Checkpoint& checkpoint, const std::string& origin) {
+  const Config config = parse_config(checkpoint.config_toml, origin + ":/parameters/config");
+  const Encounter* own = record_encounter(checkpoint.stage.record);
+  if (own)
+    for (const Encounter& e : config.encounters)
+      if (e.name == own->name) own = &e;
+  return stage_fingerprint(config, stage_id(checkpoint.stage.record), own);
 }
 
 }  // namespace tidalcrust

@@ -7,6 +7,8 @@
 // list). Units: G = M = R = 1 (t_grav, R, sqrt(GM/R)); "1" marks a pure number.
 #include <concepts>
 #include <cstdint>
+#include <initializer_list>
+#include <iterator>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -180,11 +182,57 @@ void visit_fields(Record& r, Visit&& visit) {
 /// The record of whichever stage wrote a checkpoint; the alternative IS the stage.
 using StageRecord = std::variant<BuildRecord, StretchRecord, RelaxRecord, EncounterRecord>;
 
+/// The stages in pipeline order: the alternatives of StageRecord, named by stage_names. What each
+/// one does and how it is run is its row in stages/stage_kinds.cpp.
+enum class StageId : std::uint8_t { build, stretch, relax, encounter };
+
 /// "build", "stretch", "relax" or "encounter", in pipeline order (the variant's order).
 inline constexpr const char* stage_names[] = {"build", "stretch", "relax", "encounter"};
+inline constexpr std::size_t stage_count = std::size(stage_names);
+static_assert(stage_count == std::variant_size_v<StageRecord>, "one name and one StageId per stage record");
+static_assert(static_cast<std::size_t>(StageId::encounter) + 1 == stage_count, "StageId lists every stage");
 
 /// The stage name of a record.
 inline const char* stage_name(const StageRecord& record) { return stage_names[record.index()]; }
+inline const char* stage_name(StageId id) { return stage_names[static_cast<std::size_t>(id)]; }
+/// The stage of a record.
+inline StageId stage_id(const StageRecord& record) { return static_cast<StageId>(record.index()); }
+
+/// A set of stages: the stages whose results a configuration key changes (model/config.cpp),
+/// the stages a stage may begin from (stages/stage_kinds.cpp).
+class StageSet {
+ public:
+  constexpr StageSet() = default;
+  constexpr StageSet(std::initializer_list<StageId> stages) {
+    for (StageId s : stages) bits_ |= bit(s);
+  }
+  constexpr bool contains(StageId s) const { return (bits_ & bit(s)) != 0; }
+  constexpr bool empty() const { return bits_ == 0; }
+  constexpr StageSet operator|(StageSet other) const { return from_bits(bits_ | other.bits_); }
+  constexpr bool operator==(const StageSet&) const = default;
+
+ private:
+  static constexpr std::uint32_t bit(StageId s) { return std::uint32_t{1} << static_cast<unsigned>(s); }
+  static constexpr StageSet from_bits(std::uint32_t bits) {
+    StageSet s;
+    s.bits_ = bits;
+    return s;
+  }
+  std::uint32_t bits_ = 0;
+};
+
+/// The names of the stages in `stages`, in pipeline order, joined by `separator` ("" if none).
+std::string stage_list(StageSet stages, const char* separator = ", ");
+
+/// The encounter a record runs (the `encounter` member of a per-encounter stage's record), or null.
+inline const Encounter* record_encounter(const StageRecord& record) {
+  return std::visit(
+      [](const auto& r) -> const Encounter* {
+        if constexpr (requires { r.encounter; }) return &r.encounter;
+        else return nullptr;
+      },
+      record);
+}
 
 /// An empty record of the named stage; false if `name` is not a stage.
 bool make_stage_record(const std::string& name, StageRecord& record);

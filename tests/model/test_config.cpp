@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "model/config.hpp"
 #include "base/errors.hpp"
@@ -136,17 +137,24 @@ TEST(Config, EncounterTablesUseTheSameDescription) {
   EXPECT_THROW(apply_override(config, "encounters.T5.pericenter=true"), InputError);
 }
 
-TEST(Config, SectionValuesAreTheResolvedText) {
+TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
-  for (const char* section : {"workflow", "interior", "shell", "cross", "integrator", "stretch", "relax", "encounter"}) {
-    const auto values = section_values(config, section);
-    ASSERT_FALSE(values.empty()) << section;
-    for (const auto& [key, value] : values)
-      EXPECT_NE(text.find("\n" + key + " = " + value + "  # ["), std::string::npos) << section << "." << key;
+  const auto keys = describe_keys(config);
+  EXPECT_EQ(keys.size(), 66u);  // every key of Config, [workflow] to [core]
+  for (const KeyInfo& key : keys) {
+    if (!key.value) {  // an unset optional key: to_toml leaves it out
+      EXPECT_TRUE(key.optional) << key.section << "." << key.name;
+      continue;
+    }
+    EXPECT_NE(text.find("\n" + key.name + " = " + *key.value + "  # [" + key.unit + "] " + key.doc + "\n"),
+              std::string::npos)
+        << key.section << "." << key.name;
   }
-  EXPECT_TRUE(section_values(config, "nope").empty());
   EXPECT_NE(text.find("\n[integrator]\ndt = "), std::string::npos);
+  EXPECT_EQ(describe_keys(Encounter{}, config).size(), 6u);
+  EXPECT_EQ(integer_key_value(config, "relax", "checkpoint_interval"), config.relax.checkpoint_interval);
+  EXPECT_THROW(integer_key_value(config, "relax", "damping"), std::invalid_argument);  // not an integer key
 }
 
 TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {
