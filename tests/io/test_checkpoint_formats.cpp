@@ -1,9 +1,11 @@
 // Checkpoints of every format this program reads. The stored files of tests/reference/format-3/
 // and format-4/ (README there: written by earlier commits, never regenerated) stand for users'
-// old results: each is read to the values of tests/reference/stored-checkpoints.toml. Then the
-// upgrade's own rules: a newer or too old format is one line and exit 2, the integrity record is
-// verified on the file as stored before any upgrade, a format-4 file written before the energy
-// budget reads with NaN there, and an upgraded checkpoint is written in the current format.
+// old results: each is read, the encounter is begun from each relax.h5 and each mid-stage
+// encounter resumed, each encounter.h5 analysed, to the values of
+// tests/reference/stored-checkpoints.toml. They must keep passing with every later format. Then
+// the upgrade's own rules: a newer or too old format is one line and exit 2, the integrity
+// record is verified on the file as stored before any upgrade, a format-4 file written before the
+// energy budget reads with NaN there, and an upgraded checkpoint is written in the current format.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
@@ -16,6 +18,7 @@
 #include "io/checkpoint_file.hpp"
 #include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
+#include "io/json.hpp"
 #include "io/state_hash.hpp"
 #include "support/bad_checkpoints.hpp"
 #include "support/cli_runner.hpp"
@@ -40,16 +43,45 @@ const toml::table& expected() {
   return table;
 }
 
-/// expected()[table][entry][key] ("stored", "encounter.mid", "step").
+/// expected()[table][key], or [table][entry][key] ("stored", "encounter.mid", "step").
+toml::node_view<const toml::node> value(std::string_view table, std::string_view key) { return expected()[table][key]; }
 toml::node_view<const toml::node> value(std::string_view table, std::string_view entry, std::string_view key) {
   return expected()[table][entry][key];
 }
+
+double tolerance() { return expected()["relative_tolerance"].value_or(0.0); }
 
 /// A stored value of type T (a missing one fails the comparison it is used in).
 template <typename T>
 T get(toml::node_view<const toml::node> v) {
   if constexpr (std::is_same_v<T, double>) return v.value_or(std::nan(""));
   else return v.value_or(T{});
+}
+
+/// |computed - stored| within the file's relative tolerance.
+void expect_near(double computed, double stored, const std::string& what) {
+  EXPECT_LE(std::abs(computed - stored), tolerance() * std::abs(stored)) << what << ": " << fmt::format("{:.17g}", computed);
+}
+
+/// Where the bits of a resumed run are promised: glibc takes the FMA variants of sin, cos and atan2
+/// (docs/determinism.md) on a CPU with FMA and AVX2, as on the machine that computed the values; the
+/// portable gravity kernel is the same everywhere.
+bool same_libm_variants() { return __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2"); }
+
+/// A resumed encounter's end against [resumed]: its state_hash, or where the bits are not
+/// promised its step, failures and final kinetic energy.
+void expect_resumed_end(const fs::path& file, const std::string& what) {
+  const Checkpoint c = read_checkpoint(file);
+  EXPECT_TRUE(c.stage.complete) << what;
+  EXPECT_EQ(c.state.step, get<std::int64_t>(value("resumed", "step"))) << what;
+  EXPECT_EQ(static_cast<std::int64_t>(c.observables.failures.size()), get<std::int64_t>(value("resumed", "failed")))
+      << what;
+  ASSERT_FALSE(c.observables.timeseries.empty()) << what;
+  expect_near(c.observables.timeseries.back().kinetic_energy, get<double>(value("resumed", "kinetic_energy")),
+              what + ": final kinetic_energy");
+  if (same_libm_variants()) {
+    EXPECT_EQ(state_hash(c.state), get<std::string>(value("resumed", "state_hash"))) << what;
+  }
 }
 
 }  // namespace
@@ -81,6 +113,66 @@ TEST(StoredCheckpoints, EachFileReadsWithItsStoredValues) {
     }
 }
 
+TEST(StoredCheckpoints, EncounterFromEachStoredRelaxEndsAtTheStoredValues) {
+  for (const std::int64_t format : stored_formats) {
+    const ScratchFolder scratch(fmt::format("stored_relax_{}", format));
+    const fs::path relax = scratch.path / "relax.h5", out = scratch.path / "encounter.h5";
+    fs::copy_file(stored_file(format, "relax"), relax);
+    // Format 3 recorded no gravity kernel (its fast kernel was the portable code on this machine).
+    const CliResult r = run_cli("encounter --quiet --gravity-kernel portable --encounter close --from " + quoted(relax) +
+                                " --out " + quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    expect_resumed_end(out, fmt::format("encounter from format-{}/relax.h5", format));
+    EXPECT_EQ(read_file(relax), read_file(stored_file(format, "relax")));
+  }
+}
+
+TEST(StoredCheckpoints, EachStoredMidStageEncounterResumesToTheStoredEnd) {
+  for (const std::int64_t format : stored_formats) {
+    const ScratchFolder scratch(fmt::format("stored_mid_{}", format));
+    const fs::path mid = scratch.path / "encounter.mid.h5", out = scratch.path / "encounter.h5";
+    fs::copy_file(stored_file(format, "encounter.mid"), mid);
+    const CliResult r = run_cli("encounter --quiet --gravity-kernel portable --from " + quoted(mid) + " --out " + quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string what = fmt::format("format-{}/encounter.mid.h5 resumed", format);
+    expect_resumed_end(out, what);
+    // A resumed stage keeps its record: a format-3 encounter goes on without an energy budget.
+    EXPECT_EQ(std::isfinite(read_checkpoint(out).stage.as<EncounterRecord>().energy.damping_dissipated), format >= 4)
+        << what;
+  }
+}
+
+TEST(StoredCheckpoints, EachStoredEncounterAnalyses) {
+  for (const std::int64_t format : stored_formats) {
+    const ScratchFolder scratch(fmt::format("stored_analyze_{}", format));
+    const fs::path encounter = scratch.path / "encounter.h5", out = scratch.path / "analysis";
+    fs::copy_file(stored_file(format, "encounter"), encounter);
+    const CliResult r = run_cli("analyze --from " + quoted(encounter) + " --out " + quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json summary = Json::parse(read_file(out / "summary.json"));
+    const std::string what = fmt::format("format-{}/encounter.h5", format);
+    EXPECT_EQ(summary["state_hash"], get<std::string>(value("stored", "encounter", "state_hash"))) << what;
+    for (const auto& [key, stored] : *expected()["analysis"]["failures"].as_table()) {
+      const std::string name(key.str());
+      const Json& computed = summary["failures"][name];
+      if (stored.is_integer()) {
+        EXPECT_EQ(computed.get<std::int64_t>(), stored.value_or(std::int64_t{-1})) << what << ": failures." << name;
+      } else {
+        expect_near(computed.get<double>(), stored.value_or(std::nan("")), what + ": failures." + name);
+      }
+    }
+    for (const auto& [key, stored] : *expected()["analysis"]["energy"].as_table()) {
+      const std::string name(key.str());
+      const Json& computed = summary["energy"][name];
+      if (format < 4) {
+        EXPECT_TRUE(computed.is_null()) << what << ": energy." << name;  // not recorded
+      } else {
+        expect_near(computed.get<double>(), stored.value_or(std::nan("")), what + ": energy." + name);
+      }
+    }
+    EXPECT_TRUE(fs::exists(out / "fracture_map.png")) << what;
+  }
+}
 
 TEST(CheckpointFormats, NewerAndTooOldFormatsAreOneLineErrorsNamingTheVersions) {
   const ScratchFolder scratch("formats_refused");
