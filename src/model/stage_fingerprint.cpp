@@ -29,7 +29,7 @@ std::string keys_of(const Config& config, std::string_view section, Keys mode,
 /// stage; written only for the tree, so every fingerprint of a direct run stays as it was).
 std::string force_law(const Config& config) {
   std::string text = keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
-  if (config.gravity.method != "direct")
+  if (config.gravity.method != GravityMethod::direct)
     text += keys_of(config, "gravity", Keys::only, {"method", "force_error"});
   return text;
 }
