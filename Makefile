@@ -1,6 +1,8 @@
 # tidalcrust: make run | make test | make bench | make check-viewers
 # Installs the Debian packages it needs (when root; otherwise prints the apt-get line),
-# configures with CMake and builds.
+# configures with CMake and builds what the target needs: `make run` and `make check-viewers` the
+# program only, `make test` the program and the test suite, `make bench` the program and the
+# micro-benchmarks, `make` (all) everything.
 BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
@@ -10,7 +12,7 @@ EXE      := $(BUILD)/tidalcrust
 # Only for check-viewers: the outside readers the files are checked with.
 VIEWER_PACKAGES := python3-paraview python3-mdanalysis python3-h5py python3-numpy xvfb
 
-.PHONY: all deps configure build test run bench check-viewers clean
+.PHONY: all deps configure build program tests microbench test run bench check-viewers clean
 
 all: build
 
@@ -35,13 +37,23 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-test: build
+program: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust
+
+# The suite's binary (it depends on the program and the portable-kernel probe the tests start).
+tests: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust_tests
+
+microbench: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust tidalcrust_microbench
+
+test: tests
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The demo: the quick body with a crust free of pre-stress and the local failure rule, end to end;
 # the same encounter at half the time step and how alike their fractures are. Figures land in
 # checkpoints/quick-balanced/*/analysis/. (workflows/quick.toml keeps the paper's support and rule.)
-run: build
+run: program
 	$(EXE) run workflows/quick-balanced.toml
 	$(EXE) run workflows/quick-balanced.toml --dt-factor 0.5 --quiet
 	@echo; echo "half-dt check (A: dt, B: dt/2):"
@@ -50,7 +62,7 @@ run: build
 
 # Direct sum vs tree code (issue 13) at N ~ 4k (paper-T), 16k and 61k (shell levels 5 and 6: bench
 # bodies, not physical ones), and gravity alone at 256k random points (direct timed on 65k, scaled).
-bench: build
+bench: microbench
 	$(EXE) bench --config workflows/quick.toml --steps 50
 	$(EXE) bench --config workflows/paper-T.toml --steps 20 --set gravity.method=tree
 	$(EXE) bench --config workflows/bench-L5.toml --steps 10 --repeats 3 --textbook-steps 0
@@ -61,7 +73,7 @@ bench: build
 # Every .xdmf sidecar of a quick run opened in ParaView's default and legacy XDMF readers, and
 # its checkpoints in MDAnalysis's H5MD reader (tools/check_viewers.py; installs the readers;
 # /usr/bin/python3: the Debian packages install for the system python).
-check-viewers: build
+check-viewers: program
 	@$(MAKE) --no-print-directory deps PACKAGES="$(VIEWER_PACKAGES)"
 	xvfb-run -a /usr/bin/python3 tools/check_viewers.py --exe $(EXE)
 

@@ -7,6 +7,7 @@
 #include "base/errors.hpp"
 #include "io/progress.hpp"
 #include "io/stop_signal.hpp"
+#include "io/test_points.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/checkpoint_file.hpp"
 
@@ -56,6 +57,7 @@ LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State
       throw SimulationError(std::string(err.what()) + where);
     }
     if (progress) progress->update(state.step);
+    test_point_after_step();  // testing aid: kill or hold here when the environment asks
     const bool stop = stop_requested() || state.step == options.stop_after_step;
     if (stop && state.step < end) {
       write_mid();

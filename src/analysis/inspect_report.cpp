@@ -167,7 +167,8 @@ std::string fingerprint_hash(const std::string& fingerprint) {
 
 InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
   InspectReport r;
-  r.top.add("format_version", checkpoint_format_version, "1")
+  // The format the file was written in (read_checkpoint upgrades an older one in memory).
+  r.top.add("format_version", c.provenance.format_version > 0 ? c.provenance.format_version : checkpoint_format_version, "1")
       .add("stage", c.stage.name())
       .add("complete", c.stage.complete)
       .add("time", c.state.time, "t_grav")

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "base/errors.hpp"
+#include "io/test_points.hpp"
 
 namespace tidalcrust {
 
@@ -32,10 +33,8 @@ void sync_path(const fs::path& file, const fs::path& p, bool directory) {
   if (rc != 0) throw os_error(file, fmt::format("fsync of {} failed", p.string()), err);
 }
 
-/// Writes all of `text` to a new file `tmp`.
-void write_all(const fs::path& file, const fs::path& tmp, std::string_view text) {
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw os_error(file, fmt::format("cannot create {}", tmp.string()), errno);
+/// Writes all of `text` to the open file `fd` (the temporary `tmp`); closes it on failure.
+void write_bytes(const fs::path& file, const fs::path& tmp, int fd, std::string_view text) {
   while (!text.empty()) {
     const ssize_t n = ::write(fd, text.data(), text.size());
     if (n < 0 && errno == EINTR) continue;
@@ -46,6 +45,16 @@ void write_all(const fs::path& file, const fs::path& tmp, std::string_view text)
     }
     text.remove_prefix(static_cast<std::size_t>(n));
   }
+}
+
+/// Writes all of `text` to a new file `tmp`, in two halves with the testing aid's mid-write
+/// point between them (io/test_points.hpp).
+void write_all(const fs::path& file, const fs::path& tmp, std::string_view text) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw os_error(file, fmt::format("cannot create {}", tmp.string()), errno);
+  write_bytes(file, tmp, fd, text.substr(0, text.size() / 2));
+  test_point_mid_write();
+  write_bytes(file, tmp, fd, text.substr(text.size() / 2));
   if (::close(fd) != 0) throw os_error(file, fmt::format("cannot write {}", tmp.string()), errno);
 }
 

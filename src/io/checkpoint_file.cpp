@@ -13,6 +13,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -21,6 +23,7 @@
 #include "build_info.hpp"
 #include "base/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checkpoint_upgrade.hpp"
 #include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
@@ -596,13 +599,34 @@ void read_provenance(hid_t root, Provenance& p) {
 }
 
 
-/// Checked first: a file of another version may lay out anything else, the integrity record too.
-void check_format_version(hid_t root) {
+/// The file's format version, read first (every format has kept /checkpoint@format_version):
+/// a file of another version may lay out anything else. One it cannot read is an h5::Error
+/// saying which versions this program reads.
+std::int64_t readable_format_version(hid_t root) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::int64_t version = h5::read_attribute<std::int64_t>(g.get(), "format_version");
-  if (version != checkpoint_format_version)
-    throw h5::Error(fmt::format("attribute /checkpoint@format_version is {}, this tidalcrust reads version {}",
-                                version, checkpoint_format_version));
+  if (version > checkpoint_format_version)
+    throw h5::Error(fmt::format("written by a newer tidalcrust (format {}); this one reads up to {}", version,
+                                checkpoint_format_version));
+  if (version < oldest_readable_format)
+    throw h5::Error(fmt::format("written in format {}, too old: this tidalcrust reads formats {} to {} "
+                                "(docs/checkpoint-layout.md, Format versions)",
+                                version, oldest_readable_format, checkpoint_format_version));
+  return version;
+}
+
+/// Format 4 on carry the integrity record, and some format 3 files (written between the
+/// integrity check and format 4): verified wherever there is one, required from format 4.
+bool carries_integrity_record(hid_t root, std::int64_t version) {
+  return version >= 4 || h5::exists(root, integrity_group);
+}
+
+/// The file's bytes as stored, for an in-memory copy to upgrade.
+std::string stored_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.good() && !in.eof()) throw h5::Error(fmt::format("cannot read the file: {}", std::strerror(errno)));
+  return bytes;
 }
 
 void read_stage_info(hid_t root, Checkpoint& c) {
@@ -751,17 +775,27 @@ Checkpoint read_checkpoint(const fs::path& file) {
   }
   Checkpoint c;
   std::string stored_hash;
+  std::int64_t version = 0;
   try {
-    const hid_t root = f.get();
-    check_format_version(root);
-    // Every byte the reads below use is verified before any of it is interpreted.
-    verify_integrity(root);
+    const hid_t stored = f.get();
+    version = readable_format_version(stored);
+    // Every byte the reads below use is verified, on the file as stored, before any of it is
+    // upgraded or interpreted.
+    if (carries_integrity_record(stored, version)) verify_integrity(stored);
+    // An older layout is upgraded in a writable copy in memory; the file is never touched.
+    h5::File upgraded;
+    if (needs_layout_upgrade(stored, version)) {
+      upgraded = h5::open_memory_image(stored_bytes(file), name + " (upgraded)", true);
+      upgrade_layout(upgraded.get(), version);
+    }
+    const hid_t root = upgraded ? upgraded.get() : stored;
     read_stage_info(root, c);
     h5::Group g = h5::open_group(root, "/checkpoint");
     stored_hash = h5::read_string_attribute(g.get(), "state_hash");
     read_body_and_state(root, c);
     c.config_toml = h5::read_string_dataset(root, path::config);
     read_provenance(root, c.provenance);
+    c.provenance.format_version = version;
     read_observables(root, c.observables);
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: {}", name, err.what()));
@@ -772,6 +806,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
   if (computed != stored_hash)
     throw InputError(fmt::format("{}: state_hash mismatch: stored {}, computed {} (file modified or corrupt)", name,
                                  stored_hash, computed));
+  upgrade_meaning(c, version);
   return c;
 }
 

@@ -12,6 +12,8 @@ namespace tidalcrust {
 /// stage clock (@dt, @start_time), hinge stiffness as a body property, no per-spring damping.
 /// 4: valid H5MD 1.1 (units, particles_group references, extensible time dimension, labels);
 /// the failure log and the timeseries moved from /observables to /checkpoint.
+/// Every change of the layout or of how a stored value is derived is a new version with its
+/// upgrade step (io/checkpoint_upgrade.cpp); tests/reference/format-4/ must still be read.
 inline constexpr std::int64_t checkpoint_format_version = 4;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
@@ -20,10 +22,13 @@ inline constexpr std::int64_t checkpoint_format_version = 4;
 /// Also writes the .xdmf sidecar beside it. Throws InputError if the folder is not writable.
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
 
-/// Reads and validates: format version, then the integrity record (every dataset, attribute
-/// and link digested and compared with /integrity, io/content_hash.hpp), then dataset shapes,
-/// stage name, indices and state_hash. Throws InputError naming the file and the dataset or
-/// attribute for a missing, truncated, corrupt or tampered file.
+/// Reads and validates: format version (formats oldest_readable_format up to the current one;
+/// a newer or older one is an InputError saying which it reads), then the integrity record on
+/// the file as stored (every dataset, attribute and link digested and compared with
+/// /integrity, io/content_hash.hpp), then, for an older format, the upgrade steps on an
+/// in-memory copy (io/checkpoint_upgrade.hpp), then dataset shapes, stage name, indices and
+/// state_hash. Throws InputError naming the file and the dataset or attribute for a missing,
+/// truncated, corrupt or tampered file.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 /// True if `file` exists and read_checkpoint would succeed (used by restart logic).

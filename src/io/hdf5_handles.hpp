@@ -239,14 +239,15 @@ inline File open_file_readonly(const std::filesystem::path& path) {
   return File(id);
 }
 
-/// Opens the file image `bytes` (as file_image returns it) read-only in memory; `name` only
-/// names it in HDF5's messages.
-inline File open_memory_image(const std::string& bytes, const std::string& name) {
+/// Opens the file image `bytes` (as file_image returns it, or a file's bytes) in memory,
+/// read-only or `writable` (HDF5 works on its own copy; nothing is ever written to disk); `name`
+/// only names it in HDF5's messages.
+inline File open_memory_image(const std::string& bytes, const std::string& name, bool writable = false) {
   silence_errors();
   PropList fapl = file_access_plist();
   check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
   check(H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()), "H5Pset_file_image");
-  const hid_t id = H5Fopen(name.c_str(), H5F_ACC_RDONLY, fapl.get());
+  const hid_t id = H5Fopen(name.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get());
   if (id < 0) throw Error("cannot open the file image: " + error_stack_text());
   return File(id);
 }

@@ -102,6 +102,9 @@ struct Provenance {
   std::string git_commit;   ///< commit it was built from
   std::string compiler;     ///< compiler name and version
   std::string build_flags;  ///< compiler flags of the build
+  /// The file's /checkpoint@format_version as stored (an older one is upgraded on reading);
+  /// 0 for a checkpoint made in memory.
+  std::int64_t format_version = 0;
 };
 
 struct Checkpoint {

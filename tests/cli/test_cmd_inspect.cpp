@@ -108,23 +108,27 @@ TEST(InspectCli, UsageErrorsExitWithCode2) {
   EXPECT_EQ(run_cli("inspect --help").exit_code, 0);
 }
 
-TEST(InspectCli, CheckpointOfTheFormerLayoutIsRefusedNamingItsVersion) {
-  // Format 3 kept the failure log and timeseries in /observables; such a file gets one line
-  // naming the version, exit 2, and stays as it was.
-  const ScratchFolder scratch("inspect_old_version");
+TEST(InspectCli, CheckpointOfANewerOrTooOldFormatIsRefusedNamingItsVersion) {
+  // One line naming the file, its version and the versions this program reads, exit 2, and the
+  // file stays as it was.
+  const ScratchFolder scratch("inspect_other_version");
   write_checkpoint(scratch.path / "valid.h5", synthetic_checkpoint());
-  const fs::path file = edited_copy(scratch.path / "valid.h5", scratch.path, "old.h5", [](hid_t f) {
-    h5::Group g = h5::open_group(f, "/checkpoint");
-    H5Adelete(g.get(), "format_version");
-    h5::write_attribute<std::int64_t>(g.get(), "format_version", 3);
-  });
-  const std::string before = read_file(file);
-  const CliResult r = run_cli("inspect " + quoted(file));
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(count_lines(r.err), 1) << r.err;
-  EXPECT_TRUE(contains(r.err, file.string() + ": ")) << r.err;
-  EXPECT_TRUE(contains(r.err, "format_version is 3, this tidalcrust reads version 4")) << r.err;
-  EXPECT_EQ(read_file(file), before);
+  const std::string current = std::to_string(checkpoint_format_version);
+  const std::pair<std::int64_t, std::string> cases[] = {
+      {checkpoint_format_version + 1, "written by a newer tidalcrust (format " +
+                                          std::to_string(checkpoint_format_version + 1) + "); this one reads up to " +
+                                          current},
+      {2, "written in format 2, too old: this tidalcrust reads formats 3 to " + current}};
+  for (const auto& [version, expected] : cases) {
+    const fs::path file = edited_copy(scratch.path / "valid.h5", scratch.path, fmt::format("v{}.h5", version),
+                                      [version](hid_t f) { overwrite_attribute(f, "/checkpoint", "format_version", version); });
+    const std::string before = read_file(file);
+    const CliResult r = run_cli("inspect " + quoted(file));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_TRUE(contains(r.err, file.string() + ": " + expected)) << r.err;
+    EXPECT_EQ(read_file(file), before);
+  }
 }
 
 TEST(InspectCli, ShowsTheWritersProvenanceAndTheFingerprintOnRequest) {

@@ -1,6 +1,6 @@
-// `tidalcrust run` as a user meets it: interrupted at random moments (SIGKILL) and rerun, it
-// ends with checkpoints bit-identical to an uninterrupted run and never leaves a corrupt file
-// under a final name; a finished workflow reruns as a no-op; a changed value reruns exactly the
+// `tidalcrust run` as a user meets it: killed (SIGKILL) at random steps and in the middle of
+// file writes and rerun, it ends with checkpoints bit-identical to an uninterrupted run and never
+// leaves a corrupt file under a final name; a finished workflow reruns as a no-op; a changed value reruns exactly the
 // stages it affects; bad input exits 2 and touches nothing.
 #include <gtest/gtest.h>
 #include <fcntl.h>
@@ -8,14 +8,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <random>
 #include <string>
-#include <thread>
 
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
@@ -65,13 +63,15 @@ std::map<std::string, std::string> hashes_below(const fs::path& root) {
   return hashes;
 }
 
-/// Starts `tidalcrust ARGS` as a child process with its output discarded.
-pid_t start_cli(const std::vector<std::string>& args) {
+/// Starts `tidalcrust ARGS` as a child process with its output discarded; `kill_at` (if not
+/// empty) is its TIDALCRUST_TEST_KILL_AT (io/test_points.hpp).
+pid_t start_cli(const std::vector<std::string>& args, const std::string& kill_at = "") {
   const pid_t pid = fork();
   if (pid == 0) {
     int devnull = ::open("/dev/null", O_WRONLY);
     dup2(devnull, 1);
     dup2(devnull, 2);
+    if (!kill_at.empty()) setenv("TIDALCRUST_TEST_KILL_AT", kill_at.c_str(), 1);
     std::vector<char*> argv;
     argv.push_back(const_cast<char*>(TIDALCRUST_EXE));
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -82,23 +82,30 @@ pid_t start_cli(const std::vector<std::string>& args) {
   return pid;
 }
 
-/// Starts `tidalcrust run ...` and SIGKILLs it after `delay`; true if it finished first.
-bool run_and_kill(const std::vector<std::string>& args, std::chrono::milliseconds delay) {
-  const pid_t pid = start_cli(args);
-  const auto deadline = std::chrono::steady_clock::now() + delay;
+enum class Ending { finished, killed, other };
+
+/// Runs `tidalcrust ARGS` with the kill point `kill_at` ("step:N" or "write:N"): finished (exit
+/// 0) before reaching it, killed there by SIGKILL, or anything else.
+Ending run_with_kill_point(const std::vector<std::string>& args, const std::string& kill_at) {
+  const pid_t pid = start_cli(args, kill_at);
   int status = 0;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  kill(pid, SIGKILL);
   waitpid(pid, &status, 0);
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return Ending::finished;
+  if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) return Ending::killed;
+  return Ending::other;
+}
+
+/// Half-written temporaries (`<file>.tmp-<pid>`) below root.
+int temporaries_below(const fs::path& root) {
+  int count = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    count += entry.path().filename().string().find(".tmp-") != std::string::npos;
+  return count;
 }
 
 }  // namespace
 
-TEST(RunWorkflow, KilledAtRandomMomentsEndsBitIdenticalToStraightRun) {
+TEST(RunWorkflow, KilledAtRandomStepsAndMidWriteEndsBitIdenticalToStraightRun) {
   const ScratchFolder scratch("run_kill");
   const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
@@ -108,21 +115,39 @@ TEST(RunWorkflow, KilledAtRandomMomentsEndsBitIdenticalToStraightRun) {
   for (const char* final_file : {"body/build.h5", "body/stretch.h5", "body/relax.h5", "A/encounter.h5", "B/encounter.h5"})
     EXPECT_EQ(expected.count(final_file), 1u) << final_file;
 
-  std::mt19937_64 random(12345);  // fixed: the test is repeatable
+  // SIGKILL at points counted in steps and in file writes (io/test_points.hpp), drawn at random
+  // but fixed by the seed: the same kills on any machine at any load. Each rerun resumes from what
+  // the killed one left. The ranges widen with each attempt, so pieces that are not checkpointed
+  // (the stability probe, the analysis) are also passed.
+  std::mt19937_64 random(12345);
   const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", (dir / "killed").string()};
-  int kills = 0;
+  int step_kills = 0, write_kills = 0, half_written = 0;
   bool finished = false;
-  for (int attempt = 0; attempt < 60 && !finished; ++attempt) {
-    // Random moments; the window widens with each attempt so that pieces that are not
-    // checkpointed (start-up, analysis) also finish on a slow, loaded machine.
-    const auto delay = std::chrono::milliseconds(20 + static_cast<int>(random() % (200 + 50 * attempt)));
-    finished = run_and_kill(args, delay);
-    kills += finished ? 0 : 1;
+  for (int attempt = 0; attempt < 40 && !finished; ++attempt) {
+    const bool mid_write = attempt % 2 == 1;
+    const auto n = 1 + random() % static_cast<unsigned>(mid_write ? 4 + attempt : 20 + 10 * attempt);
+    const std::string kill_at = fmt::format("{}:{}", mid_write ? "write" : "step", n);
+    const int temporaries_before = fs::exists(dir / "killed") ? temporaries_below(dir / "killed") : 0;
+    const Ending ending = run_with_kill_point(args, kill_at);
+    ASSERT_NE(ending, Ending::other) << kill_at;
+    finished = ending == Ending::finished;
+    if (ending == Ending::killed) {
+      ++(mid_write ? write_kills : step_kills);
+      // A kill mid-write leaves its temporary half written, never a file under a final name.
+      if (mid_write) {
+        EXPECT_EQ(temporaries_below(dir / "killed"), temporaries_before + 1) << kill_at;
+        ++half_written;
+      }
+    }
     // No corrupt or half-written file under a final name, ever.
     if (fs::exists(dir / "killed")) hashes_below(dir / "killed");
   }
-  ASSERT_TRUE(finished);
-  EXPECT_GE(kills, 3);
+  EXPECT_GE(step_kills, 5);
+  EXPECT_GE(write_kills, 5);
+  EXPECT_EQ(half_written, write_kills);
+  if (!finished) {  // the rest without kills
+    ASSERT_EQ(run_with_kill_point(args, ""), Ending::finished);
+  }
   EXPECT_EQ(hashes_below(dir / "killed"), expected);
 }
 
@@ -268,23 +293,21 @@ TEST(RunWorkflow, CtrlCStopsWithCheckpointAndResumeToleratesUnrelatedChanges) {
   const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
   const auto out = dir / "out";
-  // A long relaxation so that Ctrl-C lands inside it.
-  const std::vector<std::string> args = {"run", workflow.string(), "--quiet", "--out", out.string(),
-                                         "--set", "relax.duration=40.0"};
-  const pid_t pid = start_cli(args);
+  // Ctrl-C inside the relaxation: the run is held after its 20th step (io/test_points.hpp), so the
+  // signal lands there on any machine.
+  const std::string args = "run " + quoted(workflow) + " --quiet --out " + quoted(out) + " --set relax.duration=1.0";
+  const fs::path hold = dir / "held";
+  BackgroundCli running(args, hold_at_step(20, hold));
+  ASSERT_TRUE(wait_while_running(running.pid(), [&] { return fs::exists(hold); }));
+  kill(running.pid(), SIGINT);
+  EXPECT_EQ(running.finish().exit_code, 130);  // clean stop, its checkpoint written
   const auto mid = out / "body" / "relax.mid.h5";
-  for (int i = 0; i < 3000 && !fs::exists(mid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_TRUE(fs::exists(mid));
-  kill(pid, SIGINT);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);  // clean stop, its checkpoint written
   const Checkpoint stopped = read_checkpoint(mid);
   EXPECT_FALSE(stopped.stage.complete);
+  EXPECT_EQ(stopped.state.step - stopped.stage.clock.start_step, 20);
   // Rerun with a value the relaxation does not read changed: it resumes, it does not restart.
   const auto resumed = run_cli("run " + quoted(workflow) + " --out " + quoted(out) +
-                               " --set relax.duration=40.0 --set encounter.damping=0.02 --only A");
+                               " --set relax.duration=1.0 --set encounter.damping=0.02 --only A");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_NE(resumed.out.find("relax: resuming from"), std::string::npos) << resumed.out;
   EXPECT_FALSE(fs::exists(mid));

@@ -7,12 +7,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
-#include <thread>
 
 #include "io/checkpoint_file.hpp"
 #include "io/stage_lock.hpp"
@@ -125,15 +123,13 @@ TEST(RunJobs, SigtermStopsEveryChildAndRerunResumesBitIdentically) {
   const ScratchFolder scratch("jobs_sigterm");
   const auto workflow = sweep_workflow(scratch.path);
   const auto out = scratch.path / "out";
-  BackgroundCli running(run_args(workflow, out, "--quiet --jobs 2 --threads 2"));
-  // Wait until a child has written a mid-stage checkpoint of its encounter, then stop the parent.
-  const auto any_mid = [&] {
-    for (const auto& name : sweep_names)
-      if (fs::exists(out / name / "encounter.mid.h5")) return true;
-    return false;
-  };
-  for (int i = 0; i < 30000 && !any_mid(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  ASSERT_TRUE(any_mid());
+  // The body first, so that only the children step; each child is held after the 20th step of its
+  // encounter (io/test_points.hpp) and SIGTERM reaches the parent while both compute, on any
+  // machine at any load.
+  ASSERT_EQ(run_cli(run_args(workflow, out, "--quiet --body-only")).exit_code, 0);
+  const fs::path hold = scratch.path / "held";
+  BackgroundCli running(run_args(workflow, out, "--quiet --jobs 2 --threads 2"), hold_at_step(20, hold));
+  ASSERT_TRUE(wait_while_running(running.pid(), [&] { return count_lines(read_file(hold)) == 2; }));
   kill(running.pid(), SIGTERM);
   const auto stopped = running.finish();
   EXPECT_EQ(stopped.exit_code, 130) << stopped.err;

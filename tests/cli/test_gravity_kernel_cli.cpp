@@ -4,11 +4,9 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 
 #include "forces/gravity.hpp"
 #include "io/checkpoint_file.hpp"
@@ -109,12 +107,13 @@ TEST(KernelCli, RunRefusesToResumeUnderAnotherKernelUnlessAllowed) {
   const fs::path& dir = scratch.path;
   const auto workflow = small_workflow(dir);
   const auto out = dir / "out";
-  const std::string common = "run " + quoted(workflow) + " --quiet --out " + quoted(out) + " --set relax.duration=20.0";
-  // Stopped (SIGINT) inside a long relaxation, as a preempted cluster job is.
-  BackgroundCli first(common);
+  const std::string common = "run " + quoted(workflow) + " --quiet --out " + quoted(out) + " --set relax.duration=1.0";
+  // Stopped (SIGINT) inside the relaxation, as a preempted cluster job is: held after its 20th
+  // step (io/test_points.hpp) so that the signal lands there on any machine.
+  const fs::path hold = dir / "held";
+  BackgroundCli first(common, hold_at_step(20, hold));
+  ASSERT_TRUE(wait_while_running(first.pid(), [&] { return fs::exists(hold); }));
   const auto mid = out / "body" / "relax.mid.h5";
-  for (int i = 0; i < 3000 && !fs::exists(mid); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  ASSERT_TRUE(fs::exists(mid));
   kill(first.pid(), SIGINT);
   ASSERT_EQ(first.finish().exit_code, 130);
   const std::string mid_bytes = read_file(mid);

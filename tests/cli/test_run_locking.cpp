@@ -10,7 +10,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <thread>
 
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
@@ -84,14 +83,15 @@ TEST(RunLocking, AnotherProcessCheckingTheFolderIsWaitedFor) {
   fs::create_directories(encounter.parent_path());
   LockAttempt scan = try_lock_stage(encounter, "");
   ASSERT_TRUE(scan.lock);
-  std::thread release([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    scan.lock.reset();
-  });
-  const CliResult run = run_cli(quick_run(out) + " --quiet --only strong");
-  release.join();
-  EXPECT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_EQ(run.err.find("other values"), std::string::npos) << run.err;
+  // The lock is released only once the run says it waits for it (stdout line-buffered, so the
+  // line shows while it runs): the wait is tested on any machine.
+  BackgroundCli run(quick_run(out) + " --only strong", "stdbuf -oL");
+  const std::string waiting = ": waiting for pid " + std::to_string(getpid()) + " on host " + this_host();
+  EXPECT_TRUE(wait_while_running(run.pid(), [&] { return read_file(run.out_file()).find(waiting) != std::string::npos; }));
+  scan.lock.reset();
+  const CliResult result = run.finish();
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err.find("other values"), std::string::npos) << result.err;
   EXPECT_TRUE(fs::exists(encounter));
 }
 
@@ -100,24 +100,30 @@ TEST(RunLocking, AnotherProcessCheckingTheFolderIsWaitedFor) {
 TEST(RunLocking, ConcurrentRunsWithOtherValuesOfOneEncounterCannotBothWin) {
   const ScratchFolder scratch("lock_clash");
   const fs::path out = scratch.path / "out";
-  BackgroundCli first(quick_run(out));
-  BackgroundCli second(quick_run(out) + " --set encounters.strong.pericenter_speed=1.9");
-  const CliResult a = first.finish(), b = second.finish();
-  const int succeeded = (a.exit_code == 0) + (b.exit_code == 0);
-  if (succeeded == 1) {
-    // The loser refused with one line naming the holder and what it computes.
-    const CliResult& loser = a.exit_code == 0 ? b : a;
-    const pid_t winner = a.exit_code == 0 ? first.pid() : second.pid();
-    EXPECT_EQ(loser.exit_code, 2) << loser.err;
-    EXPECT_EQ(count_lines(loser.err), 1) << loser.err;
-    EXPECT_NE(loser.err.find("encounter strong is being computed with other values by pid " + std::to_string(winner) +
-                             " on host " + this_host() + " (since "),
-              std::string::npos)
-        << loser.err;
-  } else {
-    // Both may succeed only one after the other (the second waited, then recomputed).
-    EXPECT_EQ(succeeded, 2) << a.err << b.err;
-  }
+  ASSERT_EQ(run_cli(quick_run(out) + " --quiet --body-only").exit_code, 0);
+  // The first run is held after the 5th step of its encounter (io/test_points.hpp) while the
+  // second, with other values of that encounter, starts: the clash happens on any machine.
+  const fs::path hold = scratch.path / "held";
+  BackgroundCli first(quick_run(out), hold_at_step(5, hold));
+  ASSERT_TRUE(wait_while_running(first.pid(), [&] { return fs::exists(hold); }));
+  const std::string other_values = quick_run(out) + " --set encounters.strong.pericenter_speed=1.9";
+  const CliResult loser = run_cli(other_values);
+  fs::remove(hold);
+  const CliResult winner = first.finish();
+  EXPECT_EQ(winner.exit_code, 0) << winner.err;
+  // The loser refused with one line naming the holder and what it computes.
+  EXPECT_EQ(loser.exit_code, 2) << loser.err;
+  EXPECT_EQ(count_lines(loser.err), 1) << loser.err;
+  EXPECT_NE(loser.err.find("encounter strong is being computed with other values by pid " + std::to_string(first.pid()) +
+                           " on host " + this_host() + " (since "),
+            std::string::npos)
+      << loser.err;
+  expect_consistent_encounter(out / "strong");
+  // One after the other, the second recomputes the encounter with its values.
+  const std::string first_bytes = read_file(out / "strong" / "encounter.h5");
+  const CliResult after = run_cli(other_values + " --quiet");
+  EXPECT_EQ(after.exit_code, 0) << after.err;
+  EXPECT_NE(read_file(out / "strong" / "encounter.h5"), first_bytes);
   expect_consistent_encounter(out / "strong");
   EXPECT_FALSE(fs::exists(lock_path(out / "body" / "relax.h5")));
 }
@@ -126,8 +132,15 @@ TEST(RunLocking, ConcurrentRunsOfTwoEncountersShareTheBodyAndRunSideBySide) {
   const ScratchFolder scratch("lock_side");
   const fs::path workflow = two_encounter_workflow(scratch.path);
   const fs::path out = scratch.path / "out", sequential = scratch.path / "sequential";
-  BackgroundCli strong(quick_run(out, workflow) + " --only strong");
-  BackgroundCli weak(quick_run(out, workflow) + " --only weak");
+  // "strong" is held after the 5th step of its relaxation (io/test_points.hpp) until "weak" says
+  // it waits for it (stdout line-buffered): one computes the body, the other waits, on any machine.
+  const fs::path hold = scratch.path / "held";
+  BackgroundCli strong(quick_run(out, workflow) + " --only strong", hold_at_step(5, hold));
+  ASSERT_TRUE(wait_while_running(strong.pid(), [&] { return fs::exists(hold); }));
+  BackgroundCli weak(quick_run(out, workflow) + " --only weak", "stdbuf -oL");
+  const std::string waiting = ": waiting for pid " + std::to_string(strong.pid()) + " on host ";
+  EXPECT_TRUE(wait_while_running(weak.pid(), [&] { return read_file(weak.out_file()).find(waiting) != std::string::npos; }));
+  fs::remove(hold);
   const CliResult a = strong.finish(), b = weak.finish();
   ASSERT_EQ(a.exit_code, 0) << a.err;
   ASSERT_EQ(b.exit_code, 0) << b.err;

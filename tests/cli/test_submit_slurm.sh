@@ -56,14 +56,18 @@ local_pid=$!
 # Requeue the first task caught computing its encounter. SIGSTOP holds it there (so it cannot
 # finish first); Slurm sends SIGCONT and SIGTERM when it requeues, it writes its mid-stage
 # checkpoint and exits 130, and the requeued task resumes from that checkpoint.
+# No deadlines (a slow machine is not a failure; ctest's timeout ends a hang): a wait gives up when
+# a daemon died or the jobs it waits for left the queue.
+jobs_queued() { [ -n "$(squeue -h -j "$1" 2>/dev/null)" ]; }
 requeued=
-deadline=$((SECONDS + 600))
 for task in "${!names[@]}"; do
   name=${names[task]}
   lock=$work/sweep/$name/encounter.h5.lock
   until [ -f "$lock" ] && grep -q '^pid=' "$lock" 2>/dev/null; do
-    ((SECONDS < deadline)) || { on_failure; fail "no task started its encounter within 600 s"; }
+    slurm_cluster_alive_and true || { on_failure; fail "a Slurm daemon died while waiting for task $task"; }
     [ -f "$work/sweep/$name/encounter.h5" ] && break
+    jobs_queued "$body_job,$array_job" || [ -f "$lock" ] || [ -f "$work/sweep/$name/encounter.h5" ] ||
+      { on_failure; fail "the jobs left the queue before task $task started its encounter"; }
     sleep 0.2
   done
   [ -f "$work/sweep/$name/encounter.h5" ] && continue
@@ -74,8 +78,8 @@ for task in "${!names[@]}"; do
   requeued=$task
   echo "requeued task $task ($name) while its encounter ran (pid $pid)"
   # Slurm makes a requeued job eligible only after a delay; let it start as soon as it is pending.
-  slurm_wait_for 120 "task $task did not return to the queue" \
-    bash -c "squeue -h -j ${array_job}_${task} -o %T | grep -qx PENDING"
+  slurm_wait_for 0 "task $task did not return to the queue" \
+    slurm_cluster_alive_and bash -c "squeue -h -j ${array_job}_${task} -o %T | grep -qx PENDING"
   echo "requeued task: $(scontrol show job "${array_job}_${task}" | grep -o 'EligibleTime=[^ ]*')"
   scontrol update JobId="${array_job}_${task}" StartTime=now || fail "cannot reset the start time of task $task"
   break
@@ -84,9 +88,8 @@ done
 
 wait "$local_pid" || { cat "$work/local.log"; fail "the local run failed"; }
 echo "local run done"
-deadline=$((SECONDS + 900))
-while [ -n "$(squeue -h -j "$body_job,$array_job" 2>/dev/null)" ]; do
-  ((SECONDS < deadline)) || { squeue; on_failure; fail "the jobs did not finish within 900 s"; }
+while jobs_queued "$body_job,$array_job"; do
+  slurm_cluster_alive_and true || { squeue; on_failure; fail "a Slurm daemon died before the jobs finished"; }
   sleep 1
 done
 
@@ -118,9 +121,8 @@ array_job=$(sed -n 's/^encounters: job array \([0-9]*\).*/\1/p' <<<"$submitted")
 [ -n "$body_job" ] && [ -n "$array_job" ] || fail "submit of sweep-quick did not report the job ids"
 "$exe" run "$sweep" --out "$work/jobs40" --jobs 2 --quiet >"$work/jobs40.log" 2>&1 ||
   { cat "$work/jobs40.log"; fail "run --jobs 2 of sweep-quick failed"; }
-deadline=$((SECONDS + 900))
-while [ -n "$(squeue -h -j "$body_job,$array_job" 2>/dev/null)" ]; do
-  ((SECONDS < deadline)) || { squeue; on_failure; fail "the sweep-quick jobs did not finish within 900 s"; }
+while jobs_queued "$body_job,$array_job"; do
+  slurm_cluster_alive_and true || { squeue; on_failure; fail "a Slurm daemon died before the sweep-quick jobs finished"; }
   sleep 1
 done
 mapfile -t names < <("$exe" submit "$sweep" --slurm --dry-run --out "$work/sweep40" |

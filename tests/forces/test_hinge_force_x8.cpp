@@ -15,6 +15,7 @@
 
 using namespace tidalcrust;
 
+#if defined(__AVX512F__)
 namespace {
 
 /// The same bits, or both NaN (a NaN's sign and payload are not part of the contract).
@@ -25,7 +26,6 @@ bool same_bits(double a, double b) {
 
 }  // namespace
 
-#if defined(__AVX512F__)
 TEST(HingeForceX8, SameBitsAsTheEvaluatorForEveryShapeOfHinge) {
   Random random(2026);
   const std::size_t hinges = 8 * 4000;

@@ -121,7 +121,8 @@ inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::pa
                    H5Adelete(g.get(), "format_version");
                    h5::write_attribute<std::int64_t>(g.get(), "format_version", 99);
                  }),
-                 "/checkpoint@format_version is 99"});
+                 "written by a newer tidalcrust (format 99); this one reads up to " +
+                     std::to_string(checkpoint_format_version)});
 
   bad.push_back({"wrong stage", edited_copy(valid, folder, "stage.h5", [](hid_t f) {
                    h5::Group g = h5::open_group(f, "/checkpoint");

@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "support/files.hpp"
@@ -38,12 +39,14 @@ inline CliResult run_cli(const std::string& args) {
 }
 
 /// `tidalcrust ARGS` started in the background (as run_cli runs it, with `exec`, so that its
-/// pid is the program's own); finish() waits for it and returns what run_cli would.
+/// pid is the program's own); finish() waits for it and returns what run_cli would. `prefix` is
+/// a command that execs the program in turn (`env VAR=value`, `stdbuf -oL`), so the pid stays
+/// the program's.
 class BackgroundCli {
  public:
-  explicit BackgroundCli(const std::string& args) : capture_("cli_background") {
-    const std::string command = fmt::format("exec '{}' {} >{} 2>{} </dev/null", TIDALCRUST_EXE, args,
-                                            quoted(capture_.path / "out.txt"), quoted(capture_.path / "err.txt"));
+  explicit BackgroundCli(const std::string& args, const std::string& prefix = "") : capture_("cli_background") {
+    const std::string command = fmt::format("exec {} '{}' {} >{} 2>{} </dev/null", prefix, TIDALCRUST_EXE, args,
+                                            quoted(out_file()), quoted(capture_.path / "err.txt"));
     pid_ = fork();
     if (pid_ == 0) {
       execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
@@ -59,6 +62,8 @@ class BackgroundCli {
 
   /// The program's pid (also after finish()).
   pid_t pid() const { return started_; }
+  /// Where its stdout goes (readable while it runs).
+  std::filesystem::path out_file() const { return capture_.path / "out.txt"; }
 
   CliResult finish() {
     int status = 0;
@@ -76,6 +81,33 @@ class BackgroundCli {
   pid_t pid_ = -1;
   pid_t started_ = -1;
 };
+
+/// True while `pid` exists and has not exited (a zombie not yet reaped has exited).
+inline bool is_running(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return false;
+  const auto paren = line.rfind(')');  // the state letter follows "pid (name) "
+  return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] != 'Z' && line[paren + 2] != 'X';
+}
+
+/// Waits until `ready()` holds, looking every few milliseconds; false if the process `pid` ended
+/// first. No deadline: the test waits for an event, however slow the machine (ctest's timeout
+/// ends a hang).
+template <typename Ready>
+bool wait_while_running(pid_t pid, Ready ready) {
+  while (!ready()) {
+    if (!is_running(pid)) return ready();
+    ::usleep(2000);
+  }
+  return true;
+}
+
+/// The command prefix (for BackgroundCli) that holds the program after its N-th step until
+/// `hold_file`, which it creates there, is removed or a stop signal arrives (io/test_points.hpp).
+inline std::string hold_at_step(long n, const std::filesystem::path& hold_file) {
+  return fmt::format("env TIDALCRUST_TEST_HOLD_AT=step:{} TIDALCRUST_TEST_HOLD_FILE={}", n, quoted(hold_file));
+}
 
 inline int count_lines(const std::string& text) {
   int lines = 0;

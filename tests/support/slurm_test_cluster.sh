@@ -20,7 +20,10 @@ slurm_free_port() {
   return 1
 }
 
-# slurm_wait_for SECONDS MESSAGE COMMAND...: polls COMMAND every 0.5 s.
+# slurm_wait_for SECONDS MESSAGE COMMAND...: polls COMMAND every 0.5 s until it succeeds; gives up
+# with MESSAGE when COMMAND exits 2 (slurm_alive_and: a daemon died) or, for SECONDS > 0, after
+# SECONDS. The test's waits use 0 (no deadline: a slow machine is not a failure; ctest's timeout
+# ends a hang); only the cleanup bounds its wait.
 slurm_wait_for() {
   local seconds=$1 message=$2; shift 2
   local deadline=$((SECONDS + seconds))
@@ -28,7 +31,7 @@ slurm_wait_for() {
   until "$@" >/dev/null 2>&1; do
     status=$?
     if ((status == 2)); then echo "$message" >&2; return 1; fi
-    if ((SECONDS >= deadline)); then echo "timed out after ${seconds} s: $message" >&2; return 1; fi
+    if ((seconds > 0 && SECONDS >= deadline)); then echo "timed out after ${seconds} s: $message" >&2; return 1; fi
     sleep 0.5
   done
 }
@@ -38,6 +41,15 @@ slurm_wait_for() {
 slurm_alive_and() {
   local pid=$1; shift
   kill -0 "$pid" 2>/dev/null || { echo "process $pid exited" >&2; return 2; }
+  "$@"
+}
+
+# slurm_cluster_alive_and COMMAND...: slurm_alive_and for every daemon started.
+slurm_cluster_alive_and() {
+  local pid
+  for pid in "${slurm_cluster_pids[@]}"; do
+    kill -0 "$pid" 2>/dev/null || { echo "process $pid exited" >&2; return 2; }
+  done
   "$@"
 }
 
@@ -56,7 +68,7 @@ slurm_cluster_start() {
     --pid-file="$dir/run/munged.pid" --log-file="$dir/log/munged.log" --seed-file="$dir/key/munged.seed" \
     >>"$dir/log/munged.out" 2>&1 &
   slurm_cluster_pids+=($!)
-  slurm_wait_for 20 "munged did not create its socket (log: $dir/log/munged.log)" \
+  slurm_wait_for 0 "munged did not create its socket (log: $dir/log/munged.log)" \
     slurm_alive_and "$!" test -S "$dir/run/munge.sock" || return 1
   ctld_port=$(slurm_free_port) && slurmd_port=$(slurm_free_port) || { echo "no free TCP port" >&2; return 1; }
   cat >"$dir/slurm.conf" <<CONF
@@ -95,8 +107,8 @@ CONF
   slurm_cluster_pids+=($!)
   slurmd -D -f "$SLURM_CONF" >>"$dir/log/slurmd.out" 2>&1 &
   slurm_cluster_pids+=($!)
-  slurm_wait_for 60 "the node $host did not become idle (logs: $dir/log/slurmctld.log, $dir/log/slurmd.log)" \
-    slurm_node_idle
+  slurm_wait_for 0 "the node $host did not become idle (logs: $dir/log/slurmctld.log, $dir/log/slurmd.log)" \
+    slurm_cluster_alive_and slurm_node_idle
 }
 
 slurm_cluster_stop() {

@@ -1,0 +1,107 @@
+#include "io/test_points.hpp"
+
+#include <fmt/format.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <chrono>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "base/errors.hpp"
+#include "io/stop_signal.hpp"
+
+namespace tidalcrust {
+
+namespace {
+
+enum class Counted { step, write };
+
+/// One point: the N-th step or write of this process.
+struct Point {
+  Counted counted;
+  std::int64_t n;
+};
+
+/// "step:N" or "write:N" (N >= 1) from the variable `name`; nothing when it is unset or empty.
+std::optional<Point> point_from_environment(const char* name, bool writes_allowed) {
+  const char* value = std::getenv(name);
+  if (!value || !*value) return std::nullopt;
+  const std::string_view text(value);
+  const auto colon = text.find(':');
+  const std::string_view kind = text.substr(0, colon);
+  std::int64_t n = 0;
+  const char* first = colon == std::string_view::npos ? value + text.size() : value + colon + 1;
+  const char* last = value + text.size();
+  const auto [end, error] = std::from_chars(first, last, n);
+  const bool kind_ok = kind == "step" || (writes_allowed && kind == "write");
+  if (!kind_ok || colon == std::string_view::npos || error != std::errc() || end != last || n < 1)
+    throw InputError(fmt::format("environment variable {}='{}': expected step:N{} with N >= 1 (a testing aid)", name,
+                                 value, writes_allowed ? " or write:N" : ""));
+  return Point{kind == "step" ? Counted::step : Counted::write, n};
+}
+
+struct Points {
+  std::optional<Point> kill = point_from_environment("TIDALCRUST_TEST_KILL_AT", true);
+  std::optional<Point> hold = point_from_environment("TIDALCRUST_TEST_HOLD_AT", false);
+  std::filesystem::path hold_file;
+  std::int64_t steps = 0, writes = 0;
+
+  Points() {
+    if (!hold) return;
+    const char* file = std::getenv("TIDALCRUST_TEST_HOLD_FILE");
+    if (!file || !*file)
+      throw InputError("environment variable TIDALCRUST_TEST_HOLD_AT is set but TIDALCRUST_TEST_HOLD_FILE is not");
+    hold_file = file;
+  }
+};
+
+Points& points() {
+  static Points p;
+  return p;
+}
+
+bool reached(const std::optional<Point>& point, Counted counted, std::int64_t count) {
+  return point && point->counted == counted && point->n == count;
+}
+
+/// SIGKILL from the process itself: the same end as `kill -9` from outside, no cleanup.
+[[noreturn]] void kill_now() {
+  ::kill(::getpid(), SIGKILL);
+  std::abort();  // not reached
+}
+
+/// Appends this process's pid as a line to the hold file (several processes may hold on one)
+/// and waits (polling: the wait is for an event, its length does not matter) until a test removes
+/// the file or a stop signal arrives.
+void hold(const std::filesystem::path& file) {
+  std::ofstream(file, std::ios::app) << ::getpid() << std::endl;
+  std::error_code ignored;
+  while (std::filesystem::exists(file, ignored) && !stop_requested())
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+}
+
+}  // namespace
+
+void test_point_after_step() {
+  Points& p = points();
+  if (!p.kill && !p.hold) return;
+  ++p.steps;
+  if (reached(p.kill, Counted::step, p.steps)) kill_now();
+  if (reached(p.hold, Counted::step, p.steps)) hold(p.hold_file);
+}
+
+void test_point_mid_write() {
+  Points& p = points();
+  if (!p.kill) return;
+  ++p.writes;
+  if (reached(p.kill, Counted::write, p.writes)) kill_now();
+}
+
+}  // namespace tidalcrust

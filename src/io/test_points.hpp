@@ -1,0 +1,30 @@
+#pragma once
+// Testing aids: kill or hold the process at a point counted in steps or file writes, so that
+// tests of interruption (kill -9 mid-write, Ctrl-C inside a stage, SIGTERM to `run --jobs`) hit
+// the same moment on any machine at any load. Switched on only by the environment; without it
+// every call below is a test of one flag.
+//
+//   TIDALCRUST_TEST_KILL_AT=step:N   SIGKILL right after the N-th step this process takes
+//                                     (every time-stepping loop counts: relax, the stability
+//                                     probe, encounters; N >= 1)
+//   TIDALCRUST_TEST_KILL_AT=write:N  SIGKILL in the middle of the N-th file this process writes
+//                                     atomically (io/atomic_file.hpp): half of its bytes are in
+//                                     the temporary, which is never renamed into place
+//   TIDALCRUST_TEST_HOLD_AT=step:N   after the N-th step, append the pid as a line to the file
+//                                     named by TIDALCRUST_TEST_HOLD_FILE and wait until that file
+//                                     is removed or SIGINT/SIGTERM arrives (then the loop stops
+//                                     as on any stop)
+//
+// A malformed value is an InputError naming the variable.
+#include <string_view>
+
+namespace tidalcrust {
+
+/// Counts one step of this process; kills or holds it there when the environment asks.
+void test_point_after_step();
+
+/// Counts one atomic file write of this process; called when half of its bytes are written.
+/// Kills the process there when the environment asks.
+void test_point_mid_write();
+
+}  // namespace tidalcrust
