@@ -423,7 +423,7 @@ std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& cen
     const double volume = 4 * pi / 3 * (r2 * r2 * r2 - r1 * r1 * r1);
     if (!(mass[b] > 0 && modulus_sum[b] > 0))
       throw InputError("the interior has a layer without springs or mass: no P-wave speed there");
-    result[b] = {r2, modulus_sum[b] / (6 * volume), 0.25, mass[b] / volume};
+    result[b] = {r2, network_youngs_modulus(modulus_sum[b], volume), 0.25, mass[b] / volume};
   }
   return result;
 }

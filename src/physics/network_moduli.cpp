@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "base/errors.hpp"
+#include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
 
@@ -147,7 +148,7 @@ NetworkModuli measure_network_moduli(const std::vector<Vec3>& positions, const s
     stiffness_length2 += weight[s] * springs[s].stiffness * rest[s] * rest[s];
     result.springs_in_region += weight[s];
   }
-  result.eq15_youngs = stiffness_length2 / (6 * volume);
+  result.eq15_youngs = network_youngs_modulus(stiffness_length2, volume);
   const Virial virial(springs, rest, weight, volume);
   result.reference_pressure = -virial.stress(positions).trace() / 3;
 
