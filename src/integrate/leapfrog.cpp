@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 #include "model/center_of_mass.hpp"
 #include "integrate/blow_up.hpp"
 
@@ -19,9 +20,9 @@ Leapfrog::Leapfrog(ForceField& forces, StepClock clock) : forces_(forces), clock
 
 void Leapfrog::step(State& state) {
   const std::size_t n3 = state.position.size();
-  if (state.velocity.size() != n3 || n3 != 3 * forces_.body().particle_count())
-    throw InputError(fmt::format("state has {} position and {} velocity values for a body of {} particles",
-                                 n3, state.velocity.size(), forces_.body().particle_count()));
+  TIDALCRUST_ASSERT(state.velocity.size() == n3 && n3 == 3 * forces_.body().particle_count(),
+                    fmt::format("state has {} position and {} velocity values for a body of {} particles", n3,
+                                state.velocity.size(), forces_.body().particle_count()));
   const double dt = clock_.dt, half = 0.5 * dt;
   position_.resize(n3);
   velocity_.resize(n3);
