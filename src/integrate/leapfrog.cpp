@@ -44,6 +44,7 @@ void Leapfrog::step(State& state) {
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
                                       clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
                                       likely_blow_up_cause(forces_.body(), state, clock_.dt)));
+  if (extra_) extra_(xw, v, acc_.body);
   if (measure_work_) half_.assign(xw, xw + n3);
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {
