@@ -135,13 +135,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.failure_strain = spec.failure_strain.value_or(config.shell.failure_strain);
   record.failed_stiffness_factor = config.shell.failed_stiffness_factor;
   record.damping = config.encounter.damping;
-  record.fail_interval = config.encounter.fail_interval;
-  const FailureRule rule = make_failure_rule(config, record.failure_strain, spec.relaxation_crossings, c.body, state, dt);
-  record.failure_rule = choice_name(rule.kind);
-  if (rule.kind == FailureRuleKind::local) {
-    record.relaxation_steps = rule.interval;
-    record.exclusion_distance = rule.exclusion_distance;
-  }
+  record.failure_rule = make_failure_rule(config, spec.relaxation_crossings, c.body, state, dt);
   record.sample_interval = config.encounter.sample_interval;
   record.start_distance = start_distance;
   record.end_distance = end_distance;
@@ -168,21 +162,18 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
     throw InputError("encounter checkpoint: /checkpoint/perturber is missing");
   // The schedule is the one the encounter began with (its record), not the configuration's.
   const EncounterRecord& schedule = checkpoint.stage.as<EncounterRecord>();
-  for (auto [name, steps] : {std::pair{"fail_interval", schedule.fail_interval}, {"sample_interval", schedule.sample_interval}})
+  const StoredFailureRule stored = stored_failure_rule(schedule.failure_rule);
+  for (auto [name, steps] : {std::pair{"fail_interval", stored.fail_interval}, {"sample_interval", schedule.sample_interval}})
     if (steps < 1)
       throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@{} = {} must be >= 1", name, steps));
-  const std::int64_t start_step = checkpoint.stage.clock.start_step;
-  const std::int64_t end_step = checkpoint.stage.end_step;
-  FailureRule rule;
-  rule.kind = parse_choice<FailureRuleKind>(schedule.failure_rule, "encounter checkpoint: /checkpoint/record@failure_rule");
-  rule.failure_strain = schedule.failure_strain;
-  rule.failed_stiffness_factor = schedule.failed_stiffness_factor;
-  rule.interval = rule.kind == FailureRuleKind::local ? schedule.relaxation_steps : schedule.fail_interval;
-  rule.exclusion_distance = schedule.exclusion_distance;
-  if (rule.interval < 1)
+  if (stored.kind == FailureRuleKind::local && stored.relaxation_steps < 1)
     throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@relaxation_steps = {} must be >= 1 for "
                                  "the local failure rule",
-                                 rule.interval));
+                                 stored.relaxation_steps));
+  const std::int64_t start_step = checkpoint.stage.clock.start_step;
+  const std::int64_t end_step = checkpoint.stage.end_step;
+  const FailureRule rule = schedule.failure_rule;
+  const FailureThreshold threshold{schedule.failure_strain, schedule.failed_stiffness_factor};
   const std::int64_t sample_interval = schedule.sample_interval;
   const std::vector<std::int64_t> snapshots = schedule.snapshot_steps;
 
@@ -203,7 +194,7 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
     EnergyLedger& ledger = c.stage.as<EncounterRecord>().energy;
     const std::int64_t done = state.step - start_step;
     const std::size_t logged = c.observables.failures.size();
-    apply_failure_rule(rule, c.body, state, start_step, c.observables.failures);
+    apply_failure_rule(rule, threshold, c.body, state, start_step, c.observables.failures);
     for (std::size_t k = logged; k < c.observables.failures.size(); ++k)
       ledger.failure_released += c.observables.failures[k].released_energy;
     if (done % sample_interval == 0 || state.step == end_step)

@@ -21,10 +21,11 @@ ProbeResult run_stability_probe(const Checkpoint& relaxed, const Config& config,
   Leapfrog leapfrog(forces, probe.stage.clock);
   ProbeResult result;
   result.max_shell_tension = max_shell_tension(probe.body, probe.state);
-  const FailureRule rule = make_failure_rule(config, failure_strain, std::nullopt, probe.body, probe.state, probe.stage.clock.dt);
+  const FailureRule rule = make_failure_rule(config, std::nullopt, probe.body, probe.state, probe.stage.clock.dt);
+  const FailureThreshold threshold{failure_strain, config.shell.failed_stiffness_factor};
   auto after_step = [&](Checkpoint& c) {
     result.max_shell_tension = std::max(result.max_shell_tension, max_shell_tension(c.body, c.state));
-    result.failures += static_cast<std::int64_t>(apply_failure_rule(rule, c.body, c.state, first, c.observables.failures));
+    result.failures += static_cast<std::int64_t>(apply_failure_rule(rule, threshold, c.body, c.state, first, c.observables.failures));
   };
   StepLoopOptions probe_options = options;
   probe_options.label = options.label.empty() ? "stability probe" : options.label + " stability probe";

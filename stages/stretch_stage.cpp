@@ -285,6 +285,8 @@ double mantle_youngs_modulus(const Body& body, const State& state, const Config&
     const double length = state.springs.rest_length[n];
     sum += state.springs.stiffness[n] * length * length;
   }
+  // network_youngs_modulus (eq. 15) with 6 V rounded as 8 pi (r_I^3 - r_c^3), not 6 (4 pi/3 (...)):
+  // the two differ in the last bit for core-T's r_I = 0.897, and its stretch keeps the bits it had.
   return sum / (6.0 * 4.0 / 3.0 * std::numbers::pi * (ri * ri * ri - rc * rc * rc));
 }
 

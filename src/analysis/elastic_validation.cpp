@@ -197,27 +197,21 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
 namespace {
 
 /// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) about `center` with a drag
-/// -drag v on every particle (v at the start of the step, as the spring damping takes it): the
-/// leapfrog of Leapfrog::step (drift, kick with the forces at the half-step positions plus the
-/// field and the drag, drift), for `steps` steps of dt.
-void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag, double dt,
-                          std::int64_t steps) {
-  const std::size_t n = state.position.size();
-  std::vector<double> half(n);
-  Accelerations acc;
-  for (std::int64_t s = 0; s < steps; ++s) {
-    for (std::size_t i = 0; i < n; ++i) half[i] = state.position[i] + 0.5 * dt * state.velocity[i];
-    forces.compute(half.data(), state.velocity.data(), state.springs, state.hinges, state.perturber, acc);
-    for (std::size_t p = 0; p < n / 3; ++p) {
-      acc.body[3 * p] += -eps * (half[3 * p] - center[0]);
-      acc.body[3 * p + 1] += -eps * (half[3 * p + 1] - center[1]);
-      acc.body[3 * p + 2] += 2 * eps * (half[3 * p + 2] - center[2]);
+/// -drag v on every particle (v at the start of the step, as the spring damping takes it):
+/// Leapfrog::step with the field and the drag as its extra acceleration, for `steps` steps of
+/// clock.dt.
+void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag,
+                          const StepClock& clock, std::int64_t steps) {
+  Leapfrog leapfrog(forces, clock);
+  leapfrog.set_extra_acceleration([&](const double* x, const double* v, std::vector<double>& a) {
+    for (std::size_t p = 0; p < a.size() / 3; ++p) {
+      a[3 * p] += -eps * (x[3 * p] - center[0]);
+      a[3 * p + 1] += -eps * (x[3 * p + 1] - center[1]);
+      a[3 * p + 2] += 2 * eps * (x[3 * p + 2] - center[2]);
     }
-    for (std::size_t i = 0; i < n; ++i) {
-      state.velocity[i] += dt * (acc.body[i] - drag * state.velocity[i]);
-      state.position[i] = half[i] + 0.5 * dt * state.velocity[i];
-    }
-  }
+    for (std::size_t i = 0; i < a.size(); ++i) a[i] = a[i] - drag * v[i];
+  });
+  leapfrog.advance(state, steps);
 }
 
 /// Coefficient a2 of the fit u_r = a0 + a2 P2(cos theta) of the radial displacement
@@ -270,20 +264,21 @@ LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, cons
   const State rest = state_at_rest(relaxed);
   const Vec3 center = body_center_of_mass(body, rest);
   const double dt = relaxed.stage.clock.dt;
+  const StepClock clock{rest.time, rest.step, dt};
   const std::int64_t steps = step_count(duration, dt);
   const std::int64_t early = 2 * steps / 3;
   ForceField forces(body, force_options(config, 0.0));
   State plus = rest, minus = rest;
-  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, dt, early);
-  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, dt, early);
+  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, clock, early);
+  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, clock, early);
   auto fit = fit_degree_two(body, rest, plus, minus);
   const auto h2_of = [&](const std::array<double, 2>& f) {
     const double rs = f[1];
     return f[0] / (r.tidal_strength * rs * rs * rs * rs);  // W/g = eps r_s^2 / (1/r_s^2)
   };
   r.h2_early = h2_of(fit);
-  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, dt, steps - early);
-  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, dt, steps - early);
+  relax_in_tidal_field(forces, plus, center, r.tidal_strength, drag, clock, steps - early);
+  relax_in_tidal_field(forces, minus, center, -r.tidal_strength, drag, clock, steps - early);
   fit = fit_degree_two(body, rest, plus, minus);
   r.h2 = h2_of(fit);
   r.shell_radius = fit[1];
@@ -423,7 +418,7 @@ std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& cen
     const double volume = 4 * pi / 3 * (r2 * r2 * r2 - r1 * r1 * r1);
     if (!(mass[b] > 0 && modulus_sum[b] > 0))
       throw InputError("the interior has a layer without springs or mass: no P-wave speed there");
-    result[b] = {r2, modulus_sum[b] / (6 * volume), 0.25, mass[b] / volume};
+    result[b] = {r2, network_youngs_modulus(modulus_sum[b], volume), 0.25, mass[b] / volume};
   }
   return result;
 }

@@ -87,6 +87,8 @@ ReportSection record_section(const Checkpoint& c) {
       s.add(name, std::vector<double>(value.begin(), value.end()), unit);
     else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>)
       s.add(name, value);
+    else if constexpr (Choice<T>)
+      s.add(name, std::string(choice_name(value)));
     else
       s.add(name, value, unit);
   };

@@ -21,19 +21,19 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 /// What must be equal for two checkpoints to be one encounter at two resolutions.
 struct EncounterIdentity {
   double perturber_mass, pericenter, pericenter_speed, failure_strain;
-  std::string failure_rule;
+  FailureRuleKind failure_rule;
   bool operator==(const EncounterIdentity&) const = default;
 };
 
 EncounterIdentity identity_of(const EncounterRecord& r) {
   return {r.encounter.perturber_mass, r.encounter.pericenter, r.encounter.pericenter_speed, r.failure_strain,
-          r.failure_rule};
+          kind_of(r.failure_rule)};
 }
 
 std::string describe(const EncounterIdentity& e) {
   // Shortest round-trip numbers, so that values differing in the last digit show as different.
   return fmt::format("M2 = {} M, q = {} R, V_q = {} sqrt(GM/R), eps_S = {}, {} rule", e.perturber_mass, e.pericenter,
-                     e.pericenter_speed, e.failure_strain, e.failure_rule);
+                     e.pericenter_speed, e.failure_strain, choice_name(e.failure_rule));
 }
 
 Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
@@ -79,7 +79,7 @@ ResolutionStudy build_resolution_study(const std::vector<std::string>& files) {
       first = identity;
       study.encounter = record.encounter;
       study.failure_strain = record.failure_strain;
-      study.failure_rule = record.failure_rule;
+      study.failure_rule = kind_of(record.failure_rule);
     } else if (!(identity == first)) {
       throw InputError(fmt::format("{}: another encounter than {} ({}; there: {}); a resolution study compares one "
                                    "encounter at several resolutions",
@@ -127,7 +127,7 @@ Json resolution_study_json(const ResolutionStudy& study) {
             {"pericenter", study.encounter.pericenter},
             {"pericenter_speed", study.encounter.pericenter_speed},
             {"failure_strain", study.failure_strain},
-            {"failure_rule", study.failure_rule}}},
+            {"failure_rule", std::string(choice_name(study.failure_rule))}}},
           {"rows", rows}};
 }
 

@@ -11,6 +11,7 @@
 
 #include "analysis/fracture_analysis.hpp"
 #include "io/json.hpp"
+#include "model/choices.hpp"
 #include "model/encounter.hpp"
 
 namespace tidalcrust {
@@ -38,7 +39,7 @@ struct ResolutionRow {
 struct ResolutionStudy {
   Encounter encounter;                ///< name (of the first file), M2, q, V_q: shared by all rows
   double failure_strain = 0;          ///< eps_S, shared by all rows
-  std::string failure_rule;           ///< "paper" or "local", shared by all rows
+  FailureRuleKind failure_rule = FailureRuleKind::paper;  ///< shared by all rows
   std::vector<ResolutionRow> rows;    ///< by shell node count ascending (ties: in the given order)
 };
 

@@ -15,13 +15,6 @@ namespace tidalcrust {
 /// positions (R); per_shell_node > 0. Deterministic (a sort of distances).
 double cross_distance_for(const std::vector<Vec3>& interior, const std::vector<Vec3>& shell, double per_shell_node);
 
-/// Spring constant k (G M^2/R^3) that makes eq. 15 exact: E = (1/6V) sum k L^2, so
-/// k = 6 V E / sum L^2, for a modulus E (e_g), volume V (R^3) and the network's sum of squared
-/// rest lengths (R^2).
-inline double spring_constant_for_modulus(double youngs_modulus, double volume, double sum_length2) {
-  return 6.0 * volume * youngs_modulus / sum_length2;
-}
-
 /// Cross-spring constant that makes eq. 25 exact: V_Co = sqrt(k_C N_C / M_S) L_C, so
 /// k_C = (V_Co / L_C)^2 M_S / N_C (G M^2/R^3).
 inline double cross_constant_for_speed(double coupling_speed, double mean_length, double shell_mass,

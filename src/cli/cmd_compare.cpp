@@ -43,7 +43,7 @@ std::string level_text(const ResolutionRow& r) { return r.shell_level >= 0 ? std
 void print_resolution_table(const ResolutionStudy& study) {
   fmt::print("resolution study of encounter {}: M2 = {} M, q = {} R, V_q = {} sqrt(GM/R), eps_S = {}, {} rule\n",
              study.encounter.name, study.encounter.perturber_mass, study.encounter.pericenter,
-             study.encounter.pericenter_speed, study.failure_strain, study.failure_rule);
+             study.encounter.pericenter_speed, study.failure_strain, choice_name(study.failure_rule));
   const auto line = [](const auto&... cells) {
     fmt::print("{:>5} {:>7} {:>9} {:>9} {:>7} {:>9} {:>10} {:>9} {:>8} {:>10} {:>8} {:>8} {:>8} {:>8}\n", cells...);
   };
@@ -83,7 +83,7 @@ std::vector<std::filesystem::path> write_resolution_outputs(const ResolutionStud
   }
   const std::string title = fmt::format("{}: fracture maps by shell level\n{}; eps_S = {}, {} failure rule",
                                         study.encounter.name, encounter_parameters_text(study.encounter),
-                                        general_text(study.failure_strain), study.failure_rule);
+                                        general_text(study.failure_strain), choice_name(study.failure_rule));
   std::vector<std::filesystem::path> written{dir / "convergence.json", dir / "convergence.csv"};
   for (const auto& f : write_fracture_map_row(panels, titles, dir / "convergence_maps", title)) written.push_back(f);
   return written;

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <limits>
 
-#include "base/errors.hpp"
+#include "base/invariant.hpp"
 #include "forces/hinge_force_x8.hpp"
 #include "forces/perturber_gravity.hpp"
 
@@ -31,9 +31,10 @@ void build_incidence(std::size_t particles, const std::vector<std::pair<std::int
 }
 
 void check_index(std::int32_t index, std::size_t particles, const char* what, std::size_t element) {
-  if (index < 0 || static_cast<std::size_t>(index) >= particles)
-    throw InputError(fmt::format("{} {} refers to particle {}, but the body has {} particles", what,
-                                 element, index, particles));
+  // The checkpoint reader and the builders check indices: a bad one here is a bug.
+  TIDALCRUST_ASSERT(index >= 0 && static_cast<std::size_t>(index) < particles,
+                    fmt::format("{} {} refers to particle {}, but the body has {} particles", what, element, index,
+                                particles));
 }
 
 }  // namespace
@@ -59,8 +60,8 @@ ForceField::ForceField(const Body& body, ForceOptions options)
   else
     gravity_.emplace(body.mass, body.softening, options.gravity_kernel);
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
-  if (body.spring_kind.size() != ns)
-    throw InputError(fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
+  TIDALCRUST_ASSERT(body.spring_kind.size() == ns,
+                    fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
   reduced_mass_.resize(ns);
   nonlinear_.resize(ns);
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
@@ -215,9 +216,10 @@ std::int64_t ForceField::compute_hinge_forces(const double* position, const Hing
 
 void ForceField::check_sizes(const SpringState& springs, const HingeState& hinges) const {
   const std::size_t ns = body_.spring_count(), nh = body_.hinge_count();
-  if (springs.rest_length.size() != ns || springs.stiffness.size() != ns || hinges.rest_angle.size() != nh ||
-      body_.hinge_stiffness.size() != nh)
-    throw InputError(fmt::format("state does not match the body: {} springs and {} hinges in the body, "
+  // The checkpoint reader checks every dataset's shape: a mismatch here is a bug.
+  TIDALCRUST_ASSERT(springs.rest_length.size() == ns && springs.stiffness.size() == ns &&
+                        hinges.rest_angle.size() == nh && body_.hinge_stiffness.size() == nh,
+                    fmt::format("state does not match the body: {} springs and {} hinges in the body, "
                                  "{} rest lengths, {} stiffnesses, {} rest angles in the state, "
                                  "{} hinge stiffnesses in the body",
                                  ns, nh, springs.rest_length.size(), springs.stiffness.size(),

@@ -107,7 +107,7 @@ class ForceField {
 
   /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
   /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
-  /// O(N^2): for diagnostics, not every step). Throws InputError like compute().
+  /// O(N^2): for diagnostics, not every step). Checks the sizes like compute().
   Energies energies(const double* position, const double* velocity, const SpringState& springs,
                     const HingeState& hinges, const Perturber& perturber);
   Energies energies(const State& state) {
@@ -145,7 +145,8 @@ class ForceField {
   const ForceOptions& options() const { return options_; }
 
  private:
-  /// Throws InputError unless the state's per-spring and per-hinge arrays match the body.
+  /// TIDALCRUST_ASSERT that the state's per-spring and per-hinge arrays match the body (the
+  /// checkpoint reader has checked them: a mismatch is a bug).
   void check_sizes(const SpringState& springs, const HingeState& hinges) const;
   void refresh_half_rest_angles(const HingeState& hinges);
   /// THE loop over springs [begin, end): builds each spring's evaluator from the body and the

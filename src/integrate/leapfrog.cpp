@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 #include "model/center_of_mass.hpp"
 #include "integrate/blow_up.hpp"
 
@@ -19,9 +20,9 @@ Leapfrog::Leapfrog(ForceField& forces, StepClock clock) : forces_(forces), clock
 
 void Leapfrog::step(State& state) {
   const std::size_t n3 = state.position.size();
-  if (state.velocity.size() != n3 || n3 != 3 * forces_.body().particle_count())
-    throw InputError(fmt::format("state has {} position and {} velocity values for a body of {} particles",
-                                 n3, state.velocity.size(), forces_.body().particle_count()));
+  TIDALCRUST_ASSERT(state.velocity.size() == n3 && n3 == 3 * forces_.body().particle_count(),
+                    fmt::format("state has {} position and {} velocity values for a body of {} particles", n3,
+                                state.velocity.size(), forces_.body().particle_count()));
   const double dt = clock_.dt, half = 0.5 * dt;
   position_.resize(n3);
   velocity_.resize(n3);
@@ -43,6 +44,7 @@ void Leapfrog::step(State& state) {
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
                                       clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
                                       likely_blow_up_cause(forces_.body(), state, clock_.dt)));
+  if (extra_) extra_(xw, v, acc_.body);
   if (measure_work_) half_.assign(xw, xw + n3);
   const double* a = acc_.body.data();
   for (std::size_t k = 0; k < n3; ++k) {

@@ -2,6 +2,8 @@
 // The integrator: REBOUND's leapfrog, drift-kick-drift, second order and symplectic
 // (Rein & Liu 2012, REBOUND; paper section 2). Units: time t_grav, lengths R, velocities sqrt(GM/R).
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "forces/force_field.hpp"
@@ -40,7 +42,15 @@ class Leapfrog {
   /// The work of the last step (zero unless measured), G M^2/R.
   const StepWork& last_work() const { return work_; }
 
-  /// Accelerations of the last step (at its half-step positions).
+  /// An acceleration beyond the body's forces (an external field, a drag): called in every step
+  /// after the force pass with the half-step positions x [N*3] (R), the start-of-step velocities
+  /// v [N*3] (sqrt(GM/R)) and the force pass's accelerations a [N*3] (G M/R^2), which it changes
+  /// in place (it adds its own); the kick then uses a. Its work is not in last_work().
+  using ExtraAcceleration = std::function<void(const double* x, const double* v, std::vector<double>& a)>;
+  /// Adds `extra` to every following step (none by default: the step is then exactly as above).
+  void set_extra_acceleration(ExtraAcceleration extra) { extra_ = std::move(extra); }
+
+  /// Accelerations of the last step (at its half-step positions; with the extra acceleration).
   const Accelerations& accelerations() const { return acc_; }
   const StepClock& clock() const { return clock_; }
   ForceField& forces() { return forces_; }
@@ -56,6 +66,7 @@ class Leapfrog {
   std::vector<double> position_;  ///< workspace: half-step, then end-of-step positions
   std::vector<double> velocity_;  ///< workspace: end-of-step velocities
   std::vector<double> half_;      ///< workspace: half-step positions, kept when measuring work
+  ExtraAcceleration extra_;
   bool measure_work_ = false;
   StepWork work_;
 };

@@ -344,6 +344,10 @@ struct RecordWriter {
   void operator()(const char* name, const std::string& v, const char*, const char*) const {
     h5::write_string_attribute(group, name, v);
   }
+  template <Choice E>
+  void operator()(const char* name, E v, const char*, const char*) const {  // by its name (model/choices.hpp)
+    h5::write_string_attribute(group, name, std::string(choice_name(v)));
+  }
   template <typename T>
   void operator()(const char* name, const std::vector<T>& v, const char*, const char*) const {
     h5::write_dataset(group, name, v, {v.size()});
@@ -366,6 +370,15 @@ struct RecordReader {
   }
   void operator()(const char* name, std::string& v, const char*, const char*) const {
     v = h5::read_string_attribute(group, name);
+  }
+  template <Choice E>
+  void operator()(const char* name, E& v, const char*, const char*) const {
+    const std::string text = h5::read_string_attribute(group, name);
+    const auto value = find_choice<E>(text);
+    if (!value)
+      throw h5::Error(fmt::format("attribute {}@{} is \"{}\", expected one of: {}", path::record, name, text,
+                                  choice_names<E>()));
+    v = *value;
   }
   template <typename T>
   void operator()(const char* name, std::vector<T>& v, const char*, const char*) const {

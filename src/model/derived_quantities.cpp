@@ -73,7 +73,7 @@ DerivedQuantities derive_quantities(const Body& body, const State& state, double
 
   DerivedQuantities q;
   const double volume = 4.0 / 3.0 * std::numbers::pi * interior_radius * interior_radius * interior_radius;
-  q.E_I = volume > 0 ? interior.stiffness_length2 / (6.0 * volume) : 0.0;
+  q.E_I = volume > 0 ? network_youngs_modulus(interior.stiffness_length2, volume) : 0.0;
   q.L_I = interior.mean_length();
   q.k_I = interior.mean_stiffness();
   q.L_S = shell.mean_length();

@@ -37,6 +37,19 @@ struct DerivedQuantities {
 /// loaded lattice (docs/validation.md, flexure).
 inline double hinge_lattice_flexural_rigidity(double hinge_stiffness) { return hinge_stiffness / 4; }
 
+/// Young's modulus of a spring network, eq. 15: E = (1/6V) sum k L^2, for the sum of k L^2 over
+/// its springs (G M^2/R) and the volume V they fill (R^3); e_g. The one home of eq. 15.
+inline double network_youngs_modulus(double stiffness_length2, double volume) {
+  return stiffness_length2 / (6.0 * volume);
+}
+
+/// Eq. 15 solved for a common spring constant: k = 6 V E / sum L^2 (G M^2/R^3) gives a network
+/// of springs with the squared rest lengths summing to sum_length2 (R^2), filling the volume V
+/// (R^3), the Young's modulus E (e_g).
+inline double spring_constant_for_modulus(double youngs_modulus, double volume, double sum_length2) {
+  return 6.0 * volume * youngs_modulus / sum_length2;
+}
+
 /// P-wave speed of eq. 16 for a Young's modulus E (e_g) at the mean density 3/(4 pi) and Poisson
 /// ratio 1/4, in sqrt(GM/R).
 double p_wave_speed(double youngs_modulus);

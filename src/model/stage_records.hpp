@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "model/encounter.hpp"
+#include "model/failure_rule.hpp"
 
 namespace tidalcrust {
 
@@ -88,10 +89,7 @@ struct EncounterRecord {
   double failure_strain = 0;          ///< eps_S used
   double failed_stiffness_factor = 0; ///< F_Sk used
   double damping = 0;                 ///< gamma, 1/t_grav
-  std::int64_t fail_interval = 1;     ///< t_fail, steps ("paper" rule)
-  std::string failure_rule = "paper"; ///< "paper" or "local" (physics/shell_failure.hpp)
-  std::int64_t relaxation_steps = 0;  ///< "local": relaxation interval, steps (0 for "paper")
-  double exclusion_distance = 0;      ///< "local": crack neighbourhood radius, R (0 for "paper")
+  FailureRule failure_rule;           ///< the rule with its schedule in steps (model/failure_rule.hpp)
   std::int64_t sample_interval = 1;   ///< steps between timeseries samples
   double start_distance = 0;          ///< perturber distance at the start, R
   double end_distance = 0;            ///< perturber distance at the end, R
@@ -159,10 +157,7 @@ void visit_fields(Record& r, Visit&& visit) {
   visit("failure_strain", r.failure_strain, "1", "eps_S");
   visit("failed_stiffness_factor", r.failed_stiffness_factor, "1", "F_Sk");
   visit("damping", r.damping, "1/t_grav", "gamma");
-  visit("fail_interval", r.fail_interval, "steps", "t_fail");
-  visit("failure_rule", r.failure_rule, "", "paper or local");
-  visit("relaxation_steps", r.relaxation_steps, "steps", "local rule: relaxation interval of a crack neighbourhood");
-  visit("exclusion_distance", r.exclusion_distance, "R", "local rule: crack neighbourhood radius");
+  visit_failure_rule(r.failure_rule, visit);  // fail_interval, failure_rule, relaxation_steps, exclusion_distance
   visit("sample_interval", r.sample_interval, "steps", "between timeseries samples");
   visit("start_distance", r.start_distance, "R", "perturber distance at the start");
   visit("end_distance", r.end_distance, "R", "perturber distance at the end");

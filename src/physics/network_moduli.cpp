@@ -8,6 +8,8 @@
 #include <numbers>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
+#include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
 
@@ -107,14 +109,15 @@ IsotropicModuli voigt_isotropic_moduli(const Matrix6& c) {
 NetworkModuli measure_network_moduli(const std::vector<Vec3>& positions, const std::vector<NetworkSpring>& springs,
                                      const Vec3& center, double hold_radius, double measure_radius, double strain,
                                      bool with_prestress) {
-  if (!(hold_radius > 0 && measure_radius > 0 && measure_radius <= hold_radius && strain > 0))
-    throw InputError(fmt::format(
-        "network moduli: need 0 < measure_radius <= hold_radius and strain > 0, got {}, {} and {}", measure_radius,
-        hold_radius, strain));
+  // The arguments are the caller's (analysis/elastic_validation.cpp), not a user's.
+  TIDALCRUST_ASSERT(hold_radius > 0 && measure_radius > 0 && measure_radius <= hold_radius && strain > 0,
+                    fmt::format("network moduli: need 0 < measure_radius <= hold_radius and strain > 0, got {}, {} "
+                                "and {}",
+                                measure_radius, hold_radius, strain));
   const auto n = static_cast<std::int32_t>(positions.size());
   for (const auto& s : springs)
-    if (s.i < 0 || s.j < 0 || s.i >= n || s.j >= n || s.i == s.j)
-      throw InputError(fmt::format("network moduli: spring ({}, {}) names no pair of the {} nodes", s.i, s.j, n));
+    TIDALCRUST_ASSERT(s.i >= 0 && s.j >= 0 && s.i < n && s.j < n && s.i != s.j,
+                      fmt::format("network moduli: spring ({}, {}) names no pair of the {} nodes", s.i, s.j, n));
 
   // Which nodes relax: those inside hold_radius that carry a spring (a node without one does
   // not take part); their index in the linear system.
@@ -147,7 +150,7 @@ NetworkModuli measure_network_moduli(const std::vector<Vec3>& positions, const s
     stiffness_length2 += weight[s] * springs[s].stiffness * rest[s] * rest[s];
     result.springs_in_region += weight[s];
   }
-  result.eq15_youngs = stiffness_length2 / (6 * volume);
+  result.eq15_youngs = network_youngs_modulus(stiffness_length2, volume);
   const Virial virial(springs, rest, weight, volume);
   result.reference_pressure = -virial.stress(positions).trace() / 3;
 

@@ -73,9 +73,10 @@ struct NetworkModuli {
 /// response: the result does not depend on it beyond rounding, since +-h cancels the second
 /// order). `with_prestress = false` measures the same geometry with every spring's rest length
 /// set to its length at x0 (no tension, no geometric stiffness): the pre-stress's share.
-/// InputError when a radius is not positive, measure_radius > hold_radius, no node is free or
-/// held, a spring index is out of range, or the free nodes are not held in place by the springs
-/// (a singular stiffness matrix).
+/// InputError when no node is free or held, or the free nodes are not held in place by the
+/// springs (a singular stiffness matrix): a body too small or loose for the measurement.
+/// Internal error (TIDALCRUST_ASSERT) when a radius is not positive, measure_radius >
+/// hold_radius or a spring index is out of range: the caller's arguments.
 NetworkModuli measure_network_moduli(const std::vector<Vec3>& positions, const std::vector<NetworkSpring>& springs,
                                      const Vec3& center, double hold_radius, double measure_radius,
                                      double strain = 1e-6, bool with_prestress = true);

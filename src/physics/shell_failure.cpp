@@ -77,21 +77,22 @@ FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double s
 }
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
-/// fails unless a failure of the last `interval` steps (or of this check) lies within
+/// fails unless a failure of the last relaxation_steps steps (or of this check) lies within
 /// exclusion_distance of it (midpoints, current positions).
-std::size_t fail_local(const FailureRule& rule, const Body& body, State& state, std::vector<FailureEvent>& log) {
+std::size_t fail_local(const LocalFailureRule& rule, const FailureThreshold& threshold, const Body& body, State& state,
+                       std::vector<FailureEvent>& log) {
   std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     if (!is_unfailed_shell(body, state, n)) continue;
     const double strain = spring_strain(body, state, n);
-    if (strain > rule.failure_strain) candidates.emplace_back(strain, n);
+    if (strain > threshold.failure_strain) candidates.emplace_back(strain, n);
   }
   if (candidates.empty()) return 0;
   std::sort(candidates.begin(), candidates.end(),
             [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
   // Midpoints of the failures still relaxing (the log is in step order: scan from its end).
   std::vector<Vec3> relaxing;
-  for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.interval; ++e)
+  for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.relaxation_steps; ++e)
     relaxing.push_back(spring_midpoint(body, state, static_cast<std::size_t>(e->spring)));
   const double r2 = rule.exclusion_distance * rule.exclusion_distance;
   std::size_t failed = 0;
@@ -100,7 +101,7 @@ std::size_t fail_local(const FailureRule& rule, const Body& body, State& state, 
     const bool excluded =
         std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
     if (excluded) continue;
-    log.push_back(fail_spring(body, state, n, strain, rule.failed_stiffness_factor));
+    log.push_back(fail_spring(body, state, n, strain, threshold.failed_stiffness_factor));
     relaxing.push_back(mid);
     ++failed;
   }
@@ -109,30 +110,33 @@ std::size_t fail_local(const FailureRule& rule, const Body& body, State& state, 
 
 }  // namespace
 
-FailureRule make_failure_rule(const Config& config, double failure_strain, std::optional<double> relaxation_crossings,
-                              const Body& body, const State& state, double dt) {
-  FailureRule rule;
-  rule.kind = config.encounter.failure_rule;
-  rule.failure_strain = failure_strain;
-  rule.failed_stiffness_factor = config.shell.failed_stiffness_factor;
-  if (rule.kind == FailureRuleKind::paper) {
-    rule.interval = config.encounter.fail_interval;
-    return rule;
+FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
+                              const State& state, double dt) {
+  switch (config.encounter.failure_rule) {
+    case FailureRuleKind::paper:
+      break;
+    case FailureRuleKind::local: {
+      const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
+      if (!(q.L_S > 0) || !(q.V_SP > 0))
+        throw InputError(fmt::format("encounter.failure_rule = \"{}\" needs a shell (no shell springs in this body)",
+                                     choice_name(FailureRuleKind::local)));
+      const double crossing_time = q.L_S / q.V_SP;
+      LocalFailureRule rule;
+      rule.relaxation_steps = std::max<std::int64_t>(
+          1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
+      rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
+      rule.configured_fail_interval = config.encounter.fail_interval;
+      return rule;
+    }
   }
-  const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
-  if (!(q.L_S > 0) || !(q.V_SP > 0))
-    throw InputError("encounter.failure_rule = \"local\" needs a shell (no shell springs in this body)");
-  const double crossing_time = q.L_S / q.V_SP;
-  rule.interval = std::max<std::int64_t>(1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
-  rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
-  return rule;
+  return PaperFailureRule{config.encounter.fail_interval};
 }
 
-std::size_t apply_failure_rule(const FailureRule& rule, const Body& body, State& state, std::int64_t start_step,
-                               std::vector<FailureEvent>& log) {
-  if (rule.kind == FailureRuleKind::local) return fail_local(rule, body, state, log);
-  if ((state.step - start_step) % rule.interval != 0) return 0;
-  auto event = fail_most_strained_shell_spring(body, state, rule.failure_strain, rule.failed_stiffness_factor);
+std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,
+                               State& state, std::int64_t start_step, std::vector<FailureEvent>& log) {
+  if (const auto* local = std::get_if<LocalFailureRule>(&rule)) return fail_local(*local, threshold, body, state, log);
+  if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
+  auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);
   if (!event) return 0;
   log.push_back(*event);
   return 1;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "model/config.hpp"
+#include "model/failure_rule.hpp"
 
 #include "model/body.hpp"
 #include "model/checkpoint.hpp"
@@ -37,30 +38,27 @@ double max_shell_tension(const Body& body, const State& state);
 std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, State& state, double failure_strain,
                                                             double failed_stiffness_factor);
 
-/// A failure rule with its schedule in steps (converted from physical times once, by
-/// make_failure_rule).
-struct FailureRule {
-  FailureRuleKind kind = FailureRuleKind::paper;
+/// What makes a shell spring fail and what is left of it (model/failure_rule.hpp: which springs
+/// fail when).
+struct FailureThreshold {
   double failure_strain = 0;           ///< eps_S
   double failed_stiffness_factor = 0;  ///< F_Sk
-  /// paper: t_fail, steps between checks. local: the relaxation interval, steps during which a
-  /// neighbourhood that had a failure cannot have another (checks every step).
-  std::int64_t interval = 1;
-  double exclusion_distance = 0;  ///< local: neighbourhood radius r_ex L_S (R); spring midpoints
 };
 
-/// The rule of config.encounter for a body: paper: interval = encounter.fail_interval. local:
-/// interval = max(1, round(relaxation_crossings * L_S / V_SP / dt)) (relaxation_crossings: the
-/// encounter's override, else encounter.relaxation_crossings) and exclusion_distance =
-/// exclusion_radius * L_S, with L_S the mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S)
-/// the shell P-wave speed (eq. 19) of this body. The one place where these times become steps.
-FailureRule make_failure_rule(const Config& config, double failure_strain, std::optional<double> relaxation_crossings,
-                              const Body& body, const State& state, double dt);
+/// The rule config.encounter.failure_rule names, for a body: paper: fail_interval =
+/// encounter.fail_interval. local: relaxation_steps = max(1, round(relaxation_crossings * L_S /
+/// V_SP / dt)) (relaxation_crossings: the encounter's override, else
+/// encounter.relaxation_crossings) and exclusion_distance = exclusion_radius * L_S, with L_S the
+/// mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S) the shell P-wave speed (eq. 19) of this
+/// body. The one place where these times become steps. InputError for the local rule on a body
+/// without a shell.
+FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
+                              const State& state, double dt);
 
-/// Applies `rule` after a step: whether this step checks (paper: (step - start_step) % interval
-/// == 0; local: every step), and which springs fail. `log` is the stage's failure log so far
-/// (step order); the new events are appended to it. Returns the number of new failures.
-std::size_t apply_failure_rule(const FailureRule& rule, const Body& body, State& state, std::int64_t start_step,
-                               std::vector<FailureEvent>& log);
+/// Applies `rule` after a step: whether this step checks (paper: (step - start_step) %
+/// fail_interval == 0; local: every step), and which springs fail. `log` is the stage's failure
+/// log so far (step order); the new events are appended to it. Returns the number of new failures.
+std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,
+                               State& state, std::int64_t start_step, std::vector<FailureEvent>& log);
 
 }  // namespace tidalcrust

@@ -173,3 +173,40 @@ TEST(Leapfrog, DetectsABlowUpAndNamesTheStep) {
   // The state left behind is a finite step boundary.
   for (double x : c.state.position) ASSERT_TRUE(std::isfinite(x));
 }
+
+TEST(Leapfrog, ExtraAccelerationSeesHalfStepPositionsAndEntersTheKick) {
+  Checkpoint c = small_body();
+  shake(c.state, 3e-3, 0.02, 4);
+  ForceField field(c.body);
+  const StepClock clock = clock_at(c.state, c.stage.clock.dt);
+  const double half = 0.5 * clock.dt;
+  const State start = c.state;
+  // Cancelling every force leaves free flight: v unchanged, x = (x + v dt/2) + v dt/2, bit for bit.
+  Leapfrog leapfrog(field, clock);
+  std::vector<double> seen_x, seen_v;
+  leapfrog.set_extra_acceleration([&](const double* x, const double* v, std::vector<double>& a) {
+    seen_x.assign(x, x + a.size());
+    seen_v.assign(v, v + a.size());
+    for (double& ak : a) ak = 0;
+  });
+  leapfrog.step(c.state);
+  std::vector<double> expected_half(start.position.size()), expected_end(start.position.size());
+  for (std::size_t k = 0; k < expected_half.size(); ++k) {
+    expected_half[k] = start.position[k] + half * start.velocity[k];
+    expected_end[k] = expected_half[k] + half * start.velocity[k];
+  }
+  EXPECT_TRUE(same_bits(seen_x, expected_half));
+  EXPECT_TRUE(same_bits(seen_v, start.velocity));  // start-of-step velocities
+  EXPECT_TRUE(same_bits(c.state.velocity, start.velocity));
+  EXPECT_TRUE(same_bits(c.state.position, expected_end));
+
+  // Without an extra acceleration the step is the plain one; an identity changes no bit.
+  State plain = start, zero = start;
+  Leapfrog(field, clock).advance(plain, 5);
+  Leapfrog with_zero(field, clock);
+  with_zero.set_extra_acceleration([](const double*, const double*, std::vector<double>& a) {
+    for (double& ak : a) ak *= 1.0;
+  });
+  with_zero.advance(zero, 5);
+  EXPECT_TRUE(same_state(plain, zero));
+}

@@ -48,6 +48,8 @@ std::string record_bytes(const StageRecord& record) {
       out += value;
     } else if constexpr (std::is_arithmetic_v<T>) {
       out.append(reinterpret_cast<const char*>(&value), sizeof value);
+    } else if constexpr (Choice<T>) {
+      out += choice_name(value);
     } else {
       out.append(reinterpret_cast<const char*>(value.data()), value.size() * sizeof(value[0]));
     }

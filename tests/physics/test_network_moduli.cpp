@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 #include "base/random.hpp"
 #include "physics/network_moduli.hpp"
 
@@ -116,13 +117,15 @@ TEST(NetworkModuli, StrainAmplitudeDoesNotMatter) {
   EXPECT_NEAR(a.relaxed_moduli.poisson, b.relaxed_moduli.poisson, 1e-6);
 }
 
-TEST(NetworkModuli, BadGeometryIsInputError) {
+TEST(NetworkModuli, BadGeometryIsInputErrorAndBadArgumentsAnInternalError) {
   const Network net = random_ball(200, 1.0, 0.18, 0.4, 1.0);
-  EXPECT_THROW(measure_network_moduli(net.positions, net.springs, Vec3::Zero(), 0.5, 0.6), InputError);
-  EXPECT_THROW(measure_network_moduli(net.positions, net.springs, Vec3::Zero(), 5.0, 0.6), InputError);  // none held
+  // The caller's arguments: measure radius beyond the hold radius, a spring to no node.
+  EXPECT_THROW(measure_network_moduli(net.positions, net.springs, Vec3::Zero(), 0.5, 0.6), InternalError);
   std::vector<NetworkSpring> bad = net.springs;
   bad.push_back({0, 999, 0.1, 1.0});
-  EXPECT_THROW(measure_network_moduli(net.positions, bad, Vec3::Zero(), 0.6, 0.5), InputError);
+  EXPECT_THROW(measure_network_moduli(net.positions, bad, Vec3::Zero(), 0.6, 0.5), InternalError);
+  // The body's: too small a network to hold any node (validate reports it and goes on).
+  EXPECT_THROW(measure_network_moduli(net.positions, net.springs, Vec3::Zero(), 5.0, 0.6), InputError);  // none held
   EXPECT_THROW(isotropic_moduli_from_bulk_shear(1.0, 0.0), InputError);
 }
 

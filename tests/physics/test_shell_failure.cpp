@@ -102,15 +102,10 @@ struct Row {
     // Strains 1%, 3%, 2%, 0.05%.
     for (double strain : {0.01, 0.03, 0.02, 0.0005}) state.springs.rest_length.push_back(0.1 / (1 + strain));
   }
-  FailureRule local(std::int64_t interval, double exclusion) const {
-    FailureRule rule;
-    rule.kind = FailureRuleKind::local;
-    rule.failure_strain = 0.001;
-    rule.failed_stiffness_factor = 0.005;
-    rule.interval = interval;
-    rule.exclusion_distance = exclusion;
-    return rule;
+  static FailureRule local(std::int64_t relaxation_steps, double exclusion) {
+    return LocalFailureRule{relaxation_steps, exclusion, 3};
   }
+  static constexpr FailureThreshold threshold{0.001, 0.005};
 };
 
 }  // namespace
@@ -119,7 +114,7 @@ TEST(LocalFailureRule, EveryOverStrainedNeighbourhoodFailsMostStrainedFirst) {
   Row r;
   std::vector<FailureEvent> log;
   // Exclusion 0.2: springs 1 and 2 (0.1 apart) share a neighbourhood, 0 is alone, 3 is below eps_S.
-  EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), r.body, r.state, 0, log), 2u);
+  EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), Row::threshold, r.body, r.state, 0, log), 2u);
   ASSERT_EQ(log.size(), 2u);
   EXPECT_EQ(log[0].spring, 1);  // 3%: the most strained first
   EXPECT_EQ(log[1].spring, 0);  // 1%: far from spring 1; spring 2 (2%) is excluded by spring 1
@@ -131,20 +126,20 @@ TEST(LocalFailureRule, EveryOverStrainedNeighbourhoodFailsMostStrainedFirst) {
 TEST(LocalFailureRule, ANeighbourhoodWaitsOneRelaxationIntervalAfterAFailure) {
   Row r;
   std::vector<FailureEvent> log;
-  apply_failure_rule(r.local(5, 0.2), r.body, r.state, 0, log);
+  apply_failure_rule(r.local(5, 0.2), Row::threshold, r.body, r.state, 0, log);
   for (std::int64_t step = 101; step <= 104; ++step) {  // spring 1 failed at 100: 100 > step - 5
     r.state.step = step;
-    EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), r.body, r.state, 0, log), 0u) << "step " << step;
+    EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), Row::threshold, r.body, r.state, 0, log), 0u) << "step " << step;
   }
   r.state.step = 105;  // 5 steps later the neighbourhood has relaxed
-  EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), r.body, r.state, 0, log), 1u);
+  EXPECT_EQ(apply_failure_rule(r.local(5, 0.2), Row::threshold, r.body, r.state, 0, log), 1u);
   EXPECT_EQ(log.back().spring, 2);
 }
 
 TEST(LocalFailureRule, WithoutExclusionEveryOverStrainedSpringFails) {
   Row r;
   std::vector<FailureEvent> log;
-  EXPECT_EQ(apply_failure_rule(r.local(1, 1e-9), r.body, r.state, 0, log), 3u);
+  EXPECT_EQ(apply_failure_rule(r.local(1, 1e-9), Row::threshold, r.body, r.state, 0, log), 3u);
   EXPECT_EQ(log[0].spring, 1);
   EXPECT_EQ(log[1].spring, 2);
   EXPECT_EQ(log[2].spring, 0);
@@ -152,11 +147,10 @@ TEST(LocalFailureRule, WithoutExclusionEveryOverStrainedSpringFails) {
 
 TEST(PaperFailureRule, OneSpringPerCheckEveryFailInterval) {
   Row r;
-  FailureRule rule = r.local(3, 0);
-  rule.kind = FailureRuleKind::paper;
+  const FailureRule rule = PaperFailureRule{3};
   std::vector<FailureEvent> log;
-  EXPECT_EQ(apply_failure_rule(rule, r.body, r.state, 99, log), 0u);  // 1 step after the start: no check
-  EXPECT_EQ(apply_failure_rule(rule, r.body, r.state, 97, log), 1u);  // 3 steps after: the worst fails
+  EXPECT_EQ(apply_failure_rule(rule, Row::threshold, r.body, r.state, 99, log), 0u);  // 1 step after the start: no check
+  EXPECT_EQ(apply_failure_rule(rule, Row::threshold, r.body, r.state, 97, log), 1u);  // 3 steps after: the worst fails
   EXPECT_EQ(log.at(0).spring, 1);
 }
 
@@ -171,18 +165,21 @@ TEST(FailureRuleSchedule, LocalIntervalIsCrossingTimesInStepsConvertedOnce) {
   double mean = 0;
   for (double l : r.state.springs.rest_length) mean += l / 4;
   const double V_SP = std::sqrt(1.0 * 4 * std::acos(-1.0) / 0.07);  // eq. 19, k_S = 1
-  const FailureRule rule = make_failure_rule(config, 0.002, std::nullopt, r.body, r.state, 0.001);
-  EXPECT_EQ(rule.kind, FailureRuleKind::local);
-  EXPECT_EQ(rule.interval, std::llround(2.0 * mean / V_SP / 0.001));
+  auto local = [&](std::optional<double> crossings, double dt) {
+    const FailureRule rule = make_failure_rule(config, crossings, r.body, r.state, dt);
+    EXPECT_EQ(kind_of(rule), FailureRuleKind::local);
+    return std::get<LocalFailureRule>(rule);
+  };
+  const LocalFailureRule rule = local(std::nullopt, 0.001);
+  EXPECT_EQ(rule.relaxation_steps, std::llround(2.0 * mean / V_SP / 0.001));
   EXPECT_NEAR(rule.exclusion_distance, 1.5 * mean, 1e-15);
-  EXPECT_EQ(rule.failure_strain, 0.002);
+  EXPECT_EQ(rule.configured_fail_interval, config.encounter.fail_interval);
   // An encounter's own relaxation interval wins over the workflow's.
-  EXPECT_EQ(make_failure_rule(config, 0.002, 0.5, r.body, r.state, 0.001).interval,
-            std::llround(0.5 * mean / V_SP / 0.001));
+  EXPECT_EQ(local(0.5, 0.001).relaxation_steps, std::llround(0.5 * mean / V_SP / 0.001));
   // Half the time step: twice the steps, the same physical interval (to rounding).
-  EXPECT_NEAR(static_cast<double>(make_failure_rule(config, 0.002, std::nullopt, r.body, r.state, 0.0005).interval),
-              2.0 * static_cast<double>(rule.interval), 1.0);
+  EXPECT_NEAR(static_cast<double>(local(std::nullopt, 0.0005).relaxation_steps),
+              2.0 * static_cast<double>(rule.relaxation_steps), 1.0);
   config.encounter.failure_rule = FailureRuleKind::paper;
   config.encounter.fail_interval = 3;
-  EXPECT_EQ(make_failure_rule(config, 0.002, std::nullopt, r.body, r.state, 0.001).interval, 3);
+  EXPECT_EQ(make_failure_rule(config, std::nullopt, r.body, r.state, 0.001), FailureRule(PaperFailureRule{3}));
 }

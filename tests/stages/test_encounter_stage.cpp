@@ -146,7 +146,7 @@ TEST(EncounterStage, BeginPlacesPerturberOnTheOrbitAndLeavesTheBodyAlone) {
   EXPECT_NEAR(record.min_distance, r.config.encounter.start_distance, 1e-12);
   EXPECT_EQ(record.failure_strain, r.config.shell.failure_strain);
   EXPECT_EQ(record.failed_stiffness_factor, r.config.shell.failed_stiffness_factor);
-  EXPECT_EQ(record.fail_interval, r.config.encounter.fail_interval);
+  EXPECT_EQ(record.failure_rule, FailureRule(PaperFailureRule{r.config.encounter.fail_interval}));
   EXPECT_EQ(record.sample_interval, r.config.encounter.sample_interval);
 
   // Snapshots: ascending, inside (start, end], at pericenter and at the end.

@@ -16,7 +16,7 @@ inline Checkpoint synthetic_checkpoint() {
   record.failure_strain = 0.002;
   record.failed_stiffness_factor = 0.005;
   record.damping = 0.01;
-  record.fail_interval = 3;
+  record.failure_rule = PaperFailureRule{3};
   record.sample_interval = 10;
   record.start_distance = 3.0;
   record.end_distance = 3.0;
