@@ -95,6 +95,10 @@ void visit_keys(C& c, V&& visit) {
       {"cross", "min_per_shell_node", "-",
        "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
        12});
+  key(c.cross.coupling,
+      {"cross", "coupling", "-",
+       "\"paper\" (d_C rule and k_C) or \"welded\" (the shell joined into the interior network with the interior's "
+       "moduli; docs/crust-support.md)"});
 
   key(c.integrator.dt, {"integrator", "dt", "t_grav", "leapfrog time step", 1e-7, 1.0});
   key(c.integrator.softening_fraction,
@@ -520,6 +524,11 @@ void resolve_material(Config& c, const std::string& origin) {
   c.interior.min_separation = spacing;
   c.interior.spring_distance = 2.3 * spacing;
   c.interior.radius = c.shell.enabled ? 1.0 - 1.03 * spacing : 1.0 - 0.5 * spacing;
+  if (c.shell.enabled && c.cross.coupling == "welded") {
+    // The welded interior reaches the crust: it fills the ball under the crust's thickness.
+    const double e2d_welded = material_crust_modulus_2d(m);
+    c.interior.radius = 1.0 - m.crust_thickness.value_or(e2d_welded / *m.youngs_modulus);
+  }
   const double cells = 2 * c.interior.radius / spacing;
   c.interior.count = c.resolution.interior_count.value_or(std::llround(packing_fraction * cells * cells * cells));
   // The crust: E_2D = (2/sqrt 3) k_S (eq. 20), resolution-free; M_S; eps_S.
@@ -585,6 +594,7 @@ void validate(const Config& config, const std::string& origin) {
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
   check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
+  check_choice(config.cross.coupling, {"paper", "welded"}, fmt::format("{}: cross.coupling", origin));
   check_choice(config.stretch.hydrostatic_support, {"strengthen", "compress"},
                fmt::format("{}: stretch.hydrostatic_support", origin));
   check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
@@ -593,6 +603,10 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
+                                 origin));
+  if (config.cross.coupling == "welded" && config.cross.nonlinear)
+    throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "
+                                 "false): the welded springs continue the linear interior network",
                                  origin));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {

@@ -57,6 +57,8 @@ std::string build_fingerprint(const Config& config) {
          keys_of(config, "interior", Keys::all_but, {}) +
          keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
          keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"}) +
+         // Only when not the paper's, so that a body without it keeps its fingerprint.
+         (config.cross.coupling != "paper" ? keys_of(config, "cross", Keys::only, {"coupling"}) : std::string()) +
          material_keys(config);
 }
 
