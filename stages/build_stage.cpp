@@ -66,7 +66,7 @@ double core_stiffness_factor(const Config& config, const Vec3& a, const Vec3& b)
 
 Checkpoint build_stage(const Config& config) {
   check_buildable(config);
-  const bool welded = config.shell.enabled && config.cross.coupling == "welded";
+  const bool welded = config.shell.enabled && config.cross.coupling == CrossCoupling::welded;
   const InteriorNetwork interior = welded ? welded_interior(config.interior, config.workflow.seed)
                                           : build_interior(config.interior, config.workflow.seed);
   Icosphere shell;

@@ -137,8 +137,8 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.damping = config.encounter.damping;
   record.fail_interval = config.encounter.fail_interval;
   const FailureRule rule = make_failure_rule(config, record.failure_strain, spec.relaxation_crossings, c.body, state, dt);
-  record.failure_rule = failure_rule_name(rule.kind);
-  if (rule.kind == FailureRule::Kind::local) {
+  record.failure_rule = choice_name(rule.kind);
+  if (rule.kind == FailureRuleKind::local) {
     record.relaxation_steps = rule.interval;
     record.exclusion_distance = rule.exclusion_distance;
   }
@@ -174,10 +174,10 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
   const std::int64_t start_step = checkpoint.stage.clock.start_step;
   const std::int64_t end_step = checkpoint.stage.end_step;
   FailureRule rule;
-  rule.kind = failure_rule_kind(schedule.failure_rule, "encounter checkpoint: /checkpoint/record@failure_rule");
+  rule.kind = parse_choice<FailureRuleKind>(schedule.failure_rule, "encounter checkpoint: /checkpoint/record@failure_rule");
   rule.failure_strain = schedule.failure_strain;
   rule.failed_stiffness_factor = schedule.failed_stiffness_factor;
-  rule.interval = rule.kind == FailureRule::Kind::local ? schedule.relaxation_steps : schedule.fail_interval;
+  rule.interval = rule.kind == FailureRuleKind::local ? schedule.relaxation_steps : schedule.fail_interval;
   rule.exclusion_distance = schedule.exclusion_distance;
   if (rule.interval < 1)
     throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@relaxation_steps = {} must be >= 1 for "

@@ -9,7 +9,7 @@ namespace tidalcrust {
 
 void continue_under_gravity_kernel(Checkpoint& checkpoint, const Config& config, bool allow_change,
                                    const std::string& source) {
-  const std::string current = gravity_kernel_label(gravity_kernel_of(config));
+  const std::string current = gravity_kernel_label(config.gravity.kernel);
   const std::string recorded = checkpoint.stage.gravity_kernel;
   if (!recorded.empty() && !same_gravity_bits(recorded, current)) {
     if (!allow_change)

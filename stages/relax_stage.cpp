@@ -40,7 +40,7 @@ void support_crust_by_cross_springs(ForceField& forces, const Body& body, State&
   zero_crust_stress(body, state);
   std::vector<double> gravity(state.position.size());
   forces.compute_gravity(state.position.data(), gravity.data());
-  balance_cross_springs(body, state, gravity, config.cross.coupling == "welded");
+  balance_cross_springs(body, state, gravity, config.cross.coupling == CrossCoupling::welded);
 }
 
 /// The relaxation proper: leapfrog at damping relax.damping, all schedules counted in steps
@@ -66,7 +66,7 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
   const RelaxConfig& relax = config.relax;
   const std::int64_t start = checkpoint.stage.clock.start_step;
   const std::int64_t creep_end = record.creep_end_step;
-  const bool balanced = relax.crust_support == "balanced";
+  const bool balanced = relax.crust_support == CrustSupport::balanced;
   auto after_step = [&](Checkpoint& c) {
     const std::int64_t done = c.state.step - start;
     if (balanced) {
@@ -150,7 +150,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   record.creep_end_step =
       std::max(clock.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, clock.dt));
   if (record.creep_end_step == clock.start_step) {  // settle only
-    if (config.relax.crust_support == "balanced") {
+    if (config.relax.crust_support == CrustSupport::balanced) {
       ForceField forces(c.body, force_options(config, record.damping));
       support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else {

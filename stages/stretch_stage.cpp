@@ -306,7 +306,7 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   auto& record = out.stage.as<StretchRecord>();
   if (!config.stretch.enabled) return out;
   // The stretch factor is found from forces that include self-gravity.
-  out.stage.gravity_kernel = gravity_kernel_label(gravity_kernel_of(config));
+  out.stage.gravity_kernel = gravity_kernel_label(config.gravity.kernel);
 
   const Body& body = built.body;
   StretchTrial trial(built, config);
@@ -320,7 +320,7 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
     return solve_stretch_factor([&](double f) { return trial.balance(f, strengthening.multiplier).surface; },
                                 budget);
   };
-  const bool compress = config.stretch.hydrostatic_support == "compress";
+  const bool compress = config.stretch.hydrostatic_support == HydrostaticSupport::compress;
   if (compress)  // each interior spring carries its own pressure; f sets only the crust's and cross springs'
     trial.hold_interior(interior_compression_factors(body, built.state, trial.centre(), config, young_modulus));
   const bool f_moves_forces = !compress || std::any_of(body.spring_kind.begin(), body.spring_kind.end(), [](auto k) {

@@ -243,7 +243,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   if (!built) return interrupted(result);
   const auto stretched =
       instant_stage(ctx, "stretch", body_dir / "stretch.h5", stretch_fingerprint(config), state_hash(built->state),
-                    config.stretch.hydrostatic_support == "compress" ? "stretching (interior compressed to its pressure)"
+                    config.stretch.hydrostatic_support == HydrostaticSupport::compress ? "stretching (interior compressed to its pressure)"
                                                                      : "stretching and strengthening",
                     [&] { return stretch_stage(*built, config); });
   if (!stretched) return interrupted(result);

@@ -62,8 +62,8 @@ ReportSection derived_section(const Checkpoint& c, const std::string& file) {
 ReportSection gravity_section(const Checkpoint& c, const std::string& file) {
   const Config config = parse_config(c.config_toml, file + ":/parameters/config");
   ReportSection s{"gravity", {}};
-  s.add("method", config.gravity.method);
-  if (config.gravity.method == "tree")
+  s.add("method", std::string(choice_name(config.gravity.method)));
+  if (config.gravity.method == GravityMethod::tree)
     s.add("force_error", config.gravity.force_error, "1")
         .add("opening_angle", opening_angle_for(config.gravity.force_error), "1");
   return s;

@@ -24,7 +24,9 @@ void add_common_options(cxxopts::Options& options) {
 
 void add_kernel_options(cxxopts::Options& options) {
   options.add_options("gravity kernel")
-      ("gravity-kernel", "fast or portable (sets gravity.kernel; portable: the same bits on every x86-64 CPU)",
+      ("gravity-kernel",
+       fmt::format("one of: {} (sets gravity.kernel; portable: the same bits on every x86-64 CPU)",
+                   choice_names<GravityKernel>()),
        cxxopts::value<std::string>())
       ("allow-kernel-change", "continue a checkpoint computed by another gravity kernel (recorded in the checkpoint)");
 }
@@ -38,8 +40,7 @@ KernelOptions read_kernel_options(const cxxopts::ParseResult& parsed) {
 
 void KernelOptions::apply(Config& config) const {
   if (!gravity_kernel) return;
-  config.gravity.kernel = *gravity_kernel;
-  validate(config, "--gravity-kernel");
+  config.gravity.kernel = parse_choice<GravityKernel>(*gravity_kernel, "--gravity-kernel: gravity.kernel");
 }
 
 CommonOptions read_common_options(const cxxopts::ParseResult& parsed) {

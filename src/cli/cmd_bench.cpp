@@ -213,7 +213,7 @@ int command_bench(int argc, char** argv) {
   const double ms_per_step = median_ms_per_call(repeats, steps, [&](std::int64_t n) { leapfrog.advance(run, n); });
 
   // The same steps with the other gravity kernel, for the cost of the portable one.
-  const GravityKernel kernel = gravity_kernel_of(config);
+  const GravityKernel kernel = config.gravity.kernel;
   const GravityKernel other = kernel == GravityKernel::fast ? GravityKernel::portable : GravityKernel::fast;
   ForceOptions other_options = force_options(config, config.encounter.damping);
   other_options.gravity_kernel = other;
@@ -253,12 +253,12 @@ int command_bench(int argc, char** argv) {
   const double peak_mb = peak_memory_mb();  // before the direct comparison allocates its buffers
 
   // The tree against the direct sum at the same N, in the same run.
-  const bool tree = config.gravity.method == "tree";
+  const bool tree = config.gravity.method == GravityMethod::tree;
   double direct_ms_per_step = 0, direct_gravity_ms = 0;
   ForceErrorStats error;
   if (tree) {
     ForceOptions direct_options = force_options(config, config.encounter.damping);
-    direct_options.tree_gravity = false;
+    direct_options.gravity_method = GravityMethod::direct;
     ForceField direct_forces(body.body, direct_options);
     std::vector<double> direct_gravity(state.position.size());
     direct_gravity_ms = median_ms_per_call(1, 1, [&](std::int64_t) { direct_forces.compute_gravity(x, direct_gravity.data()); });
@@ -289,7 +289,7 @@ int command_bench(int argc, char** argv) {
                      "(springs, hinges, gravity, perturber) and same drift-kick-drift"},
         {"speedup", speedup},
         {"build_ms", build_ms},
-        {"gravity_method", config.gravity.method},
+        {"gravity_method", std::string(choice_name(config.gravity.method))},
         {"peak_memory_mb", peak_mb}};
     if (tree) {
       json["force_error_target"] = config.gravity.force_error;
@@ -315,7 +315,7 @@ int command_bench(int argc, char** argv) {
                  textbook_ms);
       fmt::print("speedup: {:.2f}\n", speedup);
     }
-    fmt::print("gravity: {}{}\npeak_memory: {:.0f} MB\n", config.gravity.method,
+    fmt::print("gravity: {}{}\npeak_memory: {:.0f} MB\n", choice_name(config.gravity.method),
                tree ? fmt::format(" (force_error {:g})", config.gravity.force_error) : "", peak_mb);
     if (tree) {
       fmt::print("direct_ms_per_step: {:.3f}  ({} steps; gravity alone {:.3f})\n", direct_ms_per_step, direct_steps,

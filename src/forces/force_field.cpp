@@ -44,21 +44,17 @@ ForceOptions force_options(const Config& config, double damping) {
   options.cross_nonlinear = config.cross.nonlinear;
   options.cross_strain_scale = config.cross.strain_scale;
   options.cross_min_force_factor = config.cross.min_force_factor;
-  options.gravity_kernel = gravity_kernel_of(config);
-  options.tree_gravity = config.gravity.method == "tree";
+  options.gravity_kernel = config.gravity.kernel;
+  options.gravity_method = config.gravity.method;
   options.force_error = config.gravity.force_error;
   return options;
-}
-
-GravityKernel gravity_kernel_of(const Config& config) {
-  return config.gravity.kernel == "portable" ? GravityKernel::portable : GravityKernel::fast;
 }
 
 ForceField::ForceField(const Body& body, ForceOptions options)
     : body_(body),
       options_(options),
       cross_{options.cross_strain_scale, options.cross_min_force_factor} {
-  if (options.tree_gravity)
+  if (options.gravity_method == GravityMethod::tree)
     tree_.emplace(body.mass, body.softening, options.force_error);
   else
     gravity_.emplace(body.mass, body.softening, options.gravity_kernel);

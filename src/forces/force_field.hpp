@@ -38,9 +38,8 @@ struct ForceOptions {
   double cross_min_force_factor = 0.1;///< F_Ck
   bool self_gravity = true;           ///< false only for tests of the other forces
   GravityKernel gravity_kernel = GravityKernel::fast;  ///< [gravity] kernel (DirectGravity)
-  /// Self-gravity by TreeGravity at target relative error `force_error` instead of DirectGravity
-  /// ([gravity] method = "tree").
-  bool tree_gravity = false;
+  /// [gravity] method: DirectGravity, or TreeGravity at target relative error `force_error`.
+  GravityMethod gravity_method = GravityMethod::direct;
   double force_error = 1e-4;
   /// A pass with less work than this (N^2/128 + springs + 4 hinges) runs on one thread:
   /// below it the fork/join costs more than it saves, and far more when the cores are
@@ -51,9 +50,6 @@ struct ForceOptions {
 /// The options of a configuration ([cross] nonlinear, strain_scale, min_force_factor; [gravity]
 /// kernel, method, force_error) for a stage that damps its springs at rate `damping` (1/t_grav).
 ForceOptions force_options(const Config& config, double damping);
-
-/// The gravity kernel `[gravity] kernel` names ("fast" or "portable"; validate() checks it).
-GravityKernel gravity_kernel_of(const Config& config);
 
 /// Accelerations of the body particles and of the perturber.
 struct Accelerations {

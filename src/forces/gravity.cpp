@@ -162,16 +162,20 @@ double self_gravity_energy(const std::vector<double>& mass, double softening, co
 }
 
 const char* gravity_kernel_label(GravityKernel kernel) {
-  if (kernel == GravityKernel::portable) return "portable";
+  switch (kernel) {
+    case GravityKernel::portable: return "portable";
 #if defined(__AVX512F__)
-  return "fast/avx512";
+    case GravityKernel::fast: return "fast/avx512";
 #else
-  return "fast/generic";
+    case GravityKernel::fast: return "fast/generic";
 #endif
+  }
+  return "";
 }
 
 bool same_gravity_bits(std::string_view a, std::string_view b) {
-  // Without AVX-512 the fast kernel IS the portable one (pair_rows_portable).
+  // Without AVX-512 the fast kernel IS the portable one (pair_rows_portable). The labels are
+  // build labels of a checkpoint, not the configuration's choice.
   auto bits = [](std::string_view label) { return label == "fast/generic" ? std::string_view("portable") : label; };
   return bits(a) == bits(b);
 }

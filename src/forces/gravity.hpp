@@ -7,22 +7,15 @@
 #include <string_view>
 #include <vector>
 
+#include "model/choices.hpp"
+
 namespace tidalcrust {
 
-/// Which code DirectGravity evaluates the pairs with (`[gravity] kernel`, docs/determinism.md).
-/// Both sum the same pairs in the same blocks, lanes and order; they differ in how one pair's
-/// inverse cube and the partial sums are rounded.
-enum class GravityKernel {
-  /// With AVX-512: vrsqrt14pd and two Newton steps, explicit fused multiply-adds (fastest);
-  /// its bits differ from a build without AVX-512. Without AVX-512: the portable code.
-  fast,
-  /// Correctly rounded IEEE sqrt and division, no fused multiply-adds: the same bits in every
-  /// x86-64 build, with or without AVX-512 (tests/forces/test_gravity_kernels.cpp).
-  portable,
-};
+// GravityKernel, the `[gravity] kernel` that DirectGravity evaluates the pairs with, is a closed
+// choice of the configuration (model/choices.hpp).
 
-/// The kernel as this build computes it, for the checkpoint: "fast/avx512", "fast/generic"
-/// (a build without AVX-512) or "portable".
+/// The kernel as this build computes it, for the checkpoint: its name, and for fast the code
+/// this build runs: "fast/avx512", "fast/generic" (a build without AVX-512) or "portable".
 const char* gravity_kernel_label(GravityKernel kernel);
 
 /// Whether two kernel labels give the same bits: equal labels, or "fast/generic" and "portable"

@@ -8,7 +8,6 @@
 #include <cmath>
 #include <concepts>
 #include <fstream>
-#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <set>
@@ -26,9 +25,10 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::uint64_t max_toml_integer = std::numeric_limits<std::int64_t>::max();
 
 /// The description of one configuration key whose value has type T (double, std::int64_t,
-/// std::uint64_t, bool or std::string): where it lives in the TOML, its unit and meaning (the
-/// comment to_toml writes; none when `unit` is empty), and for numbers the accepted range
-/// [min, max], or (min, max] when `open_min`.
+/// std::uint64_t, bool, std::string or a closed choice of model/choices.hpp): where it lives in
+/// the TOML, its unit and meaning (the comment to_toml writes; none when `unit` is empty; a
+/// choice's is its table's, choice_doc), and for numbers the accepted range [min, max], or
+/// (min, max] when `open_min`.
 template <class T>
 struct Key {
   using type = T;
@@ -95,10 +95,7 @@ void visit_keys(C& c, V&& visit) {
       {"cross", "min_per_shell_node", "-",
        "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
        12});
-  key(c.cross.coupling,
-      {"cross", "coupling", "-",
-       "\"paper\" (d_C rule and k_C) or \"welded\" (the shell joined into the interior network with the interior's "
-       "moduli; docs/crust-support.md)"});
+  key(c.cross.coupling, {"cross", "coupling", "-", choice_doc<CrossCoupling>()});
 
   key(c.integrator.dt, {"integrator", "dt", "t_grav", "leapfrog time step", 1e-7, 1.0});
   key(c.integrator.softening_fraction,
@@ -113,9 +110,7 @@ void visit_keys(C& c, V&& visit) {
   key(c.stretch.cross_compression,
       {"stretch", "cross_compression", "-", "extra compressive strain given to cross springs", 0, 0.5});
   key(c.stretch.hydrostatic_support,
-      {"stretch", "hydrostatic_support", "-",
-       "\"strengthen\" (paper: stiffer core springs) or \"compress\" (pre-strain at the material's stiffness; "
-       "default for [material])"});
+      {"stretch", "hydrostatic_support", "-", choice_doc<HydrostaticSupport>()});
 
   key(c.relax.damping, {"relax", "damping", "1/t_grav", "gamma during relaxation", 0, 1e4});
   key(c.relax.duration, {"relax", "duration", "t_grav", "T, length of the relaxation run", 0, 1e4});
@@ -138,9 +133,7 @@ void visit_keys(C& c, V&& visit) {
        "run the stability probe (encounter damping, failures on, no perturber) after relaxing"});
   key(c.relax.probe_damping, {"relax", "probe_damping", "1/t_grav", "gamma of the stability probe", 0, 1e4});
   key(c.relax.probe_duration, {"relax", "probe_duration", "t_grav", "length of the stability probe", 0, 1e4});
-  key(c.relax.crust_support,
-      {"relax", "crust_support", "-",
-       "\"paper\" (crust carries the cross springs' sideways push) or \"balanced\" (no crust pre-stress)"});
+  key(c.relax.crust_support, {"relax", "crust_support", "-", choice_doc<CrustSupport>()});
 
   key(c.encounter.damping, {"encounter", "damping", "1/t_grav", "gamma during encounters", 0, 1e4});
   key(c.encounter.fail_interval,
@@ -156,9 +149,7 @@ void visit_keys(C& c, V&& visit) {
        "steps between mid-stage checkpoints (0: none)", 0, 1'000'000'000'000});
   key(c.encounter.sample_interval,
       {"encounter", "sample_interval", "steps", "steps between timeseries samples", 1, 1'000'000'000});
-  key(c.encounter.failure_rule,
-      {"encounter", "failure_rule", "-",
-       "\"paper\" (one spring per fail_interval) or \"local\" (one per neighbourhood per relaxation interval)"});
+  key(c.encounter.failure_rule, {"encounter", "failure_rule", "-", choice_doc<FailureRuleKind>()});
   key(c.encounter.exclusion_radius,
       {"encounter", "exclusion_radius", "L_S", "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3,
        true});
@@ -166,10 +157,8 @@ void visit_keys(C& c, V&& visit) {
       {"encounter", "relaxation_crossings", "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
 
-  key(c.gravity.kernel,
-      {"gravity", "kernel", "-",
-       "\"fast\" (AVX-512 estimates where available) or \"portable\" (the same bits on every x86-64 CPU)"});
-  key(c.gravity.method, {"gravity", "method", "-", "\"direct\" (every pair, the reference) or \"tree\" (octree, quadrupoles)"});
+  key(c.gravity.kernel, {"gravity", "kernel", "-", choice_doc<GravityKernel>()});
+  key(c.gravity.method, {"gravity", "method", "-", choice_doc<GravityMethod>()});
   key(c.gravity.force_error,
       {"gravity", "force_error", "-", "tree: target median relative force error per particle", 0, 0.5, true});
 
@@ -258,6 +247,10 @@ std::string toml_text(const std::string& s) {
   out << toml::value<std::string>(s);
   return out.str();
 }
+template <Choice E>
+std::string toml_text(E value) {
+  return toml_text(std::string(choice_name(value)));
+}
 
 /// "name = value  # [unit] doc\n" ("name = value\n" without a unit); nothing for an unset
 /// optional key.
@@ -274,9 +267,10 @@ std::string toml_line(const F& field, const Key<T>& key) {
 
 // ---- reading and checking values --------------------------------------------------------------
 
-/// The value of a TOML node for `key`; `where` prefixes the message of a wrong type.
+/// The value of a TOML node for `key`; `where` prefixes the message of a wrong type, `origin`
+/// (the file or --set) that of a value that is not one of a choice's.
 template <class T>
-T read_value(const toml::node& node, const Key<T>& key, const std::string& where) {
+T read_value(const toml::node& node, const Key<T>& key, const std::string& where, const std::string& origin) {
   auto wrong = [&](const char* expected) {
     return InputError(fmt::format("{}: '{}' must be {}", where, key.name, expected));
   };
@@ -295,6 +289,10 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
   } else if constexpr (std::is_same_v<T, bool>) {
     if (auto b = node.value_exact<bool>()) return *b;
     throw wrong("true or false");
+  } else if constexpr (Choice<T>) {
+    if (auto s = node.value_exact<std::string>())
+      return parse_choice<T>(*s, fmt::format("{}: {}.{}", origin, key.section, key.name));
+    throw wrong(fmt::format("one of: {}", choice_names<T>()).c_str());
   } else {
     static_assert(std::is_same_v<T, std::string>);
     if (auto s = node.value_exact<std::string>()) return *s;
@@ -303,14 +301,14 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
 }
 
 /// Sets the key `name` of `section` in `target` (a Config or an Encounter) from a TOML node;
-/// false when there is no such key.
+/// false when there is no such key. `where` and `origin`: as for read_value.
 template <class Target>
 bool set_key(Target& target, std::string_view section, std::string_view name, const toml::node& node,
-             const std::string& where) {
+             const std::string& where, const std::string& origin) {
   bool found = false;
   visit_keys(target, [&](auto& field, const auto& key) {
     if (key.section != section || key.name != name) return;
-    field = read_value(node, key, where);
+    field = read_value(node, key, where, origin);
     found = true;
   });
   return found;
@@ -331,13 +329,6 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
   }
 }
 
-void check_choice(const std::string& value, std::initializer_list<std::string_view> choices,
-                  const std::string& what) {
-  for (std::string_view choice : choices)
-    if (value == choice) return;
-  throw InputError(fmt::format("{} = \"{}\" is not one of: {}", what, value, fmt::join(choices, ", ")));
-}
-
 void check_encounter_name(const std::string& name, const std::string& origin) {
   if (name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", origin));
   for (char ch : name)
@@ -356,7 +347,7 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
     if (!table) throw InputError(where + ": must be a table");
     Encounter& e = encounters.emplace_back();
     for (auto&& [k, value] : *table)
-      if (!set_key(e, "encounters", k.str(), value, where))
+      if (!set_key(e, "encounters", k.str(), value, where, origin))
         throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
                                      known_keys<Encounter>("encounters")));
   }
@@ -524,7 +515,7 @@ void resolve_material(Config& c, const std::string& origin) {
   c.interior.min_separation = spacing;
   c.interior.spring_distance = 2.3 * spacing;
   c.interior.radius = c.shell.enabled ? 1.0 - 1.03 * spacing : 1.0 - 0.5 * spacing;
-  if (c.shell.enabled && c.cross.coupling == "welded") {
+  if (c.shell.enabled && c.cross.coupling == CrossCoupling::welded) {
     // The welded interior reaches the crust: it fills the ball under the crust's thickness.
     const double e2d_welded = material_crust_modulus_2d(m);
     c.interior.radius = 1.0 - m.crust_thickness.value_or(e2d_welded / *m.youngs_modulus);
@@ -593,18 +584,11 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.settle_duration > config.relax.duration)
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
-  check_choice(config.relax.crust_support, {"paper", "balanced"}, fmt::format("{}: relax.crust_support", origin));
-  check_choice(config.cross.coupling, {"paper", "welded"}, fmt::format("{}: cross.coupling", origin));
-  check_choice(config.stretch.hydrostatic_support, {"strengthen", "compress"},
-               fmt::format("{}: stretch.hydrostatic_support", origin));
-  check_choice(config.encounter.failure_rule, {"paper", "local"}, fmt::format("{}: encounter.failure_rule", origin));
-  check_choice(config.gravity.kernel, {"fast", "portable"}, fmt::format("{}: gravity.kernel", origin));
-  check_choice(config.gravity.method, {"direct", "tree"}, fmt::format("{}: gravity.method", origin));
-  if (config.relax.crust_support == "balanced" && config.cross.nonlinear)
+  if (config.relax.crust_support == CrustSupport::balanced && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
                                  origin));
-  if (config.cross.coupling == "welded" && config.cross.nonlinear)
+  if (config.cross.coupling == CrossCoupling::welded && config.cross.nonlinear)
     throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "
                                  "false): the welded springs continue the linear interior network",
                                  origin));
@@ -647,7 +631,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));
     for (auto&& [k, node] : *table)
-      if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section)))
+      if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section), origin))
         throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
                                      known_keys<Config>(section)));
   }
@@ -661,7 +645,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   // A [material] body keeps its moduli at every resolution unless the file asks otherwise.
   const toml::table* stretch = root["stretch"].as_table();
   if (config.from_material() && !(stretch && stretch->get("hydrostatic_support") != nullptr))
-    config.stretch.hydrostatic_support = "compress";
+    config.stretch.hydrostatic_support = HydrostaticSupport::compress;
   validate(config, origin);
   return config;
 }
@@ -696,7 +680,7 @@ void apply_override(Config& config, const std::string& assignment) {
   }
   const toml::node& node = *parsed.get("v");
   if (section != "encounters") {
-    if (!set_key(config, section, key, node, "--set"))
+    if (!set_key(config, section, key, node, "--set", "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
     refuse_derived_key(config, section, key, where);
     if (section == "integrator" && key == "dt") config.choose_dt = false;
@@ -710,7 +694,7 @@ void apply_override(Config& config, const std::string& assignment) {
   const auto e = std::find_if(config.encounters.begin(), config.encounters.end(),
                               [&](const Encounter& spec) { return spec.name == name; });
   if (e == config.encounters.end()) throw InputError(fmt::format("{}: no encounter named '{}'", where, name));
-  if (!set_key(*e, "encounters", key, node, where))
+  if (!set_key(*e, "encounters", key, node, where, where))
     throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
 }
 

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "model/choices.hpp"
 #include "model/encounter.hpp"
 
 namespace tidalcrust {
@@ -52,12 +53,10 @@ struct CrossConfig {
   /// Every shell node gets at least this many cross springs (to its nearest interior nodes,
   /// spanning three directions when >= 3) although d_C gives fewer; 0 keeps the paper's d_C rule.
   std::int64_t min_per_shell_node = 0;
-  /// How the shell is tied to the interior: "paper" (the d_C rule with k_C, section 2.7) or
-  /// "welded" (every interior node near the surface joined to the shell nodes its missing springs
-  /// point at, with their stiffness: the layer under the crust has the interior's moduli;
-  /// bodies/welded_coupling.hpp, docs/crust-support.md). A [material] body with "welded" fills its
-  /// interior out to r_I = 1 - h_S (the crust's thickness) instead of 1 - 1.03 d_IS.
-  std::string coupling = "paper";
+  /// How the shell is tied to the interior (model/choices.hpp): paper (the d_C rule with k_C,
+  /// section 2.7) or welded (bodies/welded_coupling.hpp, docs/crust-support.md). A [material] body
+  /// with welded fills its interior out to r_I = 1 - h_S (the crust's thickness), not 1 - 1.03 d_IS.
+  CrossCoupling coupling = CrossCoupling::paper;
 };
 
 struct IntegratorConfig {
@@ -71,12 +70,10 @@ struct StretchConfig {
   std::int64_t max_iterations = 60;
   double tolerance = 1e-6;            ///< |mean radial surface acceleration|, G M / R^2
   double cross_compression = 0.002;   ///< extra compressive strain of cross springs
-  /// How the interior carries its hydrostatic pressure: "strengthen" (section 2.3: one common
-  /// compression, springs stiffened inside by P(r)/P_uniform; the stiffening depends on the
-  /// resolution) or "compress" (each interior spring compressed by P(r)/(2E) at its built
-  /// stiffness: the body keeps the material's moduli at any resolution). Default "compress" for a
-  /// [material] body, "strengthen" otherwise. docs/material.md.
-  std::string hydrostatic_support = "strengthen";
+  /// How the interior carries its hydrostatic pressure (model/choices.hpp): strengthen (the
+  /// stiffening depends on the resolution) or compress (the body keeps the material's moduli at
+  /// any resolution). Default compress for a [material] body, strengthen otherwise. docs/material.md.
+  HydrostaticSupport hydrostatic_support = HydrostaticSupport::strengthen;
 };
 
 /// Damped relaxation and stability probe (section 2.8).
@@ -91,10 +88,8 @@ struct RelaxConfig {
   bool stability_probe = true;
   double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
   double probe_duration = 3.0;            ///< t_grav
-  /// How the relaxed crust is supported: "paper" (section 2.8: the crust carries the cross
-  /// springs' tangential push) or "balanced" (cross-spring rest lengths chosen so that they alone
-  /// carry each shell node's weight: no pre-stress; docs/crust-support.md).
-  std::string crust_support = "paper";
+  /// How the relaxed crust is supported (model/choices.hpp; docs/crust-support.md).
+  CrustSupport crust_support = CrustSupport::paper;
 };
 
 /// Defaults shared by all encounters (sections 2.6, 2.9).
@@ -105,22 +100,22 @@ struct EncounterDefaults {
   double end_distance = 3.0;               ///< perturber distance at end, R
   std::int64_t checkpoint_interval = 250;  ///< steps between mid-stage checkpoints (0: none)
   std::int64_t sample_interval = 10;       ///< steps between timeseries samples
-  /// "paper": the single most strained spring fails every fail_interval steps (section 2.6);
-  /// "local": every over-strained spring may fail, most strained first, at most one per crack
-  /// neighbourhood per relaxation interval (docs/failure-rule.md).
-  std::string failure_rule = "paper";
-  double exclusion_radius = 2.0;           ///< "local": neighbourhood radius, in mean shell spacings L_S
-  double relaxation_crossings = 2.0;       ///< "local": relaxation interval, in shell crossing times L_S/V_SP
+  /// Which springs fail when (model/choices.hpp; docs/failure-rule.md): paper, the single most
+  /// strained spring every fail_interval steps (section 2.6); local, every over-strained spring,
+  /// most strained first, at most one per crack neighbourhood per relaxation interval.
+  FailureRuleKind failure_rule = FailureRuleKind::paper;
+  double exclusion_radius = 2.0;           ///< local: neighbourhood radius, in mean shell spacings L_S
+  double relaxation_crossings = 2.0;       ///< local: relaxation interval, in shell crossing times L_S/V_SP
 };
 
 /// How self-gravity is computed.
 struct GravityConfig {
-  /// "fast" (AVX-512 estimate and Newton steps where available) or "portable" (correctly rounded
-  /// sqrt and division: the same bits on every x86-64 CPU); docs/determinism.md.
-  std::string kernel = "fast";
-  /// "direct" (every pair, forces/gravity.hpp: the reference) or "tree" (octree with softened
-  /// multipoles, forces/tree_gravity.hpp: for large N); docs/architecture.md, "Self-gravity methods".
-  std::string method = "direct";
+  /// fast (AVX-512 estimate and Newton steps where available) or portable (correctly rounded
+  /// sqrt and division: the same bits on every x86-64 CPU); model/choices.hpp, docs/determinism.md.
+  GravityKernel kernel = GravityKernel::fast;
+  /// direct (every pair: the reference) or tree (octree with softened multipoles, for large N);
+  /// model/choices.hpp, docs/architecture.md, "Self-gravity methods".
+  GravityMethod method = GravityMethod::direct;
   double force_error = 1e-4;  ///< tree: target median relative force error per particle
 };
 

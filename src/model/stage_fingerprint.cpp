@@ -29,7 +29,7 @@ std::string keys_of(const Config& config, std::string_view section, Keys mode,
 /// stage; written only for the tree, so every fingerprint of a direct run stays as it was).
 std::string force_law(const Config& config) {
   std::string text = keys_of(config, "cross", Keys::only, {"nonlinear", "strain_scale", "min_force_factor"});
-  if (config.gravity.method != "direct")
+  if (config.gravity.method != GravityMethod::direct)
     text += keys_of(config, "gravity", Keys::only, {"method", "force_error"});
   return text;
 }
@@ -58,7 +58,8 @@ std::string build_fingerprint(const Config& config) {
          keys_of(config, "shell", Keys::all_but, {"failure_strain", "failed_stiffness_factor"}) +
          keys_of(config, "cross", Keys::only, {"distance", "spring_constant", "min_per_shell_node"}) +
          // Only when not the paper's, so that a body without it keeps its fingerprint.
-         (config.cross.coupling != "paper" ? keys_of(config, "cross", Keys::only, {"coupling"}) : std::string()) +
+         (config.cross.coupling != CrossCoupling::paper ? keys_of(config, "cross", Keys::only, {"coupling"})
+                                                        : std::string()) +
          material_keys(config);
 }
 

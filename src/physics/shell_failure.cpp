@@ -109,21 +109,13 @@ std::size_t fail_local(const FailureRule& rule, const Body& body, State& state, 
 
 }  // namespace
 
-const char* failure_rule_name(FailureRule::Kind kind) { return kind == FailureRule::Kind::local ? "local" : "paper"; }
-
-FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& origin) {
-  if (name == "paper") return FailureRule::Kind::paper;
-  if (name == "local") return FailureRule::Kind::local;
-  throw InputError(fmt::format("{}: failure rule \"{}\" is not one of: paper, local", origin, name));
-}
-
 FailureRule make_failure_rule(const Config& config, double failure_strain, std::optional<double> relaxation_crossings,
                               const Body& body, const State& state, double dt) {
   FailureRule rule;
-  rule.kind = failure_rule_kind(config.encounter.failure_rule, "encounter.failure_rule");
+  rule.kind = config.encounter.failure_rule;
   rule.failure_strain = failure_strain;
   rule.failed_stiffness_factor = config.shell.failed_stiffness_factor;
-  if (rule.kind == FailureRule::Kind::paper) {
+  if (rule.kind == FailureRuleKind::paper) {
     rule.interval = config.encounter.fail_interval;
     return rule;
   }
@@ -138,7 +130,7 @@ FailureRule make_failure_rule(const Config& config, double failure_strain, std::
 
 std::size_t apply_failure_rule(const FailureRule& rule, const Body& body, State& state, std::int64_t start_step,
                                std::vector<FailureEvent>& log) {
-  if (rule.kind == FailureRule::Kind::local) return fail_local(rule, body, state, log);
+  if (rule.kind == FailureRuleKind::local) return fail_local(rule, body, state, log);
   if ((state.step - start_step) % rule.interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, rule.failure_strain, rule.failed_stiffness_factor);
   if (!event) return 0;

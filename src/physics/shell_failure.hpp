@@ -40,8 +40,7 @@ std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, St
 /// A failure rule with its schedule in steps (converted from physical times once, by
 /// make_failure_rule).
 struct FailureRule {
-  enum class Kind { paper, local };
-  Kind kind = Kind::paper;
+  FailureRuleKind kind = FailureRuleKind::paper;
   double failure_strain = 0;           ///< eps_S
   double failed_stiffness_factor = 0;  ///< F_Sk
   /// paper: t_fail, steps between checks. local: the relaxation interval, steps during which a
@@ -49,11 +48,6 @@ struct FailureRule {
   std::int64_t interval = 1;
   double exclusion_distance = 0;  ///< local: neighbourhood radius r_ex L_S (R); spring midpoints
 };
-
-/// "paper" or "local".
-const char* failure_rule_name(FailureRule::Kind kind);
-/// The kind named `name`; throws InputError naming `origin` otherwise.
-FailureRule::Kind failure_rule_kind(const std::string& name, const std::string& origin);
 
 /// The rule of config.encounter for a body: paper: interval = encounter.fail_interval. local:
 /// interval = max(1, round(relaxation_crossings * L_S / V_SP / dt)) (relaxation_crossings: the

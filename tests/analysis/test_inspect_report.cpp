@@ -71,7 +71,7 @@ TEST(InspectReport, CountsAndTotalsAreExact) {
 TEST(InspectReport, TreeGravityShowsItsTargetErrorAndOpeningAngle) {
   Checkpoint c = synthetic_checkpoint();
   Config config = parse_config(c.config_toml, "synthetic");
-  config.gravity.method = "tree";
+  config.gravity.method = GravityMethod::tree;
   config.gravity.force_error = 1e-3;
   c.config_toml = to_toml(config);
   const std::string json = inspect_report_json(build_inspect_report(c, "synthetic.h5"));

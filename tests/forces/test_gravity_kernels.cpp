@@ -68,6 +68,5 @@ TEST(GravityKernels, ConfigurationChoosesTheKernel) {
   apply_override(config, "gravity.kernel=portable");
   validate(config, "test");
   EXPECT_EQ(force_options(config, 0.0).gravity_kernel, GravityKernel::portable);
-  apply_override(config, "gravity.kernel=exact");
-  EXPECT_THROW(validate(config, "test"), InputError);
+  EXPECT_THROW(apply_override(config, "gravity.kernel=exact"), InputError);
 }

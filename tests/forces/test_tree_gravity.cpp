@@ -251,7 +251,7 @@ TEST(TreeGravity, ForceFieldUsesTheChosenMethod) {
   Checkpoint c = test_support::quick_body();
   test_support::shake(c.state, 1e-3, 1e-2, 4);
   ForceOptions direct_options, tree_options;
-  tree_options.tree_gravity = true;
+  tree_options.gravity_method = GravityMethod::tree;
   tree_options.force_error = 1e-4;
   tree_options.min_parallel_items = 1;  // exercise the threads
   ForceField direct_field(c.body, direct_options), tree_field(c.body, tree_options);

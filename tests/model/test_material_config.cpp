@@ -132,13 +132,13 @@ TEST(MaterialConfig, PaperTKeepsItsPrintedConstantsAndItsText) {
 }
 
 TEST(MaterialConfig, AMaterialBodyCarriesItsPressureByCompressionUnlessTheFileSaysOtherwise) {
-  EXPECT_EQ(parse_config(material_toml, "m.toml").stretch.hydrostatic_support, "compress");
+  EXPECT_EQ(parse_config(material_toml, "m.toml").stretch.hydrostatic_support, HydrostaticSupport::compress);
   const Config asked = parse_config(material_toml + "[stretch]\nhydrostatic_support = \"strengthen\"\n", "m.toml");
-  EXPECT_EQ(asked.stretch.hydrostatic_support, "strengthen");
+  EXPECT_EQ(asked.stretch.hydrostatic_support, HydrostaticSupport::strengthen);
   // The resolved text states the choice, so a checkpoint's stored configuration reloads to it.
-  EXPECT_EQ(parse_config(to_toml(asked), "stored").stretch.hydrostatic_support, "strengthen");
+  EXPECT_EQ(parse_config(to_toml(asked), "stored").stretch.hydrostatic_support, HydrostaticSupport::strengthen);
   const Config t = load_config(std::string(TIDALCRUST_SOURCE_DIR) + "/workflows/paper-T.toml");
-  EXPECT_EQ(t.stretch.hydrostatic_support, "strengthen");  // the paper's method
+  EXPECT_EQ(t.stretch.hydrostatic_support, HydrostaticSupport::strengthen);  // the paper's method
   const std::string message = error_of(material_toml + "[stretch]\nhydrostatic_support = \"stiffen\"\n");
   EXPECT_NE(message.find("bad.toml"), std::string::npos) << message;
   EXPECT_NE(message.find("stretch.hydrostatic_support"), std::string::npos) << message;

@@ -82,7 +82,7 @@ double youngs_modulus_inside(const Checkpoint& c, double radius) {
 /// the paper's strengthening stiffens the centre more at every level (issue 13's failed convergence).
 void expect_stretched_centre_keeps_the_modulus(int level, double strengthened_at_least) {
   Config config = material_at(level);
-  ASSERT_EQ(config.stretch.hydrostatic_support, "compress");  // the [material] default
+  ASSERT_EQ(config.stretch.hydrostatic_support, HydrostaticSupport::compress);  // the [material] default
   const Checkpoint built = build_stage(config);
   const Checkpoint stretched = stretch_stage(built, config);
   EXPECT_EQ(stretched.state.springs.stiffness, built.state.springs.stiffness);
@@ -90,7 +90,7 @@ void expect_stretched_centre_keeps_the_modulus(int level, double strengthened_at
   EXPECT_GT(youngs_modulus_inside(stretched, 0.5) / as_built, 1.0) << "level " << level;
   EXPECT_LT(youngs_modulus_inside(stretched, 0.5) / as_built, 1.08) << "level " << level;
   EXPECT_LT(std::abs(stretched.stage.as<StretchRecord>().residual_surface_acceleration), config.stretch.tolerance);
-  config.stretch.hydrostatic_support = "strengthen";
+  config.stretch.hydrostatic_support = HydrostaticSupport::strengthen;
   const Checkpoint strengthened = stretch_stage(built, config);
   EXPECT_GT(youngs_modulus_inside(strengthened, 0.5) / as_built, strengthened_at_least) << "level " << level;
 }

@@ -251,9 +251,9 @@ TEST(RelaxStage, RefusesWrongStagesAndChangedConfiguration) {
 TEST(RelaxStage, BalancedSupportLeavesTheCrustWithoutPreStress) {
   Config config = quick_config();
   config.cross.min_per_shell_node = 3;
-  config.relax.crust_support = "balanced";
+  config.relax.crust_support = CrustSupport::balanced;
   config.shell.failure_strain = 5e-4;  // the probe fails nothing even at a realistic eps_S
-  config.encounter.failure_rule = "local";
+  config.encounter.failure_rule = FailureRuleKind::local;
   const Checkpoint built = build_stage(config);
   Checkpoint c = begin_relax(stretch_stage(built, config), config);
   ASSERT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);

@@ -180,7 +180,7 @@ TEST(StretchStage, SpringsTooWeakForSelfGravityAreAnInputError) {
 
 TEST(StretchStage, CompressionCarriesTheParticlePressureAtTheBuiltStiffness) {
   Config config = quick_config();
-  config.stretch.hydrostatic_support = "compress";
+  config.stretch.hydrostatic_support = HydrostaticSupport::compress;
   const Checkpoint& built = quick_built();
   const Checkpoint s = stretch_stage(built, config);
   const StretchRecord& record = s.stage.as<StretchRecord>();
@@ -220,7 +220,7 @@ TEST(StretchStage, CompressionCarriesTheParticlePressureAtTheBuiltStiffness) {
 
 TEST(StretchStage, CompressionOfABodyWithoutShellNeedsNoCommonFactor) {
   Config config = interior_only_config();
-  config.stretch.hydrostatic_support = "compress";
+  config.stretch.hydrostatic_support = HydrostaticSupport::compress;
   const Checkpoint built = build_stage(config);
   const Checkpoint s = stretch_stage(built, config);
   EXPECT_EQ(s.stage.as<StretchRecord>().stretch_factor, 1.0);

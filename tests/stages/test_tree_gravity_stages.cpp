@@ -24,7 +24,7 @@ using namespace test_support;
 
 Config tree_config() {
   Config config = quick_config();
-  config.gravity.method = "tree";
+  config.gravity.method = GravityMethod::tree;
   config.gravity.force_error = 1e-4;
   return config;
 }
