@@ -210,6 +210,7 @@ TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const B
   };
   compare(r.spring_strain, r.spring_theory, r.correlation, r.slope, &r.rms_residual);
   compare(r.spring_strain, own, r.own_correlation, r.own_slope, nullptr);
+  r.ratio = strain_ratio_spread(r.spring_strain, r.spring_theory);
   for (int band = 0; band < bands; ++band) {
     TidalStrainBin bin;
     bin.gamma_low = 90.0 * band / bands;
@@ -227,6 +228,27 @@ TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const B
     r.theory_subsatellite_strain = sub_theory / static_cast<double>(sub_count);
   }
   return r;
+}
+
+StrainRatioSpread strain_ratio_spread(const std::vector<double>& measured, const std::vector<double>& theory,
+                                      double floor) {
+  if (measured.size() != theory.size())
+    throw InputError("strain_ratio_spread: measured and continuum strains differ in length");
+  double tt = 0;
+  for (double t : theory) tt += t * t;
+  const double cut = floor * std::sqrt(tt / static_cast<double>(std::max<std::size_t>(theory.size(), 1)));
+  std::vector<double> ratios;
+  for (std::size_t i = 0; i < theory.size(); ++i)
+    if (std::abs(theory[i]) >= cut && theory[i] != 0) ratios.push_back(measured[i] / theory[i]);
+  if (ratios.empty()) throw InputError("strain_ratio_spread: no spring with a continuum strain to compare");
+  std::sort(ratios.begin(), ratios.end());
+  const auto percentile = [&](double p) {
+    const double at = p * static_cast<double>(ratios.size() - 1);
+    const auto below = static_cast<std::size_t>(std::floor(at));
+    const std::size_t above = std::min(below + 1, ratios.size() - 1);
+    return ratios[below] + (at - static_cast<double>(below)) * (ratios[above] - ratios[below]);
+  };
+  return {percentile(0.5), 0.5 * (percentile(0.84) - percentile(0.16)), static_cast<std::int64_t>(ratios.size())};
 }
 
 RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config, const TideResult& tide,

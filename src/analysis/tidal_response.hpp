@@ -55,6 +55,19 @@ struct TidalStrainBin {
   double theory_meridional = 0, theory_azimuthal = 0;  ///< the same fit of the springs' continuum strains
 };
 
+/// The spring-by-spring ratio measured / continuum strain over the springs whose continuum strain
+/// is at least `floor` x rms(continuum) (the ratio of a near-zero prediction says nothing): its
+/// median and its scatter, half the 16th-84th percentile range (a normal distribution's sigma),
+/// percentiles interpolated linearly between ranks. InputError when no spring qualifies or the
+/// lengths differ.
+struct StrainRatioSpread {
+  double median = 0;
+  double scatter = 0;
+  std::int64_t springs = 0;  ///< the springs counted
+};
+StrainRatioSpread strain_ratio_spread(const std::vector<double>& measured, const std::vector<double>& theory,
+                                      double floor = 0.5);
+
 /// What measure_tide found.
 struct TideResult {
   double tidal_strength = 0;  ///< eps, G M / R^3
@@ -72,6 +85,7 @@ struct TideResult {
   /// The same against the strain of the body's own fitted h2, l2 (is the crust consistent with
   /// the displacements it was fitted from?).
   double own_correlation = 0, own_slope = 0;
+  StrainRatioSpread ratio;    ///< measured / continuum, spring by spring (strain_ratio_spread)
   /// Meridional tension near the equator of the tide (gamma 75-90 deg): the A of the band fit,
   /// measured and theory, per unit eps.
   double peak_tension = 0, theory_peak_tension = 0;
