@@ -5,7 +5,7 @@ BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
             libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev \
-            slurm-wlm munge
+            slurm-wlm munge python3
 EXE      := $(BUILD)/tidalcrust
 # Only for check-viewers: the outside readers the files are checked with.
 VIEWER_PACKAGES := python3-paraview python3-mdanalysis python3-h5py python3-numpy xvfb
@@ -64,6 +64,12 @@ bench: build
 check-viewers: build
 	@$(MAKE) --no-print-directory deps PACKAGES="$(VIEWER_PACKAGES)"
 	xvfb-run -a /usr/bin/python3 tools/check_viewers.py --exe $(EXE)
+
+# docs/results/: rerun every table a quick body gives (~2 min of CPU) and rewrite it in its page;
+# `make test` checks them (CTest results.quick_tables). tools/results_tables.py.
+.PHONY: results-quick
+results-quick: build
+	python3 tools/results_tables.py quick --exe $(EXE) --write
 
 clean:
 	rm -rf $(BUILD)

@@ -1,0 +1,1028 @@
+#!/usr/bin/env python3
+"""The tables of docs/results/, regenerated from tidalcrust's own outputs.
+
+A table is the text of a page between two marker lines,
+
+    <!-- results-quick:NAME begin -->        <!-- results-full:NAME begin -->
+    ...                                      ...
+    <!-- results-quick:NAME end -->          <!-- results-full:NAME end -->
+
+and this script is the only writer of that text: each NAME is one function below that turns the
+program's JSON (summary.json, `inspect --json`, `compare --json`, validate's validation.json,
+report's sweep.json) into Markdown with a fixed number of digits, so the same bits give the same
+text.
+
+  quick  runs every workflow a quick body can produce (about 2 minutes of CPU, one thread, the
+         portable gravity kernel, so any x86-64 CPU with FMA gives the same bits) into a fresh
+         temporary folder and regenerates the `results-quick` tables.
+  full   regenerates the `results-full` tables from runs already made into --runs DIR by the
+         commands each table names (hours of CPU; they are not rerun here).
+
+--write rewrites the pages in place. --check writes a temporary copy of the pages instead and
+exits 1 naming each table that differs from the page and its first differing line (CTest
+`results.quick_tables` runs `quick --check`); it then edits one number of the copy and makes sure
+the comparison notices (so a check that could not fail fails). Exit 2: bad usage or a command of
+the program failed; 77: skipped (a CPU without FMA, whose libm rounds differently).
+
+Python 3 standard library only.
+"""
+
+import argparse
+import difflib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+MARKER = re.compile(r"^<!-- results-(quick|full):([A-Za-z0-9_.-]+) (begin|end) -->$")
+
+
+class Failure(Exception):
+    """A command of the program failed, or an input is missing: exit 2 with this line."""
+
+
+# ---------------------------------------------------------------- numbers as text
+
+
+def fixed(x, digits):
+    if x is None:
+        return "-"
+    text = f"{x:.{digits}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text  # never -0.00
+
+
+def pct(x, digits=1):
+    return "-" if x is None else fixed(100.0 * x, digits) + "%"
+
+
+def sci(x, digits=2):
+    """1.30e-7, not 1.30e-07."""
+    if x is None:
+        return "-"
+    mantissa, exponent = f"{x:.{digits}e}".split("e")
+    return f"{mantissa}e{int(exponent)}"
+
+
+def sig(x, digits=3):
+    """digits significant digits, plain notation while it stays short."""
+    if x is None:
+        return "-"
+    if x != 0 and not 1e-3 <= abs(x) < 1e5:
+        return sci(x, digits - 1)
+    text = f"{x:.{digits}g}"
+    return text
+
+
+def short(x):
+    """A grid value as written in a workflow: 2.0, 1.84, 0.003."""
+    if x is None:
+        return "-"
+    text = repr(float(x))
+    return text if "e" not in text else sig(x)
+
+
+def count(n):
+    return "-" if n is None else f"{int(n):,}"
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return lines
+
+
+# ---------------------------------------------------------------- the program and its outputs
+
+
+class Program:
+    """tidalcrust, run with one thread; its JSON outputs read once."""
+
+    def __init__(self, exe, source, work):
+        self.exe = str(exe)
+        self.source = Path(source)
+        self.work = Path(work)
+        self.cache = {}
+
+    def __call__(self, *args, capture=True):
+        argv = [self.exe, *map(str, args)]
+        done = subprocess.run(argv, cwd=self.source, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        if done.returncode != 0:
+            tail = "\n".join(done.stderr.strip().splitlines()[-5:])
+            raise Failure(f"`{' '.join(argv)}` exited {done.returncode}:\n{tail}")
+        return done.stdout
+
+    def json_of(self, *args):
+        key = args
+        if key not in self.cache:
+            self.cache[key] = json.loads(self(*args))
+        return self.cache[key]
+
+    def inspect(self, path):
+        return self.json_of("inspect", path, "--json")
+
+    def compare(self, a, b):
+        return self.json_of("compare", a, b, "--json")
+
+    def load_text(self, path):
+        path = Path(path)
+        if not path.is_file():
+            raise Failure(f"{path}: missing (run the command its table names)")
+        return path.read_text()
+
+    def load(self, path):
+        path = Path(path)
+        if path not in self.cache:
+            if not path.is_file():
+                raise Failure(f"{path}: missing (run the command its table names)")
+            self.cache[path] = json.loads(path.read_text())
+        return self.cache[path]
+
+
+def summary(p, folder):
+    return p.load(Path(folder) / "analysis" / "summary.json")
+
+
+def failures_row(f):
+    """The fracture statistics every encounter table shows, from a `failures` object."""
+    return [
+        count(f["count"]),
+        pct(f["failed_area_fraction"]),
+        fixed(f["total_crack_length"], 2) + " R",
+        fixed(f["longest_crack"], 2) + " R" if f["count"] else "-",
+        count(f["clusters"]),
+        pct(f["hemisphere_fraction"]) if f["count"] else "-",
+        fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg" if f["count"] else "-",
+    ]
+
+
+FAILURE_COLUMNS = ["failed shell springs", "failed area", "total crack length", "longest crack", "cracks (clusters)",
+                   "on the pericenter hemisphere", "median angle from the subsatellite point"]
+
+
+def measured_by(p, checkpoint):
+    """Which code and kernel wrote a checkpoint: 'commit c5d9b8c26cb7, gravity kernel fast/generic'."""
+    prov = p.inspect(checkpoint)["provenance"]
+    kernel = prov.get("gravity_kernel", "")
+    if not kernel or kernel.startswith("none"):  # a build: no gravity computed yet
+        return f"commit {prov['git_commit']}"
+    return f"commit {prov['git_commit']}, gravity kernel {kernel}"
+
+
+# ---------------------------------------------------------------- the quick tables
+
+QUICK = {}
+FULL = {}
+
+
+def quick_table(name):
+    def register(f):
+        QUICK[name] = f
+        return f
+    return register
+
+
+def full_table(name):
+    def register(f):
+        FULL[name] = f
+        return f
+    return register
+
+
+KERNEL = ["--gravity-kernel", "portable"]  # the same bits on every x86-64 CPU with FMA
+
+
+def quick_runs(p):
+    """Everything the quick tables read, in order; `run` is restart-driven, so a rerun reuses."""
+    w, o = "workflows", p.work
+    one = ["--threads", "1", "--quiet"]
+    qb = o / "quick-balanced"
+    p("run", f"{w}/quick-balanced.toml", "--out", qb, *KERNEL, *one)
+    p("run", f"{w}/quick-balanced.toml", "--out", qb, "--dt-factor", "0.5", *KERNEL, *one)
+    p("run", f"{w}/quick-balanced.toml", "--out", qb, "--dt-factor", "0.25", *KERNEL, *one)
+    for name, setting in QUICK_RULE_VARIANTS:
+        (qb / name).mkdir(exist_ok=True)
+        if not (qb / name / "encounter.h5").is_file():
+                p("encounter", "--from", qb / "body" / "relax.h5", "--out", qb / name / "encounter.h5", "--encounter",
+              "strong", "--set", setting, "--threads", "1")
+    p("run", f"{w}/quick.toml", "--out", o / "quick", *KERNEL, *one)
+    p("validate", f"{w}/quick.toml", "--out", o / "quick", "--set", "gravity.kernel=portable", *one)
+    p("run", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", *KERNEL, *one)
+    p("report", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", "--set", "gravity.kernel=portable")
+
+
+QUICK_RULE_VARIANTS = [("tr2", "encounter.relaxation_crossings=1.0"),
+                       ("tr4", "encounter.relaxation_crossings=0.5"),
+                       ("paper-rule", "encounter.failure_rule=paper")]
+
+
+@quick_table("demo")
+def demo(p):
+    qb = p.work / "quick-balanced"
+    a, b = qb / "strong" / "encounter.h5", qb / "dt0.5" / "strong" / "encounter.h5"
+    c = p.compare(a, b)
+    rows = []
+    for label, path, side in (("A", a, c["a"]), ("B: A at dt/2", b, c["b"])):
+        rows.append([label, fixed(p.inspect(path)["dt"], 4), count(side["step"])] + failures_row(side["failures"]))
+    lines = ["```",
+             "tidalcrust run workflows/quick-balanced.toml --gravity-kernel portable",
+             "tidalcrust run workflows/quick-balanced.toml --gravity-kernel portable --dt-factor 0.5",
+             "tidalcrust compare checkpoints/quick-balanced/strong/encounter.h5 "
+             "checkpoints/quick-balanced/dt0.5/strong/encounter.h5 --json",
+             "```", ""]
+    lines += table(["run", "dt (t_grav)", "steps"] + FAILURE_COLUMNS, rows)
+    lines += ["", f"Failed in both runs: {c['common_failed']} of the {c['either_failed']} springs that failed in either "
+              f"(Jaccard overlap {fixed(c['jaccard'], 3)}); Kolmogorov-Smirnov distance of the two distributions of the "
+              f"angle from the subsatellite point {fixed(c['ks_distance_angle_from_subsatellite'], 3)}."]
+    return lines
+
+
+@quick_table("local-rule")
+def local_rule(p):
+    qb = p.work / "quick-balanced"
+    base = qb / "strong" / "encounter.h5"
+    settings = [("dt = 0.004 t_grav, t_r = 2 L_S / V_SP (the demo's A)", base),
+                ("dt/2", qb / "dt0.5" / "strong" / "encounter.h5"),
+                ("dt/4", qb / "dt0.25" / "strong" / "encounter.h5"),
+                ("t_r/2", qb / "tr2" / "encounter.h5"),
+                ("t_r/4", qb / "tr4" / "encounter.h5"),
+                ("the paper's rule (one spring per t_fail), dt", qb / "paper-rule" / "encounter.h5")]
+    rows = []
+    for label, path in settings:
+        c = p.compare(base, path)
+        rows.append([label] + failures_row(c["b"]["failures"]) + [fixed(c["jaccard"], 3)])
+    lines = ["```",
+             "tidalcrust run workflows/quick-balanced.toml --gravity-kernel portable [--dt-factor 0.5 | 0.25]",
+             "tidalcrust encounter --from checkpoints/quick-balanced/body/relax.h5 --out tr2/encounter.h5 "
+             "--encounter strong --set encounter.relaxation_crossings=1.0",
+             "    (tr4: relaxation_crossings=0.5; paper-rule: --set encounter.failure_rule=paper)",
+             "tidalcrust compare checkpoints/quick-balanced/strong/encounter.h5 OTHER.h5 --json",
+             "```", ""]
+    lines += table(["setting"] + FAILURE_COLUMNS + ["Jaccard overlap with the first row"], rows)
+    return lines
+
+
+@quick_table("quick-paper")
+def quick_paper(p):
+    enc = p.work / "quick" / "strong"
+    s = summary(p, enc)
+    i = p.inspect(enc / "encounter.h5")
+    con = s["conservation"]
+    lines = ["```", "tidalcrust run workflows/quick.toml --gravity-kernel portable", "```", ""]
+    lines += table(["encounter", "dt (t_grav)", "steps"] + FAILURE_COLUMNS +
+                   ["largest momentum change", "largest relative angular momentum change"],
+                   [[f"strong (M2 = {s['encounter']['perturber_mass']}, q = {s['encounter']['pericenter']}, "
+                     f"V_q = {s['encounter']['pericenter_speed']})", fixed(i["dt"], 4), count(s["step"])]
+                    + failures_row(s["failures"])
+                    + [sci(con["max_momentum_change"], 1), sci(con["max_relative_angular_momentum_change"], 1)]])
+    return lines
+
+
+def relaxed_row(p, label, relax):
+    r = p.inspect(relax)["record"]
+    probe = f"{r['probe_failures']} at eps_S = {short(r['probe_failure_strain'])}"
+    others = sorted(zip(r.get("probe_other_strains", []), r.get("probe_other_failures", [])), reverse=True)
+    for eps, n in others:  # largest strain first, as the stored order is the configuration's
+        probe += f", {int(n)} at {short(eps)}"
+    return [label, sci(r["max_shell_strain"], 1), sci(r["internal_kinetic_energy"], 1),
+            fixed(r["mean_shell_radius"], 4) + " R", probe, sci(r["probe_max_shell_strain"], 1)]
+
+
+RELAXED_COLUMNS = ["body, crust support", "largest shell strain after relax", "internal kinetic energy (G M^2/R)",
+                   "mean shell radius", "stability probe: failures (3 t_grav, gamma = 0.01)",
+                   "largest shell strain in the probe"]
+
+
+@quick_table("relaxed-quick")
+def relaxed_quick(p):
+    lines = ["```", "tidalcrust run workflows/quick.toml --gravity-kernel portable",
+             "tidalcrust run workflows/quick-balanced.toml --gravity-kernel portable",
+             "tidalcrust inspect checkpoints/{quick,quick-balanced}/body/relax.h5 --json", "```", ""]
+    lines += table(RELAXED_COLUMNS, [relaxed_row(p, "quick, paper", p.work / "quick" / "body" / "relax.h5"),
+                                     relaxed_row(p, "quick-balanced, balanced",
+                                                 p.work / "quick-balanced" / "body" / "relax.h5")])
+    return lines
+
+
+def energy_rows(p, label, folders):
+    """One row per time step: the largest and final energy error, what the body kept and lost."""
+    rows, first = [], None
+    for dt_label, folder in folders:
+        s = summary(p, folder)
+        r = p.inspect(Path(folder) / "encounter.h5")["record"]
+        e, con = s["energy"], s["conservation"]
+        ratio = "" if first is None else fixed(first / con["max_energy_error"], 2)
+        first = con["max_energy_error"] if first is None else first
+        rows.append([label, dt_label, sci(con["max_energy_error"]), ratio, sci(con["final_energy_error"], 1),
+                     sci(e["deposited_in_body"]), sci(r["damping_dissipated"], 1), sci(r["failure_released"], 2),
+                     sci(r["hinge_residual_work"], 1)])
+    return rows
+
+
+ENERGY_COLUMNS = ["run", "dt", "largest energy error", "ratio to the first row", "energy error at the end",
+                  "left in the body", "damping", "failures", "hinge work"]
+
+
+@quick_table("energy-quick")
+def energy_quick(p):
+    qb = p.work / "quick-balanced"
+    lines = ["```", "tidalcrust run workflows/quick-balanced.toml --gravity-kernel portable [--dt-factor 0.5 | 0.25]",
+             "```", ""]
+    lines += table(ENERGY_COLUMNS, energy_rows(p, "quick-balanced strong", [
+        ("0.004", qb / "strong"), ("0.002", qb / "dt0.5" / "strong"), ("0.001", qb / "dt0.25" / "strong")]))
+    return lines
+
+
+VALIDATE_ROWS = [
+    ("breathing", "(a) breathing period (t_grav)", "Lamb 1882, E_I of eq. 15, nu = 1/4"),
+    ("breathing-network", "", "Lamb, the measured network moduli"),
+    ("love", "(b) Love number h2", "Takeuchi & Saito 1972, eq. 15"),
+    ("love-network", "", "same, the measured network moduli"),
+    ("love-layered", "", "layered sphere x the measured factors"),
+    ("flexure", "(c) flexural rigidity (G M^2/R)", "eq. 23: k_e L_S / 2"),
+    ("p-wave", "(d) P-wave time pole to pole (t_grav)", "eq. 16: path / V_IP"),
+    ("p-wave-network", "", "path / V_P of the measured network moduli"),
+    ("p-wave-layered", "", "layered eq. 15/16 x the measured factors"),
+]
+
+
+def validation_lines(p, columns):
+    """One row per check of validation.json, one column per body: measured / theory = ratio."""
+    docs = [(label, p.load(Path(folder) / "validate" / "validation.json")) for label, folder in columns]
+    header = ["check", "theory"] + [f"{label}: measured / theory = ratio" for label, _ in docs] + ["tolerance"]
+    rows = []
+    for key, check, theory in VALIDATE_ROWS:
+        cells, tolerance = [], ""
+        for _, d in docs:
+            c = d["comparisons"].get(key)
+            if c is None:
+                cells.append("")
+                continue
+            digits = 4 if c["measured"] >= 0.1 else 3
+            cells.append(f"{sig(c['measured'], digits)} / {sig(c['theory'], digits)} = {fixed(c['ratio'], 3)}")
+            tolerance = pct(c["tolerance"], 0)
+        rows.append([check, theory] + cells + [tolerance])
+    extra = []
+    for key, check, theory, field in (("breathing", "", "Lamb with self-gravity", "self_gravitating_ratio"),
+                                      ("flexure", "", "the hinge lattice: k_e / 4", "lattice_ratio"),
+                                      ("p-wave", "", "layered eq. 15/16", "layered_ratio")):
+        cells = []
+        for _, d in docs:
+            v = d.get("details", {}).get(key, {}).get(field)
+            cells.append("" if v is None else f"ratio {fixed(v, 3)}")
+        extra.append((key, [check, theory] + cells + [""]))
+    # each extra row right after its check's first row
+    out = []
+    for key_row, row in zip(VALIDATE_ROWS, rows):
+        out.append(row)
+        out += [r for k, r in extra if k == key_row[0]]
+    lines = table(header, out)
+    materials = [f"{label} E_I = {fixed(d['material']['youngs_modulus'], 3)} e_g, "
+                 f"V_IP = {fixed(d['material']['p_wave_speed'], 3)}"
+                 + (f", L_S = {fixed(d['material']['shell_spacing'], 4)} R" if d['material']['shell_spacing'] else "")
+                 for label, d in docs]  # a body without a crust has no L_S
+    lines += ["", "Material (eq. 15 on the relaxed interior): " + "; ".join(materials) + "."]
+    measured = [(label, d["network_moduli"]) for label, d in docs if "youngs_factor" in d.get("network_moduli", {})]
+    if measured:
+        def iso(n, part):
+            m = n[part]
+            return m["relaxed"], m["affine"]
+        rows = [["free / held interior nodes"] + [f"{n['network']['free_nodes']} / {n['network']['held_nodes']}"
+                                                  for _, n in measured],
+                ["geometric non-affine factor, bulk K / shear G"] + [
+                    f"{fixed(n['bulk_factor'], 3)} / {fixed(n['shear_factor'], 3)}" for _, n in measured],
+                ["E / E_I, measured nu"] + [f"{fixed(n['youngs_factor'], 3)}, {fixed(n['poisson_ratio'], 3)}"
+                                            for _, n in measured],
+                ["the springs as they are: E relaxed / E affine (nu)"] + [
+                    f"{fixed(iso(n, 'network')[0]['youngs'] / iso(n, 'network')[1]['youngs'], 3)} "
+                    f"({fixed(iso(n, 'network')[0]['poisson'], 3)})" for _, n in measured]]
+        lines += ["", "The interior network's measured moduli (static strain test, `network_moduli`):", ""]
+        lines += table([""] + [label for label, _ in measured], rows)
+    return lines
+
+
+@quick_table("validate-quick")
+def validate_quick(p):
+    lines = ["```", "tidalcrust validate workflows/quick.toml --set gravity.kernel=portable", "```", ""]
+    return lines + validation_lines(p, [("quick (level 3, 1042 particles)", p.work / "quick")])
+
+
+def sweep_lines(p, folder):
+    d = p.load(Path(folder) / "report" / "sweep.json")
+    encounters = d["encounters"]
+    lines = []
+    for m2 in sorted({e["perturber_mass"] for e in encounters}):
+        mine = [e for e in encounters if e["perturber_mass"] == m2]
+        qs = sorted({e["pericenter"] for e in mine})
+        vs = sorted({e["pericenter_speed"] for e in mine})
+        for eps in sorted({e["failure_strain"] for e in mine}):
+            cell = {(e["pericenter"], e["pericenter_speed"]): e for e in mine if e["failure_strain"] == eps}
+            rows = []
+            for v in vs:
+                row = [f"V_q = {short(v)}"]
+                for q in qs:
+                    e = cell.get((q, v))
+                    row.append("" if e is None or e["status"] != "finished" else
+                               ("0" if not e["failures"] else pct(e["failed_fraction"])))
+                rows.append(row)
+            lines += [f"M2 = {short(m2)}, eps_S = {short(eps)}: failed fraction of the shell springs", ""]
+            lines += table([""] + [f"q = {short(q)} R" for q in qs], rows) + [""]
+    finished = [e for e in encounters if e["status"] == "finished"]
+    cracked = [e for e in finished if e["failures"]]
+    lines.append(f"{len(finished)} of {len(encounters)} encounters finished, {len(cracked)} cracked; "
+                 f"E_I = {fixed(d['youngs_modulus_E_I'], 2)} e_g. Per line of the grid, the largest q that cracked, "
+                 "the smallest larger one that did not, and where eq. 5 gives strain = eps_S:")
+    lines.append("")
+    rows = [[short(b["perturber_mass"]), short(b["pericenter_speed"]), short(b["failure_strain"]),
+             "-" if b["largest_cracked_q"] is None else short(b["largest_cracked_q"]) + " R",
+             "-" if b["smallest_intact_q"] is None else short(b["smallest_intact_q"]) + " R",
+             fixed(b["eq5_q"], 2) + " R"] for b in d["crack_boundaries"]]
+    lines += table(["M2", "V_q", "eps_S", "largest q cracked", "smallest larger q intact", "eq. 5: strain = eps_S at"],
+                   rows)
+    return lines
+
+
+@quick_table("sweep-quick")
+def sweep_quick(p):
+    lines = ["```", "tidalcrust run workflows/sweep-quick.toml --gravity-kernel portable",
+             "tidalcrust report workflows/sweep-quick.toml --set gravity.kernel=portable", "```", ""]
+    return lines + sweep_lines(p, p.work / "sweep-quick")
+
+
+# ---------------------------------------------------------------- the full tables (from --runs DIR)
+
+
+def commands(*lines):
+    return ["```", *lines, "```", ""]
+
+
+def measured_line(p, *checkpoints):
+    """'Measured at commit X, gravity kernel K.' (all of them, if the checkpoints differ)."""
+    seen = []
+    for c in checkpoints:
+        m = measured_by(p, c)
+        if m not in seen:
+            seen.append(m)
+    return ["Measured at " + "; ".join(seen) + ".", ""]
+
+
+# The paper's Table 3, T-series column (Quillen et al. 2016), with d_I and d_IS read the right way
+# round: the reference the built body is compared with.
+TABLE3_T = {"shell": "2562 / 7680 / - / -", "N_I": "1869", "interior springs": "23363", "N_C": "5966",
+            "L_I": "0.176", "E_I": "3.73", "L_S": "0.075", "M_S": "0.07", "L_C": "0.156", "V_IP": "4.5",
+            "V_SP": "3.28", "V_Co": "3.3", "h_S": "0.02", "dt": "dt = 0.002"}
+
+
+@full_table("paper-T-body")
+def paper_t_body(p):
+    build = p.work / "paper-T" / "body" / "build.h5"
+    i = p.inspect(build)
+    c, d = i["counts"], i["derived"]
+    rows = [
+        ["shell nodes / springs / hinges / faces", f"{c['shell']} / {c['springs_shell']} / {c['hinges']} / {c['faces']}",
+         TABLE3_T["shell"]],
+        ["interior nodes N_I", str(c["interior"]), TABLE3_T["N_I"]],
+        ["interior springs", str(c["springs_interior"]), TABLE3_T["interior springs"]],
+        ["cross springs N_C", str(c["springs_cross"]), TABLE3_T["N_C"]],
+        ["L_I (mean interior rest length)", fixed(d["L_I"], 4), TABLE3_T["L_I"]],
+        ["E_I (eq. 15, V = 4/3 pi r_I^3)", fixed(d["E_I"], 2), TABLE3_T["E_I"]],
+        ["L_S", fixed(d["L_S"], 4), TABLE3_T["L_S"]],
+        ["M_S", fixed(d["M_S"], 3), TABLE3_T["M_S"]],
+        ["L_C", fixed(d["L_C"], 4), TABLE3_T["L_C"]],
+        ["V_IP (eq. 16)", fixed(d["V_IP"], 2), TABLE3_T["V_IP"]],
+        ["V_SP (eq. 19)", fixed(d["V_SP"], 3), TABLE3_T["V_SP"]],
+        ["V_Co (eq. 25)", fixed(d["V_Co"], 2), TABLE3_T["V_Co"]],
+        ["h_S (E_2D = E_S h_S)", fixed(d["h_S"], 4), TABLE3_T["h_S"]],
+        ["dt_max (eq. 13)", fixed(d["dt_max"], 5), TABLE3_T["dt"]],
+    ]
+    return (commands("tidalcrust build --config workflows/paper-T.toml --out body.h5",
+                     "tidalcrust inspect body.h5 --json")
+            + measured_line(p, build) + table(["quantity", "built", "Table 3"], rows))
+
+
+@full_table("paper-T-stretch-relax")
+def paper_t_stretch_relax(p):
+    body = p.work / "paper-T" / "body"
+    s = p.inspect(body / "stretch.h5")
+    r = p.inspect(body / "relax.h5")["record"]
+    st = s["record"]
+    rows = [["stretch", "common rest-length factor f", fixed(st["stretch_factor"], 5)],
+            ["", "force evaluations", str(st["iterations"])],
+            ["", "residual mean radial surface acceleration", sci(st["residual_surface_acceleration"], 1)],
+            ["", "largest strengthening of an interior spring", fixed(st["strengthening_max"], 2) + "x"],
+            ["", "strengthened out to", "r = " + fixed(st["strengthening_radius"], 2) + " R"],
+            ["", "E_I after strengthening (eq. 15)", fixed(s["derived"]["E_I"], 2)],
+            ["relax", "internal kinetic energy", sci(r["internal_kinetic_energy"], 1) + " G M^2/R"],
+            ["", "mean shell radius", fixed(r["mean_shell_radius"], 4) + " R"],
+            ["", "largest shell strain / tension", f"{sci(r['max_shell_strain'], 1)} / {sci(r['max_shell_tension'], 1)}"],
+            ["stability probe", "failures (3 t_grav, gamma = 0.01, no perturber)",
+             ", ".join([f"{r['probe_failures']} at eps_S = {short(r['probe_failure_strain'])}"] +
+                       [f"{int(n)} at {short(e)}" for e, n in zip(r["probe_other_strains"], r["probe_other_failures"])])],
+            ["", "largest shell strain", sci(r["probe_max_shell_strain"], 1)]]
+    return (commands("tidalcrust run workflows/paper-T.toml",
+                     "tidalcrust inspect checkpoints/paper-T/body/stretch.h5 --json   (and relax.h5)")
+            + measured_line(p, body / "stretch.h5", body / "relax.h5") + table(["stage", "quantity", "value"], rows))
+
+
+def encounter_table_rows(p, folders, with_orbit=True):
+    rows = []
+    for label, folder in folders:
+        s = summary(p, folder)
+        e, f, con = s["encounter"], s["failures"], s["conservation"]
+        row = [label]
+        if with_orbit:
+            row += [short(e["perturber_mass"]), f"{short(e['pericenter'])} / {fixed(e['min_distance'], 4)}",
+                    f"{short(e['pericenter_speed'])} / {fixed(e['speed_at_min'], 4)}"]
+        row += [f"{count(f['count'])} ({pct(f['fraction_shell'])})"] + failures_row(f)[1:]
+        if with_orbit:
+            row += [f"{sci(con['max_momentum_change'], 1)}, {sci(con['max_relative_angular_momentum_change'], 1)}"]
+        rows.append(row)
+    return rows
+
+
+PAPER_T = [("T5", "T5"), ("T1 (eps_S = 0.002)", "T1"), ("T10", "T10"), ("T10b", "T10b")]
+
+
+@full_table("paper-T-encounters")
+def paper_t_encounters(p):
+    root = p.work / "paper-T"
+    folders = [(label, root / name) for label, name in PAPER_T]
+    return (commands("tidalcrust run workflows/paper-T.toml")
+            + measured_line(p, *[f / "encounter.h5" for _, f in folders])
+            + table(["run", "M2", "q / reached", "V_q / at closest"] + FAILURE_COLUMNS
+                    + ["largest drift of P, L/L0"], encounter_table_rows(p, folders)))
+
+
+def half_dt_rows(p, pairs):
+    rows = []
+    for label, a, b in pairs:
+        c = p.compare(a, b)
+        fa, fb = c["a"]["failures"], c["b"]["failures"]
+        rows.append([label, f"{fa['count']} / {fb['count']}",
+                     f"{fixed(fa['total_crack_length'], 2)} / {fixed(fb['total_crack_length'], 2)} R",
+                     f"{pct(fa['hemisphere_fraction'])} / {pct(fb['hemisphere_fraction'])}",
+                     f"{fixed(fa['median_angle_from_subsatellite_deg'], 1)} / "
+                     f"{fixed(fb['median_angle_from_subsatellite_deg'], 1)} deg",
+                     f"{fixed(fa['longest_crack'], 2)} / {fixed(fb['longest_crack'], 2)} R",
+                     fixed(c["jaccard"], 3), fixed(c["ks_distance_angle_from_subsatellite"], 3)])
+    return rows
+
+
+@full_table("paper-T-half-dt")
+def paper_t_half_dt(p):
+    root = p.work / "paper-T"
+    pairs = [(name, root / name / "encounter.h5", root / "dt0.5" / name / "encounter.h5") for _, name in PAPER_T]
+    return (commands("tidalcrust run workflows/paper-T.toml --dt-factor 0.5",
+                     "tidalcrust compare checkpoints/paper-T/T5/encounter.h5 "
+                     "checkpoints/paper-T/dt0.5/T5/encounter.h5 --json   (and T1, T10, T10b)")
+            + measured_line(p, *[b for _, _, b in pairs])
+            + table(["run", "failures A / B", "total crack length A / B", "hemisphere A / B", "median angle A / B",
+                     "longest crack A / B", "Jaccard overlap of the failed springs", "KS distance of the angles"],
+                    half_dt_rows(p, pairs)))
+
+
+@full_table("energy-paper-T")
+def energy_paper_t(p):
+    root = p.work / "paper-T"
+    return (commands("tidalcrust run workflows/paper-T.toml --only T5 [--dt-factor 0.5]")
+            + measured_line(p, root / "T5" / "encounter.h5", root / "dt0.5" / "T5" / "encounter.h5")
+            + table(ENERGY_COLUMNS, energy_rows(p, "paper-T T5", [("0.002", root / "T5"),
+                                                                 ("0.001", root / "dt0.5" / "T5")])))
+
+
+@full_table("paper-N-shape")
+def paper_n_shape(p):
+    folder = p.work / "paper-N" / "N"
+    s = summary(p, folder)
+    rows = [[fixed(r["time_from_pericenter"], 2), fixed(r["b_over_a"], 3), fixed(r["c_over_a"], 3)]
+            for r in s["principal_axis_ratios"]]
+    con = s["conservation"]
+    return (commands("tidalcrust run workflows/paper-N.toml") + measured_line(p, folder / "encounter.h5")
+            + table(["t - t_peri (t_grav)", "b/a", "c/a"], rows)
+            + ["", f"Largest change of the angular momentum over the encounter (relative): "
+               f"{sci(con['max_relative_angular_momentum_change'], 1)}; of the momentum: "
+               f"{sci(con['max_momentum_change'], 1)}."])
+
+
+@full_table("relaxed-T")
+def relaxed_t(p):
+    rows = [relaxed_row(p, "paper-T, paper", p.work / "paper-T" / "body" / "relax.h5"),
+            relaxed_row(p, "crust-T, balanced", p.work / "crust-T" / "body" / "relax.h5")]
+    return (commands("tidalcrust run workflows/paper-T.toml", "tidalcrust run workflows/crust-T.toml",
+                     "tidalcrust inspect checkpoints/{paper-T,crust-T}/body/relax.h5 --json")
+            + measured_line(p, p.work / "paper-T" / "body" / "relax.h5", p.work / "crust-T" / "body" / "relax.h5")
+            + table(RELAXED_COLUMNS, rows))
+
+
+def eps_label(p, folder):
+    return short(p.inspect(Path(folder) / "encounter.h5")["record"]["failure_strain"])
+
+
+def plain_encounter_rows(p, folders):
+    rows = []
+    for label, folder in folders:
+        f = summary(p, folder)["failures"]
+        rows.append([label, eps_label(p, folder), f"{count(f['count'])} ({pct(f['fraction_shell'])})"]
+                    + failures_row(f)[1:])
+    return rows
+
+
+PLAIN_COLUMNS = ["run", "eps_S", "failed shell springs (fraction)"] + FAILURE_COLUMNS[1:]
+
+
+@full_table("crust-T-encounters")
+def crust_t_encounters(p):
+    root = p.work / "crust-T"
+    folders = [("T5", root / "T5"), ("T1", root / "T1"), ("T1-eps1e-3", root / "T1-eps1e-3"),
+               ("T10", root / "T10"), ("T10b", root / "T10b")]
+    return (commands("tidalcrust run workflows/crust-T.toml")
+            + measured_line(p, *[f / "encounter.h5" for _, f in folders])
+            + table(PLAIN_COLUMNS, plain_encounter_rows(p, folders)))
+
+
+@full_table("crust-T-convergence")
+def crust_t_convergence(p):
+    """T5 and T1-eps1e-3 at dt, dt/2, dt/4 and t_r/2, t_r/4; a setting not run yet is named, not shown."""
+    root = p.work / "crust-T"
+    rows, lines, missing = [], [], []
+    for enc in ("T5", "T1-eps1e-3"):
+        settings = [("dt = 0.002", root / enc), ("dt/2", root / "dt0.5" / enc), ("dt/4", root / "dt0.25" / enc),
+                    ("t_r/2", root / f"{enc}-tr2"), ("t_r/4", root / f"{enc}-tr4")]
+        counts = {}
+        for label, folder in settings:
+            if not (folder / "analysis" / "summary.json").is_file():
+                missing.append(f"{enc} at {label}")
+                continue
+            f = summary(p, folder)["failures"]
+            counts[label] = f
+            rows.append([enc, label, f"{count(f['count'])} ({pct(f['fraction_shell'])})"] + failures_row(f)[1:])
+
+        def change(a, b, key):
+            return fixed(100.0 * (counts[b][key] - counts[a][key]) / counts[a][key], 1) + "%"
+        finest = "dt/4" if "dt/4" in counts else "dt/2"
+        parts = [f"from {a} to {b} the failed count changes by {change(a, b, 'count')} and the total crack length by "
+                 f"{change(a, b, 'total_crack_length')}"
+                 for a, b in (("dt = 0.002" if finest == "dt/2" else "dt/2", finest), ("t_r/2", "t_r/4"))
+                 if a in counts and b in counts]
+        if parts:
+            lines.append(f"{enc}: " + "; ".join(parts) + ".")
+    if missing:
+        lines.append("Not run at this commit: " + ", ".join(missing) + ".")
+    first = [root / enc / "encounter.h5" for enc in ("T5",)]
+    finer = [root / d / "T5" / "encounter.h5" for d in ("dt0.5", "dt0.25") if (root / d / "T5" / "encounter.h5").is_file()]
+    return (commands("tidalcrust run workflows/crust-T.toml",
+                     "tidalcrust run workflows/crust-T.toml --dt-factor 0.5 --only T5 --only T1-eps1e-3   (and 0.25)")
+            + measured_line(p, *first, *finer)
+            + table(["run", "setting", "failed shell springs (fraction)"] + FAILURE_COLUMNS[1:], rows)
+            + [""] + lines)
+
+
+@full_table("crust-T-low-eps")
+def crust_t_low_eps(p):
+    root = p.work / "crust-T"
+    folders = [("T5", root / "T5"), ("T5-eps1e-3", root / "T5-eps1e-3"), ("T5-eps5e-4", root / "T5-eps5e-4")]
+    return (commands("tidalcrust run workflows/crust-T.toml --only T5 --only T5-eps1e-3 --only T5-eps5e-4")
+            + measured_line(p, *[f / "encounter.h5" for _, f in folders])
+            + table(PLAIN_COLUMNS, plain_encounter_rows(p, folders)))
+
+
+MATERIAL = ["material-L3", "material-L4", "material-L5", "material-L6"]
+
+
+@full_table("material-bodies")
+def material_bodies(p):
+    rows, files = [], []
+    for name in ["paper-T"] + MATERIAL:
+        body = p.work / name / "body"
+        if not (body / "stretch.h5").is_file():
+            continue
+        b, st, rl = p.inspect(body / "build.h5"), p.inspect(body / "stretch.h5"), p.inspect(body / "relax.h5")
+        c, d, ds = b["counts"], b["derived"], st["derived"]
+        files.append(body / "stretch.h5")
+        rows.append([name, f"{count(c['interior'])} / {count(c['shell'])} / {count(c['springs_cross'])}",
+                     sig(d["k_I"], 3), sig(d["k_C"], 3), fixed(d["E_I"], 2), fixed(d["E_2D"], 4), fixed(d["h_S"], 4),
+                     sci(d["D_F"], 2), sci(d["D_F_eq23"], 1), fixed(d["V_IP"], 2), fixed(d["V_SP"], 2),
+                     fixed(d["V_Co"], 2), sig(ds["dt_max"], 3), sig(ds["dt_safe"], 3), sig(ds["dt_unstable"], 3),
+                     sig(rl["dt"], 2)])
+    return (commands("tidalcrust run workflows/material-L3.toml   (and -L4, -L5, -L6, paper-T)",
+                     "tidalcrust inspect checkpoints/material-L3/body/build.h5 --json   (and stretch.h5, relax.h5)")
+            + measured_line(p, *files)
+            + table(["body", "N_I / N_S / N_C", "k_I", "k_C", "E_I", "E_2D", "h_S", "D_F (k_e / 4)", "D_F eq. 23",
+                     "V_IP", "V_SP", "V_Co", "dt eq. 13", "dt safe (undamped)", "dt unstable", "dt of the run"], rows))
+
+
+@full_table("material-runs")
+def material_runs(p):
+    rows, files = [], []
+    for label, name in (("material-L4 (homogeneous)", "material-L4"),
+                        ("core-T (core 0.5 R, 3x density, 10x modulus)", "core-T")):
+        r = p.inspect(p.work / name / "body" / "relax.h5")["record"]
+        f = summary(p, p.work / name / "T5")["failures"]
+        files.append(p.work / name / "T5" / "encounter.h5")
+        rows.append([label, sci(r["probe_max_shell_strain"], 1), str(r["probe_failures"]),
+                     f"{count(f['count'])} ({pct(f['fraction_shell'])})"] + failures_row(f)[1:])
+    return (commands("tidalcrust run workflows/material-L4.toml", "tidalcrust run workflows/core-T.toml")
+            + measured_line(p, *files)
+            + table(["body", "probe: largest shell strain", "probe failures", "T5: failed shell springs (fraction)"]
+                    + FAILURE_COLUMNS[1:], rows))
+
+
+@full_table("resolution")
+def resolution(p):
+    files = [p.work / name / "T5" / "encounter.h5" for name in MATERIAL if (p.work / name / "T5").is_dir()]
+    study = p.json_of("compare", "--resolution", *files, "--json")
+    rows = []
+    for r in study["rows"]:
+        f = r["failures"]
+        rows.append([str(r["shell_level"]), count(r["shell_nodes"]), count(r["particles"]), sig(r["dt"], 2),
+                     count(f["count"]), pct(f["failed_area_fraction"]), fixed(f["total_crack_length"], 1) + " R",
+                     fixed(f["longest_crack"], 2) + " R", count(f["clusters"]), pct(f["hemisphere_fraction"]),
+                     fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg"]
+                    + ["" if r.get("change_percent") is None else fixed(r["change_percent"][k], 1) + "%"
+                       for k in ("failed_area_fraction", "total_crack_length", "hemisphere_fraction")])
+    return (commands("tidalcrust run workflows/material-L3.toml   (and -L4, -L5, -L6)",
+                     "tidalcrust compare --resolution checkpoints/material-L{3,4,5,6}/T5/encounter.h5 --json")
+            + measured_line(p, *files)
+            + table(["level", "N_S", "particles", "dt", "failed springs", "failed area", "total crack length",
+                     "longest crack", "clusters", "hemisphere", "median angle", "d area", "d crack length",
+                     "d hemisphere"], rows))
+
+
+@full_table("sweep-T")
+def sweep_t(p):
+    folder = p.work / "sweep-T"
+    first = sorted((folder).glob("M*/encounter.h5"))[:1]
+    return (commands("tidalcrust run workflows/sweep-T.toml", "tidalcrust report workflows/sweep-T.toml")
+            + measured_line(p, *first) + sweep_lines(p, folder))
+
+
+@full_table("validate-T")
+def validate_t(p):
+    return (commands("tidalcrust validate workflows/paper-T.toml", "tidalcrust validate workflows/paper-N.toml")
+            + measured_line(p, p.work / "paper-T" / "body" / "relax.h5", p.work / "paper-N" / "body" / "relax.h5")
+            + validation_lines(p, [("paper-T (level 4, 4431 particles)", p.work / "paper-T"),
+                                   ("paper-N (no crust, 798 particles)", p.work / "paper-N")]))
+
+
+@full_table("validate-material")
+def validate_material(p):
+    columns = [(name, p.work / name) for name in MATERIAL
+               if (p.work / name / "validate" / "validation.json").is_file()]
+    return (commands("tidalcrust validate workflows/material-L3.toml   (and -L4, -L5)",
+                     "tidalcrust validate workflows/material-L6.toml --measure love")
+            + measured_line(p, *[f / "body" / "relax.h5" for _, f in columns])
+            + validation_lines(p, columns))
+
+
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    return None if not n else (v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2]))
+
+
+BENCH_RUNS = [("paper-T", "tidalcrust bench --config workflows/paper-T.toml --steps 20 --json"),
+              ("paper-T-tree", "tidalcrust bench --config workflows/paper-T.toml --steps 20 --set gravity.method=tree "
+                               "--json"),
+              ("bench-L5", "tidalcrust bench --config workflows/bench-L5.toml --steps 10 --repeats 3 "
+                           "--textbook-steps 0 --json"),
+              ("bench-L6", "tidalcrust bench --config workflows/bench-L6.toml --steps 5 --repeats 3 "
+                           "--textbook-steps 0 --direct-steps 1 --json")]
+
+
+@full_table("speed-here")
+def speed_here(p):
+    """Medians over the runs bench/NAME-<i>.json of the runs folder; ratios taken run by run."""
+    rows, lines = [], []
+    for name, command in BENCH_RUNS:
+        runs = [json.loads(f.read_text()) for f in sorted((p.work / "bench").glob(f"{name}-*.json"))]
+        if not runs:
+            continue
+        lines.append(command + f"   ({len(runs)} runs)")
+        step = [r["ms_per_step"] for r in runs]
+        tree = runs[0]["gravity_method"] == "tree"
+        other = [r["direct_ms_per_step"] if tree else r.get("textbook_ms_per_step") for r in runs]
+        ratio = [r["speedup_vs_direct"] if tree else r.get("speedup") for r in runs]
+        portable = [r["portable_over_fast"] for r in runs if r.get("portable_over_fast")]
+        rows.append([name, count(runs[0]["particles"]), runs[0]["gravity_method"], str(len(runs)),
+                     f"{sig(median(step), 3)} ({sig(min(step), 3)}-{sig(max(step), 3)})",
+                     "-" if None in other else f"{sig(median(other), 3)} ({'direct' if tree else 'textbook'})",
+                     "-" if None in ratio else fixed(median(ratio), 2) + "x",
+                     f"{sci(median([r['force_error']['median'] for r in runs]), 1)} / "
+                     f"{sci(median([r['force_error']['p99'] for r in runs]), 1)}" if tree else "-",
+                     fixed(median(portable), 2) + "x" if portable else "-",
+                     fixed(max(r["peak_memory_mb"] for r in runs), 0) + " MB"])
+    kernel = runs[0]["gravity_kernel"] if rows else "-"
+    version = p.load_text(p.work / "bench" / "version.txt").strip()
+    return (commands(*lines) + [f"Measured with `{version}`.", "",
+                                f"Gravity kernel {kernel}, {runs[0]['threads']} threads; ms per full step "
+                                "(springs with damping, hinges, gravity, perturber), median and range over the runs.", ""]
+            + table(["body", "N", "gravity", "runs", "full step (ms)", "the other step (ms)",
+                     "speed-up (median of the runs' ratios)", "tree force error median / p99",
+                     "portable kernel / fast", "peak memory"], rows))
+
+
+# ---------------------------------------------------------------- pages
+
+
+def blocks(text):
+    """{(kind, name): (first line index of the content, end marker line index)} of one page."""
+    found, open_ = {}, None
+    for n, line in enumerate(text.split("\n")):
+        m = MARKER.match(line)
+        if not m:
+            continue
+        kind, name, edge = m.groups()
+        if edge == "begin":
+            if open_:
+                raise Failure(f"line {n + 1}: `{name}` begins inside `{open_[1]}`")
+            open_ = (kind, name, n + 1)
+        else:
+            if not open_ or open_[:2] != (kind, name):
+                raise Failure(f"line {n + 1}: end of `{name}` without its begin")
+            if (kind, name) in found:
+                raise Failure(f"line {n + 1}: `{name}` appears twice")
+            found[(kind, name)] = (open_[2], n)
+            open_ = None
+    if open_:
+        raise Failure(f"`{open_[1]}` is never ended")
+    return found
+
+
+def rewrite(text, kind, tables, known):
+    """The page with every block of `kind` that `tables` holds replaced by it; the names it had."""
+    lines = text.split("\n")
+    spans = sorted(((s, e, name) for (k, name), (s, e) in blocks(text).items() if k == kind), reverse=True)
+    for start, end, name in spans:
+        if name not in known:
+            raise Failure(f"unknown table `{name}` (no function makes it)")
+        if name in tables:
+            lines[start:end] = tables[name]
+    return "\n".join(lines), {name for _, _, name in spans}
+
+
+def pages_of(pages_dir):
+    pages = sorted(Path(pages_dir).glob("*.md"))
+    if not pages:
+        raise Failure(f"{pages_dir}: no pages")
+    return pages
+
+
+def write_pages(pages_dir, kind, tables, verbose=True):
+    seen = {}
+    known = QUICK if kind == "quick" else FULL
+    for page in pages_of(pages_dir):
+        text = page.read_text()
+        try:
+            new, names = rewrite(text, kind, tables, known)
+        except Failure as e:
+            raise Failure(f"{page}: {e}")
+        for name in names:
+            if name in seen:
+                raise Failure(f"table `{name}` is on two pages: {seen[name]} and {page}")
+            seen[name] = page
+        if new != text:
+            page.write_text(new)
+            if verbose:
+                print(f"rewrote {page}")
+    missing = sorted(set(known) - set(seen))
+    if missing:
+        raise Failure(f"no page holds the table(s) {', '.join(missing)}")
+
+
+def differences(original_dir, regenerated_dir, kind):
+    """One entry per table whose regenerated text differs: page, table, first differing line."""
+    out = []
+    for page in pages_of(original_dir):
+        old, new = page.read_text(), (Path(regenerated_dir) / page.name).read_text()
+        old_blocks, new_blocks = blocks(old), blocks(new)
+        old_lines, new_lines = old.split("\n"), new.split("\n")
+        for (k, name), (start, end) in sorted(old_blocks.items(), key=lambda kv: kv[1]):
+            if k != kind:
+                continue
+            nstart, nend = new_blocks[(k, name)]
+            a, b = old_lines[start:end], new_lines[nstart:nend]
+            if a == b:
+                continue
+            i = next((i for i, (x, y) in enumerate(zip(a, b)) if x != y), min(len(a), len(b)))
+            page_line = a[i] if i < len(a) else "(the table ends here)"
+            made_line = b[i] if i < len(b) else "(the table ends here)"
+            out.append(f"{page.name}: table `{name}` differs from what the program produces now; first difference "
+                       f"at line {start + i + 1}:\n  page:    {page_line}\n  program: {made_line}")
+    return out
+
+
+def check(pages_dir, kind, tables, self_test):
+    with tempfile.TemporaryDirectory(prefix="tidalcrust-results-") as tmp:
+        copy = Path(tmp) / "results"
+        shutil.copytree(pages_dir, copy)
+        write_pages(copy, kind, tables, verbose=False)
+        found = differences(pages_dir, copy, kind)
+        for line in found:
+            print(line)
+        if found:
+            how = "`make results-quick`" if kind == "quick" else "`tools/results_tables.py full ... --write`"
+            print(f"{len(found)} table(s) differ: regenerate them with {how} and say in CHANGELOG.md what changed "
+                  "the numbers and why")
+            return 1
+        print(f"all {len(tables)} {kind} tables of {pages_dir} are what the program produces now")
+        if self_test:
+            return self_check(pages_dir, copy, kind)
+        return 0
+
+
+def self_check(pages_dir, copy, kind):
+    """Edit one digit of a table in the copy: the comparison must name that table and line."""
+    for page in pages_of(copy):
+        text = page.read_text()
+        lines = text.split("\n")
+        for (k, name), (start, end) in sorted(blocks(text).items(), key=lambda kv: kv[1]):
+            for n in range(start, end):
+                m = re.search(r"\d", lines[n]) if lines[n].startswith("|") and "---" not in lines[n] else None
+                if not m:
+                    continue
+                digit = lines[n][m.start()]
+                lines[n] = lines[n][:m.start()] + ("1" if digit != "1" else "2") + lines[n][m.end():]
+                edited = Path(copy).parent / "edited"
+                shutil.copytree(pages_dir, edited)
+                (edited / page.name).write_text("\n".join(lines))
+                found = differences(edited, copy, k)
+                wanted = f"table `{name}` differs"
+                if len(found) == 1 and wanted in found[0] and f"at line {n + 1}:" in found[0]:
+                    print(f"self-check: a digit edited in `{name}` ({page.name} line {n + 1}) is reported")
+                    return 0
+                print(f"self-check FAILED: editing {page.name} line {n + 1} gave {found!r}")
+                return 1
+    print("self-check FAILED: no table line with a digit to edit")
+    return 1
+
+
+# ---------------------------------------------------------------- main
+
+
+def has_fma():
+    try:
+        return any(" fma" in line for line in open("/proc/cpuinfo") if line.startswith("flags"))
+    except OSError:
+        return True
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("kind", choices=["quick", "full"])
+    parser.add_argument("--exe", required=True, help="the tidalcrust executable")
+    parser.add_argument("--source", default=Path(__file__).resolve().parent.parent, help="the repository")
+    parser.add_argument("--pages", help="the folder of the pages (default SOURCE/docs/results)")
+    parser.add_argument("--work", help="quick: run into this folder (default: a fresh temporary one)")
+    parser.add_argument("--runs", help="full: the folder the runs were made into")
+    mode = parser.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--write", action="store_true", help="rewrite the tables in the pages")
+    mode.add_argument("--check", action="store_true", help="compare, do not write (exit 1 on a difference)")
+    parser.add_argument("--no-self-check", action="store_true", help="--check without the edited-copy test")
+    parser.add_argument("--only", action="append", default=[], metavar="NAME",
+                        help="full: regenerate only this table (repeatable)")
+    args = parser.parse_args()
+    source = Path(args.source).resolve()
+    pages = Path(args.pages).resolve() if args.pages else source / "docs" / "results"
+    exe = Path(args.exe).resolve()
+    if not exe.is_file():
+        print(f"{exe}: no such executable", file=sys.stderr)
+        return 2
+    if args.kind == "quick" and not has_fma():
+        print("SKIP: this CPU has no FMA; glibc's sin/cos/atan2 then round differently (docs/determinism.md), so the "
+              "quick tables would not be the same bits")
+        return 77
+    try:
+        if args.kind == "quick":
+            tmp = None if args.work else tempfile.mkdtemp(prefix="tidalcrust-results-quick-")
+            work = Path(args.work or tmp).resolve()
+            work.mkdir(parents=True, exist_ok=True)
+            try:
+                p = Program(exe, source, work)
+                print(f"running the quick workflows into {work} ...", flush=True)
+                quick_runs(p)
+                tables = {name: f(p) for name, f in QUICK.items()}
+            finally:
+                if tmp:
+                    shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            if not args.runs:
+                raise Failure("full: --runs DIR is required")
+            p = Program(exe, source, Path(args.runs).resolve())
+            unknown = [name for name in args.only if name not in FULL]
+            if unknown:
+                raise Failure(f"--only: no table named {', '.join(unknown)}")
+            tables = {name: f(p) for name, f in FULL.items() if not args.only or name in args.only}
+        if args.write:
+            write_pages(pages, args.kind, tables)
+            return 0
+        return check(pages, args.kind, tables, not args.no_self_check)
+    except Failure as e:
+        print(f"results_tables.py: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
