@@ -14,6 +14,7 @@
 #include "model/derived_quantities.hpp"
 #include "bodies/neighbor_grid.hpp"
 #include "bodies/shell_hinges.hpp"
+#include "bodies/welded_coupling.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -65,7 +66,9 @@ double core_stiffness_factor(const Config& config, const Vec3& a, const Vec3& b)
 
 Checkpoint build_stage(const Config& config) {
   check_buildable(config);
-  const InteriorNetwork interior = build_interior(config.interior, config.workflow.seed);
+  const bool welded = config.shell.enabled && config.cross.coupling == CrossCoupling::welded;
+  const InteriorNetwork interior = welded ? welded_interior(config.interior, config.workflow.seed)
+                                          : build_interior(config.interior, config.workflow.seed);
   Icosphere shell;
   if (config.shell.enabled) shell = make_icosphere(static_cast<int>(config.shell.level));
 
@@ -101,12 +104,17 @@ Checkpoint build_stage(const Config& config) {
   BuildConstants k{config.interior.spring_constant, config.shell.spring_constant, config.shell.bending_constant,
                    config.cross.spring_constant, config.cross.distance};
   if (config.from_material()) {
-    // eq. 15 exact on this network: the mantle's springs (outside the core) over its volume.
-    const double r_i = config.interior.radius, r_c = config.core.present() ? *config.core.radius : 0.0;
+    // eq. 15 exact on this network: the mantle's springs (outside the core) over its volume. A
+    // welded body restores the springs the network lacks near its surface, so its modulus is that
+    // of the complete network: eq. 15 over the springs deeper than d_I (midpoints inside r_I - d_I).
+    const double r_c = config.core.present() ? *config.core.radius : 0.0;
+    const double r_i = welded ? std::max(config.interior.radius - config.interior.spring_distance, r_c)
+                              : config.interior.radius;
     double sum_length2 = 0;
     for (const auto& [i, j] : interior.springs) {
       const Vec3& a = interior.nodes[static_cast<std::size_t>(i)];
       const Vec3& b = interior.nodes[static_cast<std::size_t>(j)];
+      if (welded && (0.5 * (a + b)).norm() >= r_i) continue;
       if (!inside_core(config, 0.5 * (a + b))) sum_length2 += (a - b).squaredNorm();
     }
     const double mantle_volume = 4.0 / 3.0 * std::numbers::pi * (r_i * r_i * r_i - r_c * r_c * r_c);
@@ -135,7 +143,18 @@ Checkpoint build_stage(const Config& config) {
   }
   for (const auto& [i, j] : shell.edges)
     add_spring(body, state, shell_offset + i, shell_offset + j, SpringKind::shell, k.shell);
-  if (config.shell.enabled) {
+  if (welded) {
+    // The shell joined into the interior network (bodies/welded_coupling.hpp): the mantle's k_I.
+    const double r_i = config.interior.radius;
+    const WeldedInterior weld{r_i, config.interior.spring_distance, k.interior,
+                              static_cast<double>(n_interior) / (4.0 / 3.0 * std::numbers::pi * r_i * r_i * r_i),
+                              interior_pair_factor(interior.nodes, interior.springs, r_i, config.interior.spring_distance)};
+    for (const auto& w : welded_springs(weld, interior.nodes, shell.nodes))
+      add_spring(body, state, w.interior, shell_offset + w.shell, SpringKind::cross, w.stiffness);
+    if (body.count_springs(SpringKind::cross) == 0)
+      throw InputError("cross.coupling = \"welded\": no interior node lies within interior.spring_distance of the "
+                       "shell, so the shell is unsupported");
+  } else if (config.shell.enabled) {
     NeighborGrid shell_grid(Vec3(-1, -1, -1), Vec3(1, 1, 1), k.cross_distance);
     for (const auto& p : shell.nodes) shell_grid.insert(p);
     std::vector<std::array<std::int32_t, 2>> cross;  // (interior, shell) pairs

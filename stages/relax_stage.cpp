@@ -34,11 +34,13 @@ void zero_crust_stress(const Body& body, State& state) {
 
 /// The "balanced" support: the crust stress removed exactly, then the cross springs' rest
 /// lengths chosen so that they alone carry every shell node's weight (balance_cross_springs).
-void support_crust_by_cross_springs(ForceField& forces, const Body& body, State& state) {
+/// The welded coupling's springs span orders of magnitude in stiffness: the balance then moves
+/// every rest length alike (stiffness_weighted).
+void support_crust_by_cross_springs(ForceField& forces, const Body& body, State& state, const Config& config) {
   zero_crust_stress(body, state);
   std::vector<double> gravity(state.position.size());
   forces.compute_gravity(state.position.data(), gravity.data());
-  balance_cross_springs(body, state, gravity);
+  balance_cross_springs(body, state, gravity, config.cross.coupling == CrossCoupling::welded);
 }
 
 /// The relaxation proper: leapfrog at damping relax.damping, all schedules counted in steps
@@ -69,7 +71,7 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
     const std::int64_t done = c.state.step - start;
     if (balanced) {
       if (c.state.step <= creep_end && (done % relax.rest_length_interval == 0 || c.state.step == creep_end))
-        support_crust_by_cross_springs(forces, c.body, c.state);
+        support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else if (c.state.step < creep_end) {
       if (done % relax.rest_length_interval == 0) creep_shell_rest_lengths(c.body, c.state, relax.rest_length_rate);
       if (done % relax.hinge_reset_interval == 0) reset_hinge_rest_angles(c.body, c.state);
@@ -150,7 +152,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   if (record.creep_end_step == clock.start_step) {  // settle only
     if (config.relax.crust_support == CrustSupport::balanced) {
       ForceField forces(c.body, force_options(config, record.damping));
-      support_crust_by_cross_springs(forces, c.body, c.state);
+      support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else {
       zero_crust_stress(c.body, c.state);
     }

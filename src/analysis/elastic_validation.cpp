@@ -49,6 +49,8 @@ double mean_radius(const Body& body, const State& state) {
 
 std::int64_t step_count(double duration, double dt) { return static_cast<std::int64_t>(std::ceil(duration / dt)); }
 
+}  // namespace
+
 /// Least-squares fit of s(t) = a cos(w t) + b sin(w t) + c: its amplitude sqrt(a^2 + b^2).
 double sinusoid_amplitude(const std::vector<double>& t, const std::vector<double>& s, double omega) {
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
@@ -83,8 +85,6 @@ double dominant_frequency(const std::vector<double>& t, const std::vector<double
   }
   return 0.5 * (lo + hi);
 }
-
-}  // namespace
 
 BodyMaterial body_material(const Checkpoint& relaxed, const Config& config) {
   const DerivedQuantities q = derive_quantities(relaxed.body, relaxed.state, config.interior.radius);
@@ -194,8 +194,6 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
   return r;
 }
 
-namespace {
-
 /// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) about `center` with a drag
 /// -drag v on every particle (v at the start of the step, as the spring damping takes it):
 /// Leapfrog::step with the field and the drag as its extra acceleration, for `steps` steps of
@@ -213,6 +211,8 @@ void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, 
   });
   leapfrog.advance(state, steps);
 }
+
+namespace {
 
 /// Coefficient a2 of the fit u_r = a0 + a2 P2(cos theta) of the radial displacement
 /// (plus - minus)/2 over the surface nodes, directions from `rest`, and their mean radius. The

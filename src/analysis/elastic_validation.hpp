@@ -3,9 +3,11 @@
 // against continuum elasticity (physics/continuum_elasticity.hpp). Each integrates copies of the
 // relaxed state with the project's force field; the checkpoint itself is never changed.
 // Units G = M = R = 1 (times t_grav, moduli e_g, rigidities G M^2/R).
+#include <cstdint>
 #include <vector>
 
 #include "base/vec3.hpp"
+#include "forces/force_field.hpp"
 #include "model/checkpoint.hpp"
 #include "model/config.hpp"
 #include "physics/continuum_elasticity.hpp"
@@ -106,6 +108,21 @@ struct LoveResult {
 };
 LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
                            double surface_displacement = 1e-3, double drag = 0, double duration = 0);
+
+/// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) (the force +grad W of
+/// W = eps r^2 P2(cos theta) about `center`, per unit mass) with a drag -drag v on every particle
+/// (v at the start of the step, as the spring damping takes it): the leapfrog of Leapfrog::step
+/// (drift, kick with the forces at the half-step positions plus the field and the drag, drift),
+/// for `steps` steps of clock.dt. Used by measure_love_h2 and measure_tide.
+void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag,
+                          const StepClock& clock, std::int64_t steps);
+
+/// Least-squares fit of s(t) = a cos(omega t) + b sin(omega t) + c: its amplitude sqrt(a^2 + b^2).
+double sinusoid_amplitude(const std::vector<double>& t, const std::vector<double>& s, double omega);
+
+/// The angular frequency in [low, high] of the best least-squares sinusoid (a scan of 600
+/// frequencies, then golden-section refinement around the best).
+double dominant_frequency(const std::vector<double>& t, const std::vector<double>& s, double low, double high);
 
 /// (c) Flexural rigidity of the crust's lattice: a flat periodic equilateral triangular lattice
 /// (spacing L_S, one spring k_S per edge and one hinge k_e per edge, the project's evaluators),

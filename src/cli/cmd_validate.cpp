@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "analysis/elastic_validation.hpp"
+#include "analysis/tidal_response.hpp"
+#include "analysis/layer_moduli.hpp"
 #include "base/errors.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
@@ -65,12 +68,35 @@ const Check checks[] = {
     {"p-wave-network", "", "P-wave travel time pole to pole", "t_grav",
      "straight path / V_P of the measured network moduli", 0.10, false},
     {"p-wave-layered", "", "P-wave travel time pole to pole", "t_grav",
-     "layered eq. 15/16 times the measured non-affine factors", 0.10, false}};
+     "layered eq. 15/16 times the measured non-affine factors", 0.10, false},
+    // The static degree-2 tide and the crust's strain (analysis/tidal_response.hpp), against the
+    // homogeneous self-gravitating sphere of the measured network moduli (eq. 15 without them).
+    {"tide", "static degree-2 tide: h2, l2 and every crust spring's strain", "h2 fitted from the shell displacement",
+     "", "Takeuchi & Saito (1972) eq. 82, static, homogeneous, measured network moduli", 0.05},
+    {"tide-l2", "", "l2 fitted from the shell's tangential displacement", "",
+     "Takeuchi & Saito (1972) eq. 82, static, homogeneous, measured network moduli", 0.10, false},
+    {"tide-l2-over-h2", "", "l2 / h2", "", "the same sphere", 0.10, false},
+    {"tide-correlation", "", "correlation of the crust springs' strain with the continuum's", "",
+     "chord strain of the continuum surface displacement (h2, l2 of the same sphere)", 0.05, false},
+    {"tide-median-ratio", "", "median of measured / continuum strain, spring by spring (|continuum| >= rms/2)", "",
+     "the same chord strains; the scatter (half the 16-84% range) is in the JSON", 0.10, false},
+    {"tide-peak-tension", "", "meridional tension at 75-90 deg from the tidal axis", "per unit eps",
+     "eps_psipsi = h2 P2 - 3 l2 cos 2 gamma of the same sphere, fitted over the same springs", 0.15, false},
+    {"tide-subsatellite", "", "mean crust strain within 15 deg of the tidal axis (sign)", "per unit eps",
+     "the same sphere (within tolerance: the same sign)", 1.0, false},
+    {"ringdown", "degree-2 ring-down after the tide is released", "period of 0S2", "t_grav",
+     "Takeuchi & Saito (1972) eq. 82 with omega: homogeneous self-gravitating sphere, measured network moduli",
+     0.03},
+    {"ringdown-lamb", "", "period of 0S2", "t_grav",
+     "Lamb (1882) without gravity: omega a / V_S = 2.640 at nu = 1/4, measured network moduli", 0.03, false}};
+
+/// The measurements --measure knows, for its usage and errors.
+constexpr const char* measurement_names = "breathing, love, flexure, p-wave, tide, ringdown";
 
 const Check& check_named(const std::string& name) {
   for (const auto& c : checks)
     if (name == c.name && c.selectable) return c;
-  throw InputError(fmt::format("--measure: unknown measurement '{}' (known: breathing, love, flexure, p-wave)", name));
+  throw InputError(fmt::format("--measure: unknown measurement '{}' (known: {})", name, measurement_names));
 }
 
 /// The measurements named in a comma-separated list; InputError naming an unknown one.
@@ -113,7 +139,7 @@ int command_validate(int argc, char** argv) {
                                      cxxopts::value<int>()->default_value("0"))(
       "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "quiet", "no progress lines")("h,help", "show this help")(
-      "measure", "comma-separated subset of breathing,love,flexure,p-wave",
+      "measure", "comma-separated subset of breathing,love,flexure,p-wave,tide,ringdown (default: the first four)",
       cxxopts::value<std::string>()->default_value("breathing,love,flexure,p-wave"));
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);
@@ -251,6 +277,90 @@ int command_validate(int argc, char** argv) {
                       fmt::format("P-wave pulse of {}: mean |dv| at the far pole\narrival {:.4f}, path/V_IP {:.4f} t_grav",
                                   config.workflow.name, p.arrival_time, p.theory_time),
                       "|dv| [sqrt(GM/R)]");
+  }
+  if (chosen.count("tide") || chosen.count("ringdown")) {
+    if (!workflow_options.quiet) fmt::print("validate: {}\n", check_named("tide").doing);
+    // The continuum: the homogeneous sphere of the measured network moduli (eq. 15's without).
+    const BodyMaterial& sphere = measured_moduli ? network_material : material;
+    const LoveNumbers theory =
+        homogeneous_sphere_love_numbers(2, sphere.youngs_modulus, sphere.poisson_ratio, sphere.density, sphere.radius);
+    const TideResult t = measure_tide(relaxed, config, sphere, theory);
+    std::vector<ElasticLayer> layers = body_layers(relaxed, body_center_of_mass(relaxed.body, relaxed.state), 6, true);
+    for (auto& layer : layers) {
+      layer.youngs_modulus *= measured_moduli ? moduli.youngs_factor : 1.0;
+      layer.poisson_ratio = sphere.poisson_ratio;
+    }
+    const LoveNumbers layered = layered_sphere_love_numbers(2, layers);
+    if (chosen.count("tide")) {
+      // The layer under the crust: affine moduli of the interior and cross springs crossing each
+      // sphere (analysis/layer_moduli.hpp), against the interior's 6E/5 and 2E/5.
+      const Body& body = relaxed.body;
+      std::vector<bool> use(body.spring_count());
+      for (std::size_t k = 0; k < body.spring_count(); ++k)
+        use[k] = body.spring_kind[k] != static_cast<std::uint8_t>(SpringKind::shell) && !relaxed.state.springs.failed[k];
+      std::vector<double> radii;
+      for (double r = 0.30; r < 0.995; r += 0.01) radii.push_back(r);
+      Json profile = Json::array();
+      for (const auto& m : crossing_moduli(relaxed.state.position, body_center_of_mass(body, relaxed.state), body.springs,
+                                           relaxed.state.springs.stiffness, relaxed.state.springs.rest_length, use,
+                                           radii))
+        profile.push_back(Json{{"radius", m.radius}, {"compression", m.compression}, {"shear", m.shear}});
+      details["layer_moduli"] = Json{{"eq15_compression", 1.2 * material.youngs_modulus},
+                                     {"eq15_shear", 0.4 * material.youngs_modulus}, {"profile", profile}};
+      add("tide", t.fit.h2, theory.h);
+      add("tide-l2", t.fit.l2, theory.l);
+      add("tide-l2-over-h2", t.fit.l2 / t.fit.h2, theory.l / theory.h);
+      add("tide-correlation", t.correlation, 1.0);
+      add("tide-median-ratio", t.ratio.median, 1.0);
+      add("tide-peak-tension", t.peak_tension, t.theory_peak_tension);
+      add("tide-subsatellite", t.subsatellite_strain, t.theory_subsatellite_strain);
+      Json bins = Json::array();
+      for (const auto& b : t.bins)
+        bins.push_back(Json{{"gamma_low", b.gamma_low}, {"gamma_high", b.gamma_high}, {"springs", b.springs},
+                            {"measured_meridional", b.measured_meridional}, {"measured_azimuthal", b.measured_azimuthal},
+                            {"theory_meridional", b.theory_meridional}, {"theory_azimuthal", b.theory_azimuthal}});
+      details["tide"] = Json{{"tidal_strength", t.tidal_strength}, {"drag", t.drag}, {"duration", t.duration},
+                             {"h2_at_two_thirds", t.early_fit.h2}, {"l2_at_two_thirds", t.early_fit.l2},
+                             {"shell_radius", t.fit.mean_radius}, {"uniform_radial_shift", t.fit.uniform},
+                             {"rms_azimuthal_displacement", t.fit.rms_azimuthal},
+                             {"theory_youngs_modulus", sphere.youngs_modulus},
+                             {"theory_poisson_ratio", sphere.poisson_ratio},
+                             {"layered_h2", layered.h}, {"layered_l2", layered.l},
+                             {"springs", t.springs}, {"slope", t.slope}, {"rms_residual", t.rms_residual},
+                             {"own_correlation", t.own_correlation}, {"own_slope", t.own_slope},
+                             {"median_ratio", t.ratio.median}, {"ratio_scatter", t.ratio.scatter},
+                             {"ratio_springs", t.ratio.springs},
+                             {"strain_unit", "per unit eps (G M / R^3)"}, {"bands", bins}};
+      write_tidal_strain_plot(t.bins, theory.h, theory.l, out / "tide_strain",
+                              fmt::format("Crust strain under a static degree-2 tide, {}\nh2 {:.4f} (TS72 {:.4f}), "
+                                          "l2 {:.4f} (TS72 {:.4f}), correlation {:.3f}",
+                                          config.workflow.name, t.fit.h2, theory.h, t.fit.l2, theory.l, t.correlation));
+    }
+    if (wanted("ringdown")) {
+      std::vector<ElasticLayer> sphere_layer = {
+          {sphere.radius, sphere.youngs_modulus, sphere.poisson_ratio, sphere.density}};
+      const double omega = spheroidal_fundamental_frequency(2, sphere_layer, true);
+      const double omega_lamb = spheroidal_fundamental_frequency(2, sphere_layer, false);
+      const double omega_layered = spheroidal_fundamental_frequency(2, layers, true);
+      const RingdownResult d = measure_ringdown(relaxed, config, t, omega, 6 * 2 * std::numbers::pi / omega);
+      add("ringdown", d.period, 2 * std::numbers::pi / omega);
+      add("ringdown-lamb", d.period, 2 * std::numbers::pi / omega_lamb);
+      const double shear_speed = std::sqrt(sphere.youngs_modulus / (2 * (1 + sphere.poisson_ratio)) / sphere.density);
+      details["ringdown"] = Json{{"amplitude", d.amplitude}, {"initial", d.initial}, {"samples", d.time.size()},
+                                 {"omega_a_over_vs_measured", 2 * std::numbers::pi / d.period * sphere.radius / shear_speed},
+                                 {"omega_a_over_vs_lamb", omega_lamb * sphere.radius / shear_speed},
+                                 {"omega_a_over_vs_self_gravitating", omega * sphere.radius / shear_speed},
+                                 {"layered_period", 2 * std::numbers::pi / omega_layered}};
+      std::vector<TimeMark> marks;
+      for (int n = 1; n * 2 * std::numbers::pi / omega <= d.time.back(); ++n)
+        marks.push_back({n * 2 * std::numbers::pi / omega, n == 1 ? "0S2 (TS72)" : "", false});
+      for (int n = 1; n * d.period <= d.time.back(); ++n) marks.push_back({n * d.period, n == 1 ? "measured" : "", true});
+      write_signal_plot(d.time, d.signal, marks, out / "ringdown",
+                        fmt::format("Degree-2 ring-down of {}\nmeasured period {:.4f}, 0S2 {:.4f}, Lamb {:.4f} t_grav",
+                                    config.workflow.name, d.period, 2 * std::numbers::pi / omega,
+                                    2 * std::numbers::pi / omega_lamb),
+                        "P2 radial amplitude [R]");
+    }
   }
   Json comparisons = Json::object();
   for (const auto& r : rows) comparisons[r.check->name] = row_json(r);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/tidal_response.hpp"
 #include "figures/plot_axes.hpp"
 
 namespace tidalcrust {
@@ -25,5 +26,12 @@ PlotAxes signal_plot_axes(const std::vector<double>& time, const std::vector<dou
 std::vector<std::filesystem::path> write_signal_plot(const std::vector<double>& time, const std::vector<double>& signal,
                                                      const std::vector<TimeMark>& marks, const std::filesystem::path& stem,
                                                      const std::string& title, const std::string& y_label);
+
+/// Measured against continuum crust strain by angle from the tidal axis (`validate --measure tide`):
+/// the bands' fitted meridional (eps_psipsi, red) and azimuthal (eps_lamlam, blue) strains as points,
+/// and continuum_surface_strain(h2, l2, gamma) as lines (per unit eps). Returns the PNG and SVG
+/// paths; InputError naming the file if it cannot be written or there is no band.
+std::vector<std::filesystem::path> write_tidal_strain_plot(const std::vector<TidalStrainBin>& bins, double h2, double l2,
+                                                           const std::filesystem::path& stem, const std::string& title);
 
 }  // namespace tidalcrust

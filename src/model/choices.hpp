@@ -47,6 +47,20 @@ struct ChoiceTable<CrustSupport> {
   };
 };
 
+/// [cross] coupling: how the shell is tied to the interior (docs/crust-support.md, "The welded
+/// coupling"; bodies/welded_coupling.hpp).
+enum class CrossCoupling {
+  paper,   ///< section 2.7: every shell-interior pair closer than d_C, stiffness k_C (eq. 25)
+  welded,  ///< the shell joined into the interior network: the layer under the crust has the interior's moduli
+};
+template <>
+struct ChoiceTable<CrossCoupling> {
+  static constexpr std::array rows{
+      ChoiceRow<CrossCoupling>{CrossCoupling::paper, "paper", "d_C rule and k_C"},
+      ChoiceRow<CrossCoupling>{CrossCoupling::welded, "welded", "shell joined into the interior network"},
+  };
+};
+
 /// [stretch] hydrostatic_support: how the interior carries its hydrostatic pressure
 /// (docs/material.md).
 enum class HydrostaticSupport {

@@ -55,6 +55,9 @@ constexpr Readers changes_no_result{};
 constexpr Condition tree_gravity{"gravity.method = \"tree\"",
                                  [](const Config& c) { return c.gravity.method == GravityMethod::tree; }};
 constexpr Condition material_body{"a [material] body", [](const Config& c) { return c.from_material(); }};
+/// The welded crust: a body with the paper's coupling keeps the fingerprints it had before the key.
+constexpr Condition welded_crust{"cross.coupling = \"welded\"",
+                                 [](const Config& c) { return c.cross.coupling == CrossCoupling::welded; }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
@@ -146,6 +149,8 @@ void visit_keys(C& c, V&& visit) {
       {"cross", "min_per_shell_node", reads(build), "-",
        "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
        12});
+  key(c.cross.coupling, {"cross", "coupling", changes_no_result.and_when(welded_crust, build, relax), "-",
+                         choice_doc<CrossCoupling>()});
 
   key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", 1e-7, 1.0});
   key(c.integrator.softening_fraction,
@@ -592,6 +597,11 @@ void resolve_material(Config& c, const std::string& origin) {
   c.interior.min_separation = spacing;
   c.interior.spring_distance = 2.3 * spacing;
   c.interior.radius = c.shell.enabled ? 1.0 - 1.03 * spacing : 1.0 - 0.5 * spacing;
+  if (c.shell.enabled && c.cross.coupling == CrossCoupling::welded) {
+    // The welded interior reaches the crust: it fills the ball under the crust's thickness.
+    const double e2d_welded = material_crust_modulus_2d(m);
+    c.interior.radius = 1.0 - m.crust_thickness.value_or(e2d_welded / *m.youngs_modulus);
+  }
   const double cells = 2 * c.interior.radius / spacing;
   c.interior.count = c.resolution.interior_count.value_or(std::llround(packing_fraction * cells * cells * cells));
   // The crust: E_2D = (2/sqrt 3) k_S (eq. 20), resolution-free; M_S; eps_S.
@@ -659,6 +669,10 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.crust_support == CrustSupport::balanced && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
+                                 origin));
+  if (config.cross.coupling == CrossCoupling::welded && config.cross.nonlinear)
+    throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "
+                                 "false): the welded springs continue the linear interior network",
                                  origin));
   std::set<std::string> names;
   for (const auto& e : config.encounters) {

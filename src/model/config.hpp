@@ -55,6 +55,10 @@ struct CrossConfig {
   /// Every shell node gets at least this many cross springs (to its nearest interior nodes,
   /// spanning three directions when >= 3) although d_C gives fewer; 0 keeps the paper's d_C rule.
   std::int64_t min_per_shell_node = 0;
+  /// How the shell is tied to the interior (model/choices.hpp): paper (the d_C rule with k_C,
+  /// section 2.7) or welded (bodies/welded_coupling.hpp, docs/crust-support.md). A [material] body
+  /// with welded fills its interior out to r_I = 1 - h_S (the crust's thickness), not 1 - 1.03 d_IS.
+  CrossCoupling coupling = CrossCoupling::paper;
 };
 
 struct IntegratorConfig {

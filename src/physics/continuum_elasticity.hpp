@@ -72,13 +72,42 @@ struct ElasticLayer {
 /// g(r) = m(r)/r^2 of the mass inside r, integrated through the layers with y1..y6 continuous at
 /// their boundaries; the surface is the last layer's outer radius. `steps` RK4 steps over the
 /// radius, shared by thickness (at least 100 per layer). One layer gives
-/// homogeneous_sphere_love_numbers exactly. InputError for no layer, radii that do not increase,
-/// or a layer value out of range.
-LoveNumbers layered_sphere_love_numbers(int degree, const std::vector<ElasticLayer>& layers, int steps = 20000);
+/// homogeneous_sphere_love_numbers exactly. `self_gravity` false drops the body's own gravity
+/// (g(r) and the perturbation of its potential: k = 0) but keeps the external potential's body force
+/// and normalises h, l by the surface gravity m/a^2 as before (nongravitating_sphere_love_numbers
+/// is its closed form). InputError for no layer, radii that do not increase, or a layer value out
+/// of range.
+LoveNumbers layered_sphere_love_numbers(int degree, const std::vector<ElasticLayer>& layers, int steps = 20000,
+                                        bool self_gravity = true);
+
+/// Angular frequency omega (1/t_grav, G = 1) of the fundamental spheroidal free oscillation of
+/// degree n >= 2 (for n = 2: 0S2, the football mode) of the layered sphere: TS72 eq. 82 with the
+/// inertia -omega^2 rho u, regular at the centre, free surface (y2 = y4 = 0) and no external
+/// potential (y6 = 0); the lowest omega above 0.05 V_S / a (V_S the largest sqrt(mu/rho) of the
+/// layers) where the 3x3 boundary determinant changes sign, by a scan in steps of 0.02 V_S / a and
+/// bisection. `self_gravity` false: Lamb's (1882) elastic sphere without gravity, for which nu = 1/4
+/// gives omega a / V_S = 2.640 (tests/physics/test_continuum_elasticity.cpp). InputError as
+/// layered_sphere_love_numbers, or when no root lies below 30 V_S / a.
+double spheroidal_fundamental_frequency(int degree, const std::vector<ElasticLayer>& layers, bool self_gravity,
+                                        int steps = 1000);
+
+/// Degree-2 Love numbers h2, l2 of a homogeneous compressible elastic sphere without self-gravity
+/// under an external potential W = A r^2 P2 (body force rho grad W), k2 = 0; h, l normalised by
+/// g = (4 pi / 3) rho a (G = 1). Closed form (derived in docs/validation.md from Love's (1927,
+/// Treatise sec. 174-175) regular solutions grad phi, r^2 grad phi + beta x phi of the Navier
+/// equation):
+///   h2 = (rho g a / mu) (5 lambda + 4 mu) / (19 lambda + 14 mu),
+///   l2 = (rho g a / mu) (3 lambda + 2 mu) / (2 (19 lambda + 14 mu)),
+/// so l2 / h2 = 5/18 at nu = 1/4; lambda -> infinity gives Love's incompressible 5/19 and 3/38.
+LoveNumbers nongravitating_sphere_love_numbers(double youngs_modulus, double poisson_ratio, double density,
+                                               double radius);
 
 /// h2 of a homogeneous incompressible self-gravitating sphere (Love 1911; e.g. Murray & Dermott
 /// 1999, "Solar System Dynamics", with k2 = (3/5) h2): h2 = (5/2) / (1 + 19 mu / (2 rho g a)), G = 1.
 double incompressible_love_h2(double shear_modulus, double density, double radius);
+
+/// l2 of the same sphere: l2 = (3/4) / (1 + 19 mu / (2 rho g a)) = (3/10) h2 (Love 1911).
+double incompressible_love_l2(double shear_modulus, double density, double radius);
 
 /// Amplitude w0 (R) of the deflection w0 sin(k x) of a thin plate of flexural rigidity D
 /// (G M^2/R) under the load q0 sin(k x) per unit area (G M^2/R^3), from D d^4w/dx^4 = q

@@ -32,7 +32,8 @@ void reset_hinge_rest_angles(const Body& body, State& state) {
   }
 }
 
-CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity) {
+CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity,
+                                   bool stiffness_weighted) {
   // The cross springs of each shell node, in spring index order.
   std::vector<std::vector<std::size_t>> cross_of(body.particle_count());
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
@@ -59,7 +60,8 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
       length[c] = d.norm();
       direction[c] = d / length[c];
       tension[c] = state.springs.stiffness[n] * (length[c] - state.springs.rest_length[n]);
-      gram += direction[c] * direction[c].transpose();
+      const double share = stiffness_weighted ? state.springs.stiffness[n] : 1.0;
+      gram += share * direction[c] * direction[c].transpose();
       pushed += tension[c] * direction[c];
     }
     // y = (A A^T)^+ (m g - A t0): the pseudo-inverse from the eigen-decomposition of the 3x3
@@ -73,7 +75,8 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
     const Vec3 y = eigen.eigenvectors() * scaled;
     Vec3 carried = Vec3::Zero();
     for (std::size_t c = 0; c < m; ++c) {
-      tension[c] += direction[c].dot(y);
+      const double share = stiffness_weighted ? state.springs.stiffness[springs[c]] : 1.0;
+      tension[c] += share * direction[c].dot(y);
       carried += tension[c] * direction[c];
     }
     const double relative = (carried - weight).norm() / weight.norm();

@@ -33,8 +33,13 @@ struct CrossBalance {
 /// A = [u_1 .. u_m]; a node whose springs do not span three directions gets the best it can
 /// (residual reported). Linear cross springs only (eq. 12; the damping term vanishes at rest).
 /// gravity: self-gravity accelerations [N*3] (G M/R^2) at the current positions.
+/// With `stiffness_weighted` the change minimises sum (t - t0)^2 / k instead:
+/// t = t0 + K A^T (A K A^T)^+ (m g - A t0), K = diag(k_n), i.e. every rest length changes by
+/// u_n . y, as if the node sank by one common y against its springs (the welded coupling, whose
+/// stiffnesses span orders of magnitude: equal tension changes would strain its softest springs most).
 /// Throws InputError if a rest length would not stay positive. docs/crust-support.md.
-CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity);
+CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity,
+                                   bool stiffness_weighted = false);
 
 /// Mean distance of the shell nodes from the body's centre of mass (R); 0 without shell.
 double mean_shell_radius(const Body& body, const State& state);

@@ -71,6 +71,7 @@ std::string parse_error(const std::string& text) {
 
 TEST(Choices, EveryNameTableRoundTrips) {
   expect_table_round_trips<CrustSupport>();
+  expect_table_round_trips<CrossCoupling>();
   expect_table_round_trips<HydrostaticSupport>();
   expect_table_round_trips<FailureRuleKind>();
   expect_table_round_trips<GravityMethod>();
@@ -79,6 +80,7 @@ TEST(Choices, EveryNameTableRoundTrips) {
 
 TEST(Choices, EveryChoiceKeyRoundTripsThroughTheResolvedConfiguration) {
   expect_config_round_trips<CrustSupport>("relax.crust_support", [](const Config& c) { return c.relax.crust_support; });
+  expect_config_round_trips<CrossCoupling>("cross.coupling", [](const Config& c) { return c.cross.coupling; });
   expect_config_round_trips<HydrostaticSupport>("stretch.hydrostatic_support",
                                                 [](const Config& c) { return c.stretch.hydrostatic_support; });
   expect_config_round_trips<FailureRuleKind>("encounter.failure_rule",
@@ -101,6 +103,8 @@ TEST(Choices, TheKeyCommentComesFromTheTable) {
 TEST(Choices, AValueOutsideTheTableNamesTheKeyAndListsTheChoices) {
   EXPECT_EQ(parse_error("[relax]\ncrust_support = \"glued\"\n"),
             "bad.toml: relax.crust_support = \"glued\" is not one of: paper, balanced");
+  EXPECT_EQ(parse_error("[cross]\ncoupling = \"glued\"\n"),
+            "bad.toml: cross.coupling = \"glued\" is not one of: paper, welded");
   EXPECT_EQ(parse_error("[stretch]\nhydrostatic_support = \"stiffen\"\n"),
             "bad.toml: stretch.hydrostatic_support = \"stiffen\" is not one of: strengthen, compress");
   EXPECT_EQ(parse_error("[encounter]\nfailure_rule = \"fast\"\n"),
@@ -125,6 +129,7 @@ TEST(Choices, ABadChoiceOnTheCommandLineIsOneLineAndExitCodeTwo) {
   for (const auto& [option, key, names] :
        {std::tuple{"--set relax.crust_support=glued", "relax.crust_support", "paper, balanced"},
         std::tuple{"--set encounter.failure_rule=fast", "encounter.failure_rule", "paper, local"},
+        std::tuple{"--set cross.coupling=glued", "cross.coupling", "paper, welded"},
         std::tuple{"--gravity-kernel exact", "gravity.kernel", "fast, portable"}}) {
     const CliResult r = run_cli("run " + test_support::quoted(workflow) + " --out " + test_support::quoted(out.path) + " " + option);
     EXPECT_EQ(r.exit_code, exit_bad_input) << option << ": " << r.err;

@@ -110,3 +110,85 @@ TEST(ContinuumElasticity, LayeredSphereLiesBetweenItsLayersAndFeelsTheOuterOneMo
   EXPECT_THROW(layered_sphere_love_numbers(2, {}), InputError);
   EXPECT_THROW(layered_sphere_love_numbers(2, {{0.5, E, 0.25, rho}, {0.4, E, 0.25, rho}}), InputError);
 }
+
+TEST(ContinuumElasticity, ShidaNumberTendsToTheIncompressibleClosedForm) {
+  // Love (1911): l2 = (3/4) / (1 + 19 mu / (2 rho g R)), 3/10 of h2, from fluid-like to rigid.
+  for (const double mu : {0.02, 0.3, 3.0}) {
+    const double nu = 0.49999;
+    const LoveNumbers love = homogeneous_sphere_love_numbers(2, 2 * mu * (1 + nu), nu, mean_density, 1.0);
+    const double closed = incompressible_love_l2(mu, mean_density, 1.0);
+    EXPECT_NEAR(closed, 0.75 / (1 + 19 * mu / (2 * mean_density * (4 * pi / 3 * mean_density))), 1e-14);
+    EXPECT_NEAR(love.l / closed, 1.0, 2e-3) << "mu = " << mu;
+  }
+}
+
+TEST(ContinuumElasticity, CompressibleSphereWithoutSelfGravityMatchesItsClosedForm) {
+  // h2 = (rho g a/mu)(5 lambda + 4 mu)/(19 lambda + 14 mu), l2 = (rho g a/mu)(3 lambda + 2 mu)/(2(19 lambda + 14 mu))
+  // (docs/validation.md): the solver's mechanical part, compressibility and l2, without gravity.
+  for (const double nu : {0.1, 0.25, 0.4}) {
+    for (const double E : {3.07, 30.0}) {
+      const LoveNumbers closed = nongravitating_sphere_love_numbers(E, nu, mean_density, 1.0);
+      const LoveNumbers solved = layered_sphere_love_numbers(2, {{1.0, E, nu, mean_density}}, 20000, false);
+      EXPECT_NEAR(solved.h / closed.h, 1.0, 1e-6) << "nu = " << nu << ", E = " << E;
+      EXPECT_NEAR(solved.l / closed.l, 1.0, 1e-6) << "nu = " << nu << ", E = " << E;
+      EXPECT_EQ(solved.k, 0.0);
+    }
+  }
+  // nu = 1/4: l2/h2 = 5/18; the incompressible limit is Love's stiff-sphere 5/19, 3/38 (rho g a / mu).
+  const LoveNumbers quarter = nongravitating_sphere_love_numbers(3.07, 0.25, mean_density, 1.0);
+  EXPECT_NEAR(quarter.l / quarter.h, 5.0 / 18, 1e-14);
+  const double mu = 1.0, nu = 0.4999999, rho_g_a_over_mu = mean_density * (4 * pi / 3 * mean_density) / mu;
+  const LoveNumbers stiff = nongravitating_sphere_love_numbers(2 * mu * (1 + nu), nu, mean_density, 1.0);
+  EXPECT_NEAR(stiff.h / rho_g_a_over_mu, 5.0 / 19, 1e-6);
+  EXPECT_NEAR(stiff.l / rho_g_a_over_mu, 3.0 / 38, 1e-6);
+}
+
+TEST(ContinuumElasticity, SelfGravityStiffensTheMaterialBodiesAgainstTheTide) {
+  // E = 3.07, nu = 1/4 (the material workflows): the surface's own gravity pulls a bulge back, so
+  // the self-gravitating sphere deforms less than the same sphere without it (as Love's
+  // (5/2)/(1 + 19 mu/(2 rho g a)) lies below its stiff limit 5 rho g a/(19 mu)); l2/h2 stays near 5/18.
+  const LoveNumbers with = homogeneous_sphere_love_numbers(2, 3.07, 0.25, mean_density, 1.0);
+  const LoveNumbers without = nongravitating_sphere_love_numbers(3.07, 0.25, mean_density, 1.0);
+  EXPECT_LT(with.h, without.h);
+  EXPECT_GT(with.h, 0.9 * without.h);
+  EXPECT_NEAR(with.l / with.h, 5.0 / 18, 0.01);
+}
+
+TEST(ContinuumElasticity, FundamentalSpheroidalModeOfAPoissonSphereIsLambs) {
+  // Lamb (1882): the n = 2 fundamental (0S2) of a free homogeneous sphere, nu = 1/4, no gravity:
+  // omega a / V_S = 2.640 (e.g. Lapwood & Usami 1981, "Free Oscillations of the Earth", table 5.1).
+  const double E = 3.07, nu = 0.25, mu = E / (2 * (1 + nu));
+  const double shear_speed = std::sqrt(mu / mean_density);
+  const double omega = spheroidal_fundamental_frequency(2, {{1.0, E, nu, mean_density}}, false);
+  EXPECT_NEAR(omega / shear_speed, 2.640, 5e-4);
+  EXPECT_NEAR(spheroidal_fundamental_frequency(2, {{1.0, E, nu, mean_density}}, false, 4000), omega, 1e-6 * omega);
+  // Without gravity the ratio does not depend on the modulus or the density.
+  EXPECT_NEAR(spheroidal_fundamental_frequency(2, {{1.0, 10 * E, nu, 2 * mean_density}}, false) /
+                  std::sqrt(10 * mu / (2 * mean_density)),
+              omega / shear_speed, 1e-6);
+  // Equal layers are the homogeneous sphere.
+  EXPECT_NEAR(spheroidal_fundamental_frequency(2, {{0.5, E, nu, mean_density}, {1.0, E, nu, mean_density}}, false),
+              omega, 1e-6 * omega);
+}
+
+TEST(ContinuumElasticity, SelfGravityRaisesTheFootballModeByAnAmountFixedByTheDensity) {
+  // To first order in G rho (Rayleigh's principle on Lamb's eigenfunction, whose shape does not
+  // depend on the modulus) self-gravity adds a constant c g / a to omega^2: the same c for a stiff
+  // and a stiffer sphere of the same density: c = 0.643 at nu = 1/4 (docs/validation.md; Kelvin's
+  // (1863) fluid sphere has 4/5 with its own, irrotational eigenfunction).
+  const double g = 4 * pi / 3 * mean_density;
+  const auto shift = [&](double E) {
+    const double with = spheroidal_fundamental_frequency(2, {{1.0, E, 0.25, mean_density}}, true);
+    const double without = spheroidal_fundamental_frequency(2, {{1.0, E, 0.25, mean_density}}, false);
+    return (with * with - without * without) / g;
+  };
+  const double stiff = shift(30.0), stiffer = shift(300.0);
+  EXPECT_GT(stiff, 0.0);
+  EXPECT_NEAR(stiff / stiffer, 1.0, 0.02);
+  EXPECT_NEAR(stiffer, 0.643, 0.002);
+  // The material bodies (E = 3.07): gravity raises omega by a few per cent.
+  const double lamb = spheroidal_fundamental_frequency(2, {{1.0, 3.07, 0.25, mean_density}}, false);
+  const double gravitating = spheroidal_fundamental_frequency(2, {{1.0, 3.07, 0.25, mean_density}}, true);
+  EXPECT_GT(gravitating, lamb);
+  EXPECT_LT(gravitating, 1.05 * lamb);
+}
