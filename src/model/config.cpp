@@ -56,6 +56,7 @@ constexpr Condition tree_gravity{"gravity.method = \"tree\"",
                                  [](const Config& c) { return c.gravity.method == GravityMethod::tree; }};
 constexpr Condition material_body{"a [material] body", [](const Config& c) { return c.from_material(); }};
 /// The welded crust: a body with the paper's coupling keeps the fingerprints it had before the key.
+/// Stretch reads it too: a [material] body's interior then fills the ball under the crust.
 constexpr Condition welded_crust{"cross.coupling = \"welded\"",
                                  [](const Config& c) { return c.cross.coupling == CrossCoupling::welded; }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
@@ -149,7 +150,7 @@ void visit_keys(C& c, V&& visit) {
       {"cross", "min_per_shell_node", reads(build), "-",
        "each shell node gets at least this many cross springs, spanning 3 directions when >= 3 (0: d_C only)", 0,
        12});
-  key(c.cross.coupling, {"cross", "coupling", changes_no_result.and_when(welded_crust, build, relax), "-",
+  key(c.cross.coupling, {"cross", "coupling", changes_no_result.and_when(welded_crust, build, stretch, relax), "-",
                          choice_doc<CrossCoupling>()});
 
   key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", 1e-7, 1.0});
