@@ -3,23 +3,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/sphere_crossings.hpp"
+
 namespace tidalcrust {
-
-namespace {
-
-/// Distances t >= 0 along the unit vector n from x where |x + t n| = r (0, 1 or 2, ascending).
-std::vector<double> segment_sphere_crossings(const Vec3& x, const Vec3& n, double r) {
-  const double b = x.dot(n), c = x.squaredNorm() - r * r;
-  const double disc = b * b - c;
-  if (disc <= 0) return {};
-  const double root = std::sqrt(disc);
-  std::vector<double> t;
-  for (double s : {-b - root, -b + root})
-    if (s >= 0) t.push_back(s);
-  return t;
-}
-
-}  // namespace
 
 std::vector<CrossingModuli> crossing_moduli(const std::vector<double>& positions, const Vec3& center,
                                             const std::vector<std::array<std::int32_t, 2>>& springs,
@@ -36,7 +22,7 @@ std::vector<CrossingModuli> crossing_moduli(const std::vector<double>& positions
     const Vec3 n = (b - a) / length;
     const double weight = stiffness[s] * rest_length[s];
     for (auto& m : out) {
-      for (double t : segment_sphere_crossings(a, n, m.radius)) {
+      for (double t : sphere_crossings(a, n, m.radius)) {
         if (t > length) continue;
         const Vec3 p = a + t * n;
         const double n_r = std::abs(n.dot(p) / p.norm());  // outward orientation

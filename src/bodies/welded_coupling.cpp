@@ -4,25 +4,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/sphere_crossings.hpp"
 #include "bodies/neighbor_grid.hpp"
 
 namespace tidalcrust {
-
-namespace {
-
-/// Distances t >= 0 along the unit vector n from x where |x + t n| = r (0, 1 or 2 of them, ascending).
-std::vector<double> sphere_crossings(const Vec3& x, const Vec3& n, double r) {
-  const double b = x.dot(n), c = x.squaredNorm() - r * r;
-  const double disc = b * b - c;
-  if (disc <= 0) return {};
-  const double root = std::sqrt(disc);
-  std::vector<double> t;
-  for (double s : {-b - root, -b + root})
-    if (s >= 0) t.push_back(s);
-  return t;
-}
-
-}  // namespace
 
 InteriorNetwork welded_interior(const InteriorConfig& interior, std::uint64_t seed) {
   InteriorConfig larger = interior;
