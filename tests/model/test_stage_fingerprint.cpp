@@ -101,14 +101,9 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
       const std::string full = key.section + "." + key.name;
       covered.try_emplace(full, 0);
       for (const std::string& value : test_support::other_key_values(key)) {
-        if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) continue;
-        Config changed = base;
-        try {
-          apply_override(changed, path + "=" + value);
-          validate(changed, "test");
-        } catch (const InputError&) {
-          continue;  // not a valid value here (or a key [material] derives): try the next one
-        }
+        const std::optional<Config> maybe_changed = test_support::changed_config(base, key, path, value);
+        if (!maybe_changed) continue;  // the same value, or not a valid one here: try the next one
+        const Config& changed = *maybe_changed;
         const auto read_by = [&](const Config& c) {
           const Encounter& e = c.encounters.at(0);
           for (const KeyInfo& k : key.section == "encounters" ? describe_keys(e, c) : describe_keys(c))

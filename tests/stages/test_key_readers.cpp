@@ -244,14 +244,9 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
       const std::string full = key.section + "." + key.name;
       if (!only_section.empty() && key.section != only_section) continue;
       for (const std::string& value : test_support::other_key_values(key)) {
-        if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) continue;
-        Config changed = base;
-        try {
-          apply_override(changed, path + "=" + value);
-          validate(changed, "test");
-        } catch (const InputError&) {
-          continue;
-        }
+        const std::optional<Config> maybe_changed = test_support::changed_config(base, key, path, value);
+        if (!maybe_changed) continue;  // the same value, or not a valid one here: try the next one
+        const Config& changed = *maybe_changed;
         tried.insert(full);
         StageSet declared;
         for (const Config* c : std::initializer_list<const Config*>{&base, &changed})

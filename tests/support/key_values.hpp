@@ -5,6 +5,7 @@
 // the key's range; the tests skip the values that apply_override or validate refuse.
 #include <fmt/format.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,22 @@ inline std::vector<std::string> other_key_values(const KeyInfo& key) {
     for (double w : {v * 1.25, v * 0.8, v + 0.01, 0.3, 0.05, 1.5}) out.push_back(fmt::format("{}", w));
   }
   return out;
+}
+
+/// `base` with the key at `path` ("section.name" or "encounters.<name>.name") set to `value`, when
+/// that is another value than the key's and apply_override and validate accept it; nothing
+/// otherwise (not a valid value there, or a key a [material] body derives).
+inline std::optional<Config> changed_config(const Config& base, const KeyInfo& key, const std::string& path,
+                                            const std::string& value) {
+  if ((key.type == "string" || key.type == "choice" ? "'" + value + "'" : value) == key.value) return std::nullopt;
+  Config changed = base;
+  try {
+    apply_override(changed, path + "=" + value);
+    validate(changed, "test");
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  return changed;
 }
 
 }  // namespace tidalcrust::test_support
