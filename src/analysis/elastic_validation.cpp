@@ -47,9 +47,9 @@ double mean_radius(const Body& body, const State& state) {
   return sum / mass;
 }
 
-std::int64_t step_count(double duration, double dt) { return static_cast<std::int64_t>(std::ceil(duration / dt)); }
-
 }  // namespace
+
+std::int64_t step_count(double duration, double dt) { return static_cast<std::int64_t>(std::ceil(duration / dt)); }
 
 /// Least-squares fit of s(t) = a cos(w t) + b sin(w t) + c: its amplitude sqrt(a^2 + b^2).
 double sinusoid_amplitude(const std::vector<double>& t, const std::vector<double>& s, double omega) {

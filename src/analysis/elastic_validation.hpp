@@ -109,6 +109,10 @@ struct LoveResult {
 LoveResult measure_love_h2(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
                            double surface_displacement = 1e-3, double drag = 0, double duration = 0);
 
+/// Steps of dt that cover `duration` (t_grav): ceil(duration / dt), the one conversion of the
+/// validation runs (measure_love_h2, measure_tide, the ring-downs).
+std::int64_t step_count(double duration, double dt);
+
 /// Relaxes `state` under the static tidal acceleration eps (-x, -y, 2z) (the force +grad W of
 /// W = eps r^2 P2(cos theta) about `center`, per unit mass) with a drag -drag v on every particle
 /// (v at the start of the step, as the spring damping takes it): the leapfrog of Leapfrog::step

@@ -146,7 +146,7 @@ TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const B
   std::fill(rest.velocity.begin(), rest.velocity.end(), 0.0);
   const Vec3 center = body_center_of_mass(body, rest);
   const double dt = relaxed.stage.clock.dt;
-  const auto steps = static_cast<std::int64_t>(std::ceil(r.duration / dt));
+  const std::int64_t steps = step_count(r.duration, dt);
   const std::int64_t early = 2 * steps / 3;
   ForceField forces(body, force_options(config, 0.0));
   r.plus = rest;
@@ -260,7 +260,7 @@ RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config,
   ForceField plus_forces(body, force_options(config, 0.0)), minus_forces(body, force_options(config, 0.0));
   const StepClock clock{plus.time, plus.step, relaxed.stage.clock.dt};
   Leapfrog plus_step(plus_forces, clock), minus_step(minus_forces, clock);
-  const auto steps = static_cast<std::int64_t>(std::ceil(duration / clock.dt));
+  const std::int64_t steps = step_count(duration, clock.dt);
   for (std::int64_t s = 0; s <= steps; ++s) {
     if (s > 0) plus_step.step(plus), minus_step.step(minus);
     r.time.push_back(static_cast<double>(s) * clock.dt);
