@@ -1,4 +1,5 @@
 #include "analysis/recorded_track.hpp"
+#include "base/invariant.hpp"
 
 #include <fmt/format.h>
 
@@ -20,8 +21,7 @@ RecordedTrack::RecordedTrack(const std::vector<TimeseriesSample>& samples) {
 bool RecordedTrack::covers(double t) const { return !empty() && t >= times_.front() && t <= times_.back(); }
 
 Vec3 RecordedTrack::position_at(double t) const {
-  if (!covers(t))
-    throw std::out_of_range(fmt::format("RecordedTrack::position_at({}): outside the samples", t));
+  TIDALCRUST_ASSERT(covers(t), fmt::format("RecordedTrack::position_at({}): outside the samples", t));
   const auto after = std::upper_bound(times_.begin(), times_.end(), t);
   if (after == times_.end()) return positions_.back();
   const auto i = static_cast<std::size_t>(std::distance(times_.begin(), after)) - 1;

@@ -23,7 +23,7 @@ class RecordedTrack {
   /// True if t lies between the first and the last kept sample (inclusive).
   bool covers(double t) const;
   /// Linear interpolation between the samples around t; the sample itself at a sample time.
-  /// std::out_of_range unless covers(t).
+  /// InternalError (TIDALCRUST_ASSERT) unless covers(t).
   Vec3 position_at(double t) const;
 
  private:

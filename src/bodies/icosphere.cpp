@@ -1,4 +1,5 @@
 #include "bodies/icosphere.hpp"
+#include "base/invariant.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +49,7 @@ void subdivide(Icosphere& s) {
 }  // namespace
 
 Icosphere make_icosphere(int level) {
-  if (level < 0 || level > 10) throw std::invalid_argument("make_icosphere: level must be in [0, 10]");
+  TIDALCRUST_ASSERT(level >= 0 && level <= 10, "make_icosphere: level must be in [0, 10]");
   Icosphere s = icosahedron();
   for (int l = 0; l < level; ++l) subdivide(s);
   s.edges.reserve(3 * s.faces.size() / 2);

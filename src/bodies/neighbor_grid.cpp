@@ -1,4 +1,5 @@
 #include "bodies/neighbor_grid.hpp"
+#include "base/invariant.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +9,7 @@
 namespace tidalcrust {
 
 NeighborGrid::NeighborGrid(const Vec3& lo, const Vec3& hi, double cell_size) : lo_(lo), cell_size_(cell_size) {
-  if (!(cell_size > 0) || !std::isfinite(cell_size))
-    throw std::invalid_argument("NeighborGrid: cell size must be finite and > 0");
+  TIDALCRUST_ASSERT(cell_size > 0 && std::isfinite(cell_size), "NeighborGrid: cell size must be finite and > 0");
   std::size_t cells = 1;
   for (int a = 0; a < 3; ++a) {
     const double extent = std::max(hi[a] - lo[a], 0.0);

@@ -1,4 +1,5 @@
 #include "bodies/shell_hinges.hpp"
+#include "base/invariant.hpp"
 
 #include <map>
 #include <stdexcept>
@@ -13,18 +14,18 @@ std::vector<std::array<std::int32_t, 4>> make_hinges(const std::vector<std::arra
   std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> opposite;
   for (const auto& f : faces)
     for (int k = 0; k < 3; ++k) {
-      if (!opposite.emplace(std::pair{f[k], f[(k + 1) % 3]}, f[(k + 2) % 3]).second)
-        throw std::invalid_argument("make_hinges: directed edge " + std::to_string(f[k]) + "->" +
-                                    std::to_string(f[(k + 1) % 3]) + " belongs to two faces");
+      const bool first = opposite.emplace(std::pair{f[k], f[(k + 1) % 3]}, f[(k + 2) % 3]).second;
+      TIDALCRUST_ASSERT(first, "make_hinges: directed edge " + std::to_string(f[k]) + "->" +
+                                   std::to_string(f[(k + 1) % 3]) + " belongs to two faces");
     }
   std::vector<std::array<std::int32_t, 4>> hinges;
   hinges.reserve(edges.size());
   for (const auto& [a, b] : edges) {
     const auto w1 = opposite.find({a, b});
     const auto w2 = opposite.find({b, a});
-    if (w1 == opposite.end() || w2 == opposite.end())
-      throw std::invalid_argument("make_hinges: edge " + std::to_string(a) + "-" + std::to_string(b) +
-                                  " does not have a face on each side");
+    TIDALCRUST_ASSERT(w1 != opposite.end() && w2 != opposite.end(),
+                      "make_hinges: edge " + std::to_string(a) + "-" + std::to_string(b) +
+                          " does not have a face on each side");
     hinges.push_back({w1->second, w2->second, a, b});
   }
   return hinges;

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "stages/stage_kinds.hpp"
+#include "base/invariant.hpp"
 
 namespace tidalcrust {
 
@@ -45,7 +46,7 @@ const Command* find_command(std::string_view name) {
 
 cxxopts::Options command_options(std::string_view name, const std::string& details) {
   const Command* command = find_command(name);
-  if (!command) throw std::logic_error(fmt::format("command_options: '{}' is not in the command table", name));
+  TIDALCRUST_ASSERT(command != nullptr, fmt::format("command_options: '{}' is not in the command table", name));
   return cxxopts::Options(fmt::format("tidalcrust {}", name),
                           details.empty() ? command->summary : command->summary + "\n" + details);
 }

@@ -19,7 +19,7 @@ class Leapfrog {
  public:
   /// Keeps a reference to `forces` (and through it to the Body). A stage makes its clock once, when
   /// it begins, stores it in its checkpoint, and hands the same clock back when it resumes.
-  /// InputError unless clock.dt is finite and > 0.
+  /// clock.dt must be finite and > 0 (TIDALCRUST_ASSERT).
   Leapfrog(ForceField& forces, StepClock clock);
 
   /// One step of clock.dt (the stage's time step; model/stage_records.hpp):

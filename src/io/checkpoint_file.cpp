@@ -12,6 +12,7 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -27,6 +28,7 @@
 #include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
+#include "base/invariant.hpp"
 
 namespace tidalcrust {
 
@@ -654,6 +656,8 @@ void read_stage_info(hid_t root, Checkpoint& c) {
   c.state.time = h5::read_attribute<double>(g.get(), "time");
   c.state.step = h5::read_attribute<std::int64_t>(g.get(), "step");
   c.stage.clock.dt = h5::read_attribute<double>(g.get(), "dt");
+  if (!(c.stage.clock.dt > 0) || !std::isfinite(c.stage.clock.dt))
+    throw h5::Error(fmt::format("attribute /checkpoint@dt is {}, expected a finite number > 0", c.stage.clock.dt));
   c.stage.clock.start_time = h5::read_attribute<double>(g.get(), "start_time");
   c.stage.clock.start_step = h5::read_attribute<std::int64_t>(g.get(), "start_step");
   c.stage.end_step = h5::read_attribute<std::int64_t>(g.get(), "end_step");
@@ -763,8 +767,9 @@ void check_readable_hdf5(const fs::path& file) {
 }  // namespace
 
 void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
-  if (auto problem = consistency_problem(checkpoint); !problem.empty())
-    throw std::logic_error(fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
+  const auto problem = consistency_problem(checkpoint);
+  TIDALCRUST_ASSERT(problem.empty(),
+                    fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
   std::string bytes;
   try {
     bytes = hdf5_bytes(file, checkpoint);

@@ -14,6 +14,7 @@
 #include "model/body.hpp"
 #include "model/stage_records.hpp"
 #include "model/state.hpp"
+#include "base/invariant.hpp"
 
 namespace tidalcrust {
 
@@ -81,17 +82,19 @@ struct StageInfo {
   std::string gravity_kernel_changes;
 
   const char* name() const { return stage_name(record); }
-  /// The record as stage R; std::logic_error if the checkpoint is of another stage (callers
-  /// check the stage first and report bad input themselves).
+  /// The record as stage R; InternalError (TIDALCRUST_ASSERT) if the checkpoint is of another
+  /// stage (callers check the stage first and report bad input themselves).
   template <typename R>
   R& as() {
-    if (auto* r = std::get_if<R>(&record)) return *r;
-    throw std::logic_error(std::string("stage record requested of the wrong stage: ") + name());
+    auto* r = std::get_if<R>(&record);
+    TIDALCRUST_ASSERT(r != nullptr, std::string("stage record requested of the wrong stage: ") + name());
+    return *r;
   }
   template <typename R>
   const R& as() const {
-    if (const auto* r = std::get_if<R>(&record)) return *r;
-    throw std::logic_error(std::string("stage record requested of the wrong stage: ") + name());
+    const auto* r = std::get_if<R>(&record);
+    TIDALCRUST_ASSERT(r != nullptr, std::string("stage record requested of the wrong stage: ") + name());
+    return *r;
   }
 };
 

@@ -17,6 +17,7 @@
 #include <type_traits>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -847,7 +848,7 @@ std::int64_t integer_key_value(const Config& config, std::string_view section, s
     if constexpr (std::is_same_v<std::remove_cvref_t<decltype(field)>, std::int64_t>)
       if (key.section == section && key.name == name) value = field;
   });
-  if (!value) throw std::invalid_argument(fmt::format("no integer configuration key {}.{}", section, name));
+  TIDALCRUST_ASSERT(value.has_value(), fmt::format("no integer configuration key {}.{}", section, name));
   return *value;
 }
 

@@ -221,7 +221,7 @@ std::vector<KeyInfo> describe_keys(const Config& config);
 /// The keys of one [[encounters]] table, with the values of `encounter` (conditions evaluated on `config`).
 std::vector<KeyInfo> describe_keys(const Encounter& encounter, const Config& config);
 /// The value of the integer key `section.name` (e.g. relax.checkpoint_interval);
-/// std::invalid_argument when there is no such integer key.
+/// InternalError (TIDALCRUST_ASSERT) when there is no such integer key.
 std::int64_t integer_key_value(const Config& config, std::string_view section, std::string_view name);
 /// One [[encounters]] table of to_toml.
 std::string encounter_toml(const Encounter& encounter);

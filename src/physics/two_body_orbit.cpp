@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -142,14 +143,13 @@ double TwoBodyOrbit::time_from_half_tangent(double D) const {
     return kepler_mean_anomaly(E, e_, type_) * time_unit;
   }
   const double tanh_half = std::sqrt((e_ - 1.0) / (e_ + 1.0)) * D;
-  if (!(std::abs(tanh_half) < 1.0))
-    throw std::invalid_argument("two-body orbit: true anomaly beyond the hyperbolic asymptote");
+  TIDALCRUST_ASSERT(std::abs(tanh_half) < 1.0, "two-body orbit: true anomaly beyond the hyperbolic asymptote");
   const double H = 2.0 * std::atanh(tanh_half);
   return kepler_mean_anomaly(H, e_, type_) * time_unit;
 }
 
 double TwoBodyOrbit::time_from_pericenter(double f) const {
-  if (!(std::abs(f) <= pi)) throw std::invalid_argument("two-body orbit: |true anomaly| must be <= pi");
+  TIDALCRUST_ASSERT(std::abs(f) <= pi, "two-body orbit: |true anomaly| must be <= pi");
   return time_from_half_tangent(std::tan(0.5 * f));
 }
 
@@ -183,7 +183,7 @@ double TwoBodyOrbit::half_tangent_at_time(double t) const {
 }
 
 RelativeState TwoBodyOrbit::state_at_time(double t) const {
-  if (!std::isfinite(t)) throw std::invalid_argument("two-body orbit: time must be finite");
+  TIDALCRUST_ASSERT(std::isfinite(t), "two-body orbit: time must be finite");
   return state_at_true_anomaly(2.0 * std::atan(half_tangent_at_time(t)));
 }
 

@@ -7,6 +7,7 @@
 #include "bodies/icosphere.hpp"
 #include "bodies/shell_hinges.hpp"
 #include "forces/hinge_geometry.hpp"
+#include "base/invariant.hpp"
 
 using namespace tidalcrust;
 
@@ -36,5 +37,5 @@ TEST(ShellHinges, OpenSurfaceIsRejected) {
   const Icosphere s = make_icosphere(0);
   auto faces = s.faces;
   faces.pop_back();
-  EXPECT_THROW(make_hinges(s.edges, faces), std::invalid_argument);
+  EXPECT_THROW(make_hinges(s.edges, faces), InternalError);
 }

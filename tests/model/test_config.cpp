@@ -6,6 +6,7 @@
 
 #include "model/config.hpp"
 #include "base/errors.hpp"
+#include "base/invariant.hpp"
 
 using namespace tidalcrust;
 
@@ -154,7 +155,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   EXPECT_NE(text.find("\n[integrator]\ndt = "), std::string::npos);
   EXPECT_EQ(describe_keys(Encounter{}, config).size(), 6u);
   EXPECT_EQ(integer_key_value(config, "relax", "checkpoint_interval"), config.relax.checkpoint_interval);
-  EXPECT_THROW(integer_key_value(config, "relax", "damping"), std::invalid_argument);  // not an integer key
+  EXPECT_THROW(integer_key_value(config, "relax", "damping"), InternalError);  // not an integer key
 }
 
 TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {

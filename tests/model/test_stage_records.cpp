@@ -8,6 +8,7 @@
 #include "base/errors.hpp"
 #include "model/checkpoint.hpp"
 #include "support/synthetic_encounter.hpp"
+#include "base/invariant.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -25,7 +26,7 @@ TEST(StageRecord, TypedAccessRefusesOtherStagesNamingTheFile) {
   } catch (const InputError& err) {
     EXPECT_STREQ(err.what(), "ENC.h5: stage is 'relax', expected an 'encounter' checkpoint");
   }
-  EXPECT_THROW(c.stage.as<EncounterRecord>(), std::logic_error);
+  EXPECT_THROW(c.stage.as<EncounterRecord>(), InternalError);
 }
 
 TEST(StageRecord, NamesFollowThePipelineAndMakeTheirRecord) {

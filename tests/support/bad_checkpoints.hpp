@@ -152,6 +152,10 @@ inline std::vector<BadCheckpoint> make_bad_checkpoints(const std::filesystem::pa
                    h5::write_dataset(f, "/connectivity/springs", springs.values, springs.dims);
                  }),
                  "/connectivity/springs row 2: particle index 99"});
+
+  bad.push_back({"zero time step", edited_copy(valid, folder, "dt.h5",
+                                               [](hid_t f) { overwrite_attribute<double>(f, "/checkpoint", "dt", 0.0); }),
+                 "/checkpoint@dt is 0, expected a finite number > 0"});
   return bad;
 }
 
