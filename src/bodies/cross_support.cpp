@@ -138,4 +138,17 @@ std::vector<std::array<std::int32_t, 2>> supplementary_cross_springs(
   return added;
 }
 
+std::vector<std::array<std::int32_t, 2>> cross_springs_within(const std::vector<Vec3>& interior,
+                                                              const std::vector<Vec3>& shell, double distance,
+                                                              int minimum) {
+  NeighborGrid shell_grid(Vec3(-1, -1, -1), Vec3(1, 1, 1), distance);
+  for (const auto& p : shell) shell_grid.insert(p);
+  std::vector<std::array<std::int32_t, 2>> cross;
+  for (std::size_t i = 0; i < interior.size(); ++i)
+    for (std::int32_t s : shell_grid.closer_than(interior[i], distance)) cross.push_back({static_cast<std::int32_t>(i), s});
+  const auto extra = supplementary_cross_springs(interior, shell, cross, minimum);
+  cross.insert(cross.end(), extra.begin(), extra.end());
+  return cross;
+}
+
 }  // namespace tidalcrust

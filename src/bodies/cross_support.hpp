@@ -33,4 +33,12 @@ std::vector<std::array<std::int32_t, 2>> supplementary_cross_springs(
     const std::vector<Vec3>& interior, const std::vector<Vec3>& shell,
     const std::vector<std::array<std::int32_t, 2>>& existing, int minimum);
 
+/// The cross springs of the paper (section 2.5): every (interior, shell) pair closer than
+/// `distance` (R), in interior-index order and for each in the grid's order, then the
+/// supplementary springs of supplementary_cross_springs(..., minimum). Returns (interior index,
+/// shell index) pairs; empty when no interior node lies that close to the shell.
+std::vector<std::array<std::int32_t, 2>> cross_springs_within(const std::vector<Vec3>& interior,
+                                                              const std::vector<Vec3>& shell, double distance,
+                                                              int minimum);
+
 }  // namespace tidalcrust

@@ -1,0 +1,156 @@
+#include "bodies/build_body.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <numbers>
+#include <vector>
+
+#include "base/errors.hpp"
+#include "bodies/body_type.hpp"
+#include "bodies/cross_support.hpp"
+#include "bodies/icosphere.hpp"
+#include "bodies/interior_builder.hpp"
+#include "bodies/material_body.hpp"
+#include "bodies/neighbor_grid.hpp"
+#include "bodies/shell_hinges.hpp"
+#include "bodies/welded_coupling.hpp"
+#include "forces/hinge_geometry.hpp"
+
+namespace tidalcrust {
+namespace {
+
+/// Relations between keys that validate() does not know about because only building needs them.
+void check_buildable(const Config& config) {
+  if (!config.shell.enabled) return;
+  if (config.interior.radius >= 1.0)
+    throw InputError(fmt::format(
+        "interior.radius = {} must be < 1 when shell.enabled = true (the interior must lie inside the shell "
+        "of radius R = 1)",
+        config.interior.radius));
+  if (!(config.shell.mass > 0))
+    throw InputError("shell.mass must be > 0 when shell.enabled = true (massless shell nodes)");
+  const double gap = 1.0 - config.interior.radius;
+  if (config.cross.distance <= gap)
+    throw InputError(fmt::format(
+        "cross.distance = {} must exceed the gap 1 - interior.radius = {} or no cross spring can reach the shell",
+        config.cross.distance, gap));
+}
+
+void add_spring(BuiltBody& out, std::int32_t i, std::int32_t j, SpringKind kind, double stiffness) {
+  out.body.springs.push_back({i, j});
+  out.body.spring_kind.push_back(static_cast<std::uint8_t>(kind));
+  out.state.springs.rest_length.push_back((vec3_at(out.state.position, static_cast<std::size_t>(i)) -
+                                           vec3_at(out.state.position, static_cast<std::size_t>(j)))
+                                              .norm());
+  out.state.springs.stiffness.push_back(stiffness);
+}
+
+/// Masses, species and positions at rest: interior nodes (1 - M_S) w / sum w with the body
+/// type's weights w, shell nodes M_S / N_S each.
+void place_particles(BuiltBody& out, const Config& config, const BodyType& type, const std::vector<Vec3>& interior,
+                     const std::vector<Vec3>& shell) {
+  const double shell_mass = config.shell.enabled ? config.shell.mass : 0.0;
+  const std::size_t n = interior.size() + shell.size();
+  Body& body = out.body;
+  body.mass.resize(n);
+  body.species.resize(n);
+  double weights = 0;
+  for (const Vec3& p : interior) weights += type.node_mass_weight(config, p);
+  for (std::size_t i = 0; i < interior.size(); ++i) {
+    body.mass[i] = (1.0 - shell_mass) * type.node_mass_weight(config, interior[i]) / weights;
+    body.species[i] = static_cast<std::uint8_t>(Species::interior);
+  }
+  for (std::size_t s = 0; s < shell.size(); ++s) {
+    body.mass[interior.size() + s] = shell_mass / static_cast<double>(shell.size());
+    body.species[interior.size() + s] = static_cast<std::uint8_t>(Species::shell);
+  }
+  State& state = out.state;
+  state.time = 0;
+  state.step = 0;
+  state.position.resize(3 * n);
+  for (std::size_t i = 0; i < interior.size(); ++i) set_vec3(state.position, i, interior[i]);
+  for (std::size_t s = 0; s < shell.size(); ++s) set_vec3(state.position, interior.size() + s, shell[s]);
+  state.velocity.assign(3 * n, 0.0);
+}
+
+/// The springs that hold the shell on the interior, appended as SpringKind::cross.
+void add_cross_springs(BuiltBody& out, const Config& config, const InteriorNetwork& interior,
+                       const Icosphere& shell, const SpringConstants& k) {
+  const auto shell_offset = static_cast<std::int32_t>(interior.nodes.size());
+  if (config.cross.coupling == CrossCoupling::welded) {
+    // The shell joined into the interior network (bodies/welded_coupling.hpp): the mantle's k_I.
+    const double r_i = config.interior.radius;
+    const WeldedInterior weld{
+        r_i, config.interior.spring_distance, k.interior,
+        static_cast<double>(interior.nodes.size()) / (4.0 / 3.0 * std::numbers::pi * r_i * r_i * r_i),
+        interior_pair_factor(interior.nodes, interior.springs, r_i, config.interior.spring_distance)};
+    for (const auto& w : welded_springs(weld, interior.nodes, shell.nodes))
+      add_spring(out, w.interior, shell_offset + w.shell, SpringKind::cross, w.stiffness);
+    if (out.body.count_springs(SpringKind::cross) == 0)
+      throw InputError("cross.coupling = \"welded\": no interior node lies within interior.spring_distance of the "
+                       "shell, so the shell is unsupported");
+    return;
+  }
+  const auto cross = cross_springs_within(interior.nodes, shell.nodes, k.cross_distance,
+                                          static_cast<int>(config.cross.min_per_shell_node));
+  const double k_cross = config.from_material() && !cross.empty()
+                             ? material_cross_constant(config, interior.nodes, shell.nodes, cross, config.shell.mass)
+                             : k.cross;
+  for (const auto& [i, s] : cross) add_spring(out, i, shell_offset + s, SpringKind::cross, k_cross);
+  if (cross.empty())
+    throw InputError(fmt::format(
+        "cross.distance = {}: no interior node lies that close to the shell, so the shell is unsupported",
+        k.cross_distance));
+}
+
+/// The shell's triangles and one bending hinge per shell edge, at its built dihedral angle.
+void add_shell_hinges(BuiltBody& out, const Icosphere& shell, std::int32_t shell_offset, double bending) {
+  for (const auto& f : shell.faces)
+    out.body.faces.push_back({shell_offset + f[0], shell_offset + f[1], shell_offset + f[2]});
+  for (const auto& h : make_hinges(shell.edges, shell.faces)) {
+    const std::array<std::int32_t, 4> hinge{shell_offset + h[0], shell_offset + h[1], shell_offset + h[2],
+                                            shell_offset + h[3]};
+    out.body.hinges.push_back(hinge);
+    const auto at = [&](int c) { return vec3_at(out.state.position, static_cast<std::size_t>(hinge[c])); };
+    out.state.hinges.rest_angle.push_back(hinge_angle(at(0), at(1), at(2), at(3)));
+    out.body.hinge_stiffness.push_back(bending);
+  }
+}
+
+}  // namespace
+
+BuiltBody build_body(const Config& config) {
+  check_buildable(config);
+  const BodyType& type = body_type(config);
+  const bool welded = config.shell.enabled && config.cross.coupling == CrossCoupling::welded;
+  const InteriorNetwork interior = welded ? welded_interior(config.interior, config.workflow.seed)
+                                          : build_interior(config.interior, config.workflow.seed);
+  Icosphere shell;
+  if (config.shell.enabled) shell = make_icosphere(static_cast<int>(config.shell.level));
+  const auto shell_offset = static_cast<std::int32_t>(interior.nodes.size());
+
+  BuiltBody out;
+  place_particles(out, config, type, interior.nodes, shell.nodes);
+  const SpringConstants k = config.from_material()
+                                ? material_spring_constants(config, type, interior.nodes, interior.springs,
+                                                            shell.nodes, welded)
+                                : printed_spring_constants(config);
+  for (const auto& [i, j] : interior.springs) {
+    const Vec3 midpoint = 0.5 * (interior.nodes[static_cast<std::size_t>(i)] + interior.nodes[static_cast<std::size_t>(j)]);
+    add_spring(out, i, j, SpringKind::interior, k.interior * type.spring_stiffness_factor(config, midpoint));
+  }
+  for (const auto& [i, j] : shell.edges) add_spring(out, shell_offset + i, shell_offset + j, SpringKind::shell, k.shell);
+  if (config.shell.enabled) add_cross_springs(out, config, interior, shell, k);
+  out.state.springs.failed.assign(out.body.spring_count(), 0);
+  add_shell_hinges(out, shell, shell_offset, k.bending);
+
+  std::vector<Vec3> positions(interior.nodes);
+  positions.insert(positions.end(), shell.nodes.begin(), shell.nodes.end());
+  out.min_spacing = min_pair_distance(positions);
+  out.body.softening = config.integrator.softening_fraction * out.min_spacing;
+  out.interior_trials = interior.trials;
+  return out;
+}
+
+}  // namespace tidalcrust
