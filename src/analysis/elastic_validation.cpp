@@ -86,10 +86,40 @@ double dominant_frequency(const std::vector<double>& t, const std::vector<double
   return 0.5 * (lo + hi);
 }
 
+namespace {
+
+/// Eq. 15 over the interior springs whose midpoints lie within `radius` of the centre of mass
+/// (rest lengths of `state`), over that ball's volume, e_g.
+double inner_network_youngs_modulus(const Body& body, const State& state, double radius) {
+  const Vec3 center = body_center_of_mass(body, state);
+  double sum = 0;
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
+    const auto [i, j] = body.springs[n];
+    const Vec3 mid = 0.5 * (position_of(state, static_cast<std::size_t>(i)) + position_of(state, static_cast<std::size_t>(j)));
+    if (!((mid - center).norm() < radius)) continue;
+    const double length = state.springs.rest_length[n];
+    sum += state.springs.stiffness[n] * length * length;
+  }
+  return network_youngs_modulus(sum, 4.0 / 3.0 * pi * radius * radius * radius);
+}
+
+}  // namespace
+
 BodyMaterial body_material(const Checkpoint& relaxed, const Config& config) {
   const DerivedQuantities q = derive_quantities(relaxed.body, relaxed.state, config.interior.radius);
   BodyMaterial m;
   m.youngs_modulus = q.E_I;
+  m.p_wave_speed = q.V_IP;
+  // A welded body's welded springs (kind cross) restore what the interior network lacks within d_I
+  // of its surface, so eq. 15 over the whole interior ball (q.E_I) counts that layer short; its
+  // modulus is eq. 15 over the springs deeper than d_I, the region its builder calibrates a
+  // [material] body on (bodies/material_body.hpp).
+  const double deep_radius = config.interior.radius - config.interior.spring_distance;
+  if (config.shell.enabled && config.cross.coupling == CrossCoupling::welded && deep_radius > 0) {
+    m.youngs_modulus = inner_network_youngs_modulus(relaxed.body, relaxed.state, deep_radius);
+    m.p_wave_speed = p_wave_speed(m.youngs_modulus);
+  }
   // R = 1 by the units when a crust makes the surface; an interior-only body (paper-N) ends at
   // its outermost node instead, and its mean density is that of the sphere this bounds.
   m.radius = 1.0;
@@ -101,7 +131,6 @@ BodyMaterial body_material(const Checkpoint& relaxed, const Config& config) {
     m.radius = outer;
   }
   m.density = 3 / (4 * pi * m.radius * m.radius * m.radius);
-  m.p_wave_speed = q.V_IP;
   m.shell_spacing = q.L_S;
   m.shell_spring_constant = q.k_S;
   double sum = 0;

@@ -17,7 +17,9 @@ namespace tidalcrust {
 
 /// The continuum material of a relaxed body, measured on its network.
 struct BodyMaterial {
-  double youngs_modulus = 0;   ///< E_I of eq. 15 from the relaxed state's interior springs, e_g
+  /// E_I of eq. 15 from the relaxed state's interior springs, e_g; for a welded body
+  /// (cross.coupling = "welded") over the springs deeper than d_I only (inside r_I - d_I)
+  double youngs_modulus = 0;
   double poisson_ratio = 0.25; ///< of a random isotropic spring network (Kot et al. 2015)
   double density = 0;          ///< mean density 3/(4 pi radius^3), M/R^3
   double radius = 0;           ///< R = 1 with a crust; without one the outermost node's distance from the centre of mass
