@@ -777,6 +777,48 @@ def validate_material(p):
             + validation_lines(p, columns))
 
 
+COUPLING = [("quick-balanced", "quick-balanced (L3): paper coupling"), ("quick-welded", "quick-welded (L3): welded"),
+            ("material-L4", "material-L4: paper coupling"), ("welded-L4", "welded-L4: welded"),
+            ("material-L5", "material-L5: paper coupling"), ("welded-L5", "welded-L5: welded")]
+COUPLING_ROWS = [("tide", "h2"), ("tide-l2", "l2"), ("tide-l2-over-h2", "l2 / h2"),
+                 ("tide-correlation", "crust strain vs continuum: correlation"),
+                 ("tide-median-ratio", "median ratio measured / continuum, spring by spring"),
+                 ("tide-peak-tension", "peak meridional tension, gamma 75-90 deg (per unit eps)"),
+                 ("tide-subsatellite", "mean strain, gamma < 15 deg (per unit eps)"),
+                 ("ringdown", "0S2 period (t_grav) against TS72"), ("ringdown-lamb", "0S2 period against Lamb, no gravity")]
+
+
+@full_table("crust-coupling")
+def crust_coupling(p):
+    columns = [(label, p.work / name) for name, label in COUPLING
+               if (p.work / name / "validate" / "validation.json").is_file()]
+    docs = [(label, p.load(folder / "validate" / "validation.json")) for label, folder in columns]
+    rows = []
+    for key, label in COUPLING_ROWS:
+        cells, tolerance = [], ""
+        for _, d in docs:
+            c = d["comparisons"].get(key)
+            if c is None:
+                cells.append("")
+                continue
+            cells.append(f"{sig(c['measured'], 4)} ({sig(c['theory'], 4)}, {fixed(c['ratio'], 3)}x)")
+            tolerance = pct(c["tolerance"], 0)
+        rows.append([label] + cells + [tolerance])
+    rows.append(["scatter of the ratio (half the 16-84% range)"]
+                + [fixed(d["details"]["tide"]["ratio_scatter"], 3) for _, d in docs] + [""])
+    rows.append(["layered TS72 h2 / 0S2 (eq. 15 per layer x the strain test's factor)"]
+                + [f"{sig(d['details']['tide']['layered_h2'], 3)} / {sig(d['details']['ringdown']['layered_period'], 4)}"
+                   for _, d in docs] + [""])
+    rows.append(["sphere E, nu (network moduli)"]
+                + [f"{fixed(d['network_moduli']['youngs_modulus'], 3)} e_g, {fixed(d['network_moduli']['poisson_ratio'], 3)}"
+                   for _, d in docs] + [""])
+    return (commands(*[f"tidalcrust validate workflows/{folder.name}.toml --measure tide,ringdown" for _, folder in columns])
+            + measured_line(p, *[folder / "body" / "relax.h5" for _, folder in columns])
+            + ["Each cell: measured (theory, measured / theory). Theory: Takeuchi & Saito (1972) for the homogeneous "
+               "sphere of the network's measured moduli.", ""]
+            + table(["", *[label for label, _ in docs], "tolerance"], rows))
+
+
 def median(values):
     v = sorted(values)
     n = len(v)
