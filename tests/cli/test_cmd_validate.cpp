@@ -97,3 +97,29 @@ TEST(CmdValidate, BadInputIsOneLineAndExitTwoWithNothingWritten) {
     EXPECT_FALSE(fs::exists(out));
   }
 }
+
+// Issue 23 on the level-3 welded body (workflows/quick-welded.toml; docs/results/crust-coupling.md):
+// the relaxed crust is free of pre-stress and nothing fails in the probe, and its tidal strain
+// follows the continuum's. Stored values measured at 6560989 (kernel fast/avx512); the tolerances
+// cover another gravity kernel's last bits (these are smooth fits, not fracture sets). They pin
+// what the model does, not the issue's targets: a correlation of 0.95 and a peak tension within
+// 15% are not reached at level 3.
+TEST(CmdValidate, TheWeldedQuickCrustFollowsTheContinuumTide) {
+  const ScratchFolder scratch("validate_welded");
+  const fs::path out = scratch.path / "out";
+  const auto r = run_cli("validate " + quoted(fs::path(TIDALCRUST_SOURCE_DIR) / "workflows" / "quick-welded.toml") +
+                         " --quiet --measure tide --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto relaxed = run_cli("inspect " + quoted(out / "body" / "relax.h5") + " --json");
+  ASSERT_EQ(relaxed.exit_code, 0) << relaxed.err;
+  const Json record = Json::parse(relaxed.out)["record"];
+  EXPECT_LT(record["max_shell_strain"].get<double>(), 4e-5);  // measured 3.2e-5 (the issue asks 1e-5)
+  EXPECT_EQ(record["probe_failures"].get<std::int64_t>(), 0);
+  const Json c = Json::parse(read_file(out / "validate" / "validation.json"))["comparisons"];
+  EXPECT_NEAR(c["tide"]["ratio"].get<double>(), 0.9685, 0.01);             // h2 / TS72
+  EXPECT_NEAR(c["tide-l2-over-h2"]["ratio"].get<double>(), 0.9600, 0.01);  // l2/h2
+  EXPECT_NEAR(c["tide-correlation"]["measured"].get<double>(), 0.9084, 0.01);
+  EXPECT_NEAR(c["tide-median-ratio"]["measured"].get<double>(), 0.9344, 0.02);
+  EXPECT_NEAR(c["tide-peak-tension"]["ratio"].get<double>(), 0.8199, 0.02);
+  EXPECT_GT(c["tide-subsatellite"]["measured"].get<double>(), 0);  // stretched, as the continuum
+}
