@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/stage_lock.hpp"
@@ -101,6 +102,10 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
     result.outcome = LoopOutcome::interrupted;
     return result;
   }
+  // Holding the lock, nobody else writes this stage's files: the temporaries of its files (and of
+  // its derived folder) that a killed process left are removed (those of live processes stay).
+  remove_stale_temporaries(job.file.parent_path(), job.file.stem().string() + ".");
+  if (!options.derived.empty()) remove_stale_temporaries(options.derived, "");
   if (options.reuse_current)
     if (auto existing = reusable(job.file, fingerprint, parent_hash)) {
       say(options, fmt::format("{}: up to date ({})", job.label, job.file.string()));
