@@ -447,6 +447,34 @@ void write_observables(hid_t root, const Observables& o) {
 
 /// The bytes of the checkpoint file of `c`, built in memory (h5::create_memory_file); `file`
 /// only names it.
+/// About the bytes the checkpoint file of `c` takes: its arrays, observables and configuration,
+/// and HDF5's metadata.
+std::size_t estimated_file_bytes(const Checkpoint& c) {
+  std::size_t bytes = 256 * 1024 + c.config_toml.size();
+  visit_element_arrays(c, [&](const char*, const auto& values, const Shape&) {
+    bytes += values.size() * sizeof(values[0]);
+  });
+  bytes += c.observables.failures.size() * sizeof(FailureEvent);
+  bytes += c.observables.timeseries.size() * sizeof(TimeseriesSample);
+  return bytes;
+}
+
+/// HDF5 does not survive every failed allocation (a SIGSEGV inside the library when memory runs
+/// out while it opens the in-memory image), so the memory the write needs at its peak (the file
+/// being built, two images of it, HDF5's caches) is reserved before HDF5 starts, and given back
+/// at once (glibc returns blocks this large to the system): std::bad_alloc here, when the address
+/// space (ulimit -v) or the machine cannot hold it, instead of a crash later.
+void reserve_memory_for_writing(const fs::path& file, const Checkpoint& c) {
+  const std::size_t needed = 6 * estimated_file_bytes(c) + (16u << 20);
+  void* reserve = std::malloc(needed);
+  if (!reserve) {
+    throw InputError(fmt::format("{}: not enough memory to build the checkpoint (about {} MB needed; the limit of this "
+                                 "process, ulimit -v, or of the machine); nothing was written",
+                                 file.string(), needed >> 20));
+  }
+  std::free(reserve);
+}
+
 std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
   h5::File f = h5::create_memory_file(file.string());
   const hid_t root = f.get();
@@ -765,19 +793,28 @@ void check_readable_hdf5(const fs::path& file) {
 void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
   if (auto problem = consistency_problem(checkpoint); !problem.empty())
     throw std::logic_error(fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
-  std::string bytes;
+  std::string bytes, sidecar;
   try {
+    reserve_memory_for_writing(file, checkpoint);
     bytes = hdf5_bytes(file, checkpoint);
+    sidecar = xdmf_text(checkpoint, file.filename().string());
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: cannot build the checkpoint in memory: {}", file.string(), err.what()));
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: not enough memory to build the checkpoint (the limit of this process, ulimit "
+                                 "-v, or of the machine); nothing was written",
+                                 file.string()));
   }
   // The bytes reach the disk through plain writes, so a failure (disk full, quota, folder not
   // writable) is reported with its errno text and HDF5 never holds a half-written file.
   write_file_atomically(file, bytes);
-  write_file_atomically(sidecar_path(file), xdmf_text(checkpoint, file.filename().string()));
+  write_file_atomically(sidecar_path(file), sidecar);
 }
 
-Checkpoint read_checkpoint(const fs::path& file) {
+namespace {
+
+/// read_checkpoint, but for std::bad_alloc.
+Checkpoint read_checkpoint_file(const fs::path& file) {
   const std::string name = file.string();
   check_readable_hdf5(file);
   h5::File f;
@@ -791,6 +828,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
   std::int64_t version = 0;
   try {
     const hid_t stored = f.get();
+    h5::refuse_external_links(stored);  // before any path is opened: it might lead into another file
     version = readable_format_version(stored);
     // Every byte the reads below use is verified, on the file as stored, before any of it is
     // upgraded or interpreted.
@@ -821,6 +859,18 @@ Checkpoint read_checkpoint(const fs::path& file) {
                                  stored_hash, computed));
   upgrade_meaning(c, version);
   return c;
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const fs::path& file) {
+  try {
+    return read_checkpoint_file(file);
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: not enough memory to read the checkpoint (the limit of this process, ulimit -v, "
+                                 "or of the machine)",
+                                 file.string()));
+  }
 }
 
 bool is_valid_checkpoint(const fs::path& file) {
