@@ -12,9 +12,9 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -27,6 +27,7 @@
 #include "io/content_hash.hpp"
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
+#include "io/test_points.hpp"
 
 namespace tidalcrust {
 
@@ -662,14 +663,6 @@ bool carries_integrity_record(hid_t root, std::int64_t version) {
   return version >= 4 || h5::exists(root, integrity_group);
 }
 
-/// The file's bytes as stored, for an in-memory copy to upgrade.
-std::string stored_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.good() && !in.eof()) throw h5::Error(fmt::format("cannot read the file: {}", std::strerror(errno)));
-  return bytes;
-}
-
 void read_stage_info(hid_t root, Checkpoint& c) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::string stage = h5::read_string_attribute(g.get(), "stage");
@@ -747,45 +740,77 @@ void read_observables(hid_t root, Observables& o) {
   });
 }
 
-/// InputError "<file>: <what>: <strerror(err)>".
-InputError os_error(const fs::path& file, const std::string& what, int err) {
-  return InputError(fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
+/// How often a read that fails with a transient error (EIO, EAGAIN, ESTALE, ETIMEDOUT, ENOMEM:
+/// a flaky disk, an NFS hiccup) is tried in all, and the pause before the first retry (doubled
+/// each time; the wait is for the file system to recover, its length changes no result).
+constexpr int read_attempts = 4;
+constexpr auto first_retry_pause = std::chrono::milliseconds(50);
+
+bool transient_read_error(int err) {
+  return err == EIO || err == EAGAIN || err == ESTALE || err == ETIMEDOUT || err == ENOMEM || err == EINTR;
 }
 
-/// Opens `file` with plain POSIX calls before HDF5 sees it, so that a missing file, a denied
-/// permission, a folder, a FIFO or an I/O error is reported with its real cause (the errno
-/// text) instead of as "not an HDF5 file"; then checks the HDF5 signature at offset 0 (where
-/// every file written here has it).
-void check_readable_hdf5(const fs::path& file) {
-  const std::string name = file.string();
+/// One attempt at the whole file: its bytes, or the errno of the failed call (`what` says which).
+int read_all_bytes(const fs::path& file, std::string& bytes, std::string& what) {
+  bytes.clear();
+  if (const int injected = test_point_read_attempt(); injected != 0) return what = "cannot read checkpoint", injected;
   // O_NONBLOCK: opening a FIFO must not wait for a writer.
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) {
-    const int err = errno;
-    if (err == ENOENT) throw os_error(file, "no such checkpoint file", err);
-    throw os_error(file, "cannot open checkpoint", err);
-  }
+  if (fd < 0) return what = errno == ENOENT ? "no such checkpoint file" : "cannot open checkpoint", errno;
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     const int err = errno;
     ::close(fd);
-    throw os_error(file, "cannot open checkpoint", err);
+    return what = "cannot open checkpoint", err;
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw InputError(fmt::format("{}: not a regular file ({})", name,
-                                 S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "a FIFO, socket or device"));
+    what = S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "a FIFO, socket or device";
+    return -1;
+  }
+  bytes.resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::pread(fd, bytes.data() + done, bytes.size() - done, static_cast<off_t>(done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return what = "cannot read checkpoint", err;
+    }
+    if (n == 0) break;  // shorter than fstat said: truncated meanwhile; the signature or HDF5 says so
+    done += static_cast<std::size_t>(n);
+  }
+  bytes.resize(done);
+  ::close(fd);
+  return 0;
+}
+
+/// The bytes of `file`, read with plain POSIX calls before HDF5 sees them (HDF5 then reads
+/// only memory): a missing file, a denied permission, a folder, a FIFO or an I/O error is
+/// reported with its real cause (the errno text) instead of as "not an HDF5 file" or a missing
+/// group; a transient error is tried again (read_attempts) before it is reported. Then checks
+/// the HDF5 signature at offset 0 (where every file written here has it).
+std::string checkpoint_bytes(const fs::path& file) {
+  const std::string name = file.string();
+  std::string bytes, what;
+  int err = 0;
+  auto pause = first_retry_pause;
+  for (int attempt = 1;; ++attempt, pause *= 2) {
+    err = read_all_bytes(file, bytes, what);
+    if (err == 0 || !transient_read_error(err) || attempt == read_attempts) {
+      if (err == -1) throw InputError(fmt::format("{}: not a regular file ({})", name, what));
+      if (err != 0)
+        throw InputError(fmt::format("{}: {}: {}{}", name, what, std::strerror(err),
+                                     attempt > 1 ? fmt::format(" ({} attempts)", attempt) : ""));
+      break;
+    }
+    std::this_thread::sleep_for(pause);
   }
   static constexpr char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
-  char head[8] = {0};
-  ssize_t n;
-  do n = ::pread(fd, head, sizeof head, 0);
-  while (n < 0 && errno == EINTR);
-  const int err = errno;
-  ::close(fd);
-  if (n < 0) throw os_error(file, "cannot read checkpoint", err);
-  if (n < static_cast<ssize_t>(sizeof head) || std::memcmp(head, signature, sizeof head) != 0)
+  if (bytes.size() < sizeof signature || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
     throw InputError(fmt::format("{}: not an HDF5 file or truncated (no HDF5 signature at its start)", name));
+  return bytes;
 }
 
 }  // namespace
@@ -816,12 +841,15 @@ namespace {
 /// read_checkpoint, but for std::bad_alloc.
 Checkpoint read_checkpoint_file(const fs::path& file) {
   const std::string name = file.string();
-  check_readable_hdf5(file);
+  const std::string bytes = checkpoint_bytes(file);
   h5::File f;
   try {
-    f = h5::open_file_readonly(file);
+    // Not the file's own name: the core driver then looks for that file on disk.
+    f = h5::open_memory_image(bytes, name + " (in memory)");
   } catch (const h5::Error& err) {
-    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, err.what()));
+    std::string why = err.what();
+    if (why.starts_with(h5::memory_image_error)) why.erase(0, std::strlen(h5::memory_image_error));
+    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, why));
   }
   Checkpoint c;
   std::string stored_hash;
@@ -836,7 +864,7 @@ Checkpoint read_checkpoint_file(const fs::path& file) {
     // An older layout is upgraded in a writable copy in memory; the file is never touched.
     h5::File upgraded;
     if (needs_layout_upgrade(stored, version)) {
-      upgraded = h5::open_memory_image(stored_bytes(file), name + " (upgraded)", true);
+      upgraded = h5::open_memory_image(bytes, name + " (upgraded)", true);
       upgrade_layout(upgraded.get(), version);
     }
     const hid_t root = upgraded ? upgraded.get() : stored;

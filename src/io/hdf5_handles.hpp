@@ -305,6 +305,9 @@ inline File open_file_readonly(const std::filesystem::path& path) {
   return File(id);
 }
 
+/// The beginning of the message of a file image HDF5 cannot open.
+inline constexpr const char* memory_image_error = "cannot open the file image: ";
+
 /// Opens the file image `bytes` (as file_image returns it, or a file's bytes) in memory,
 /// read-only or `writable` (HDF5 works on its own copy; nothing is ever written to disk); `name`
 /// only names it in HDF5's messages.
@@ -314,7 +317,7 @@ inline File open_memory_image(const std::string& bytes, const std::string& name,
   check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
   check(H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()), "H5Pset_file_image");
   const hid_t id = H5Fopen(name.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get());
-  if (id < 0) throw Error("cannot open the file image: " + error_stack_text());
+  if (id < 0) throw Error(memory_image_error + error_stack_text());
   return File(id);
 }
 

@@ -428,3 +428,65 @@ TEST(RunWorkflow, ALinkPlantedAsALockOrATemporaryIsRefusedAndItsTargetKept) {
   EXPECT_EQ(read_file(dir / "precious.txt"), "the user's data\n");
   EXPECT_FALSE(fs::exists(dir / "out" / "body" / "build.h5"));
 }
+
+// Issue 28, item 4: one transient EIO while reading a valid relax.mid.h5 on resume dropped it
+// silently; the stage restarted from step 0 and overwrote it (a format-5 mid the same). Now a
+// transient read error is tried again (the testing aid TIDALCRUST_TEST_READ_EIO=N:K fails read
+// attempts N to N+K-1 with EIO), a persistent one is one line naming the file, exit 2, and a mid
+// that cannot be read is kept as it is.
+TEST(RunWorkflow, AnUnreadableCheckpointIsRetriedThenReportedNeverTakenForAbsent) {
+  const ScratchFolder scratch("run_unreadable");
+  const fs::path& dir = scratch.path;
+  const auto workflow = small_workflow(dir);
+  const auto straight = run_cli("run " + quoted(workflow) + " --quiet --body-only --out " + quoted(dir / "straight"));
+  ASSERT_EQ(straight.exit_code, 0) << straight.err;
+  const std::string relaxed = state_hash(read_checkpoint(dir / "straight" / "body" / "relax.h5").state);
+  const std::vector<std::string> args = {"run", workflow.string(), "--body-only", "--out", (dir / "base").string()};
+  ASSERT_EQ(run_with_kill_point(args, "step:40"), Ending::killed);
+  const fs::path mid = dir / "base" / "body" / "relax.mid.h5";
+  ASSERT_TRUE(fs::exists(mid));
+  const std::string mid_bytes = read_file(mid);
+  const auto copy_of_base = [&](const std::string& name) {
+    fs::copy(dir / "base", dir / name, fs::copy_options::recursive);
+    return dir / name;
+  };
+
+  // Each of the first read attempts fails once (the fourth is the mid's): retried, resumed.
+  for (int attempt = 1; attempt <= 5; ++attempt) {
+    const fs::path out = copy_of_base(fmt::format("transient{}", attempt));
+    const auto r = run_cli(fmt::format("run {} --body-only --out {}", quoted(workflow), quoted(out)),
+                           fmt::format("TIDALCRUST_TEST_READ_EIO={}:1", attempt));
+    EXPECT_EQ(r.exit_code, 0) << attempt << ": " << r.err;
+    EXPECT_NE(r.out.find("resuming from " + (out / "body" / "relax.mid.h5").string()), std::string::npos)
+        << attempt << ": " << r.out;
+    EXPECT_EQ(state_hash(read_checkpoint(out / "body" / "relax.h5").state), relaxed) << attempt;
+  }
+
+  // Failing for good: one line naming the file and the cause, nothing changed.
+  const fs::path persistent = copy_of_base("persistent");
+  const auto tree_before = tree_of(persistent);
+  const auto failing = run_cli(fmt::format("run {} --body-only --out {}", quoted(workflow), quoted(persistent)),
+                               "TIDALCRUST_TEST_READ_EIO=1:1000");
+  EXPECT_EQ(failing.exit_code, 2) << failing.err;
+  EXPECT_EQ(count_lines(failing.err), 1) << failing.err;
+  EXPECT_NE(failing.err.find("build.h5: cannot read checkpoint: Input/output error (4 attempts)"), std::string::npos)
+      << failing.err;
+  EXPECT_EQ(tree_of(persistent), tree_before);
+
+  // A mid of a format this program does not read (or damaged) is refused and kept, never
+  // replaced by a stage begun again.
+  const fs::path newer = copy_of_base("newer");
+  edit_in_place(newer / "body" / "relax.mid.h5",
+                [](hid_t f) { overwrite_attribute<std::int64_t>(f, "/checkpoint", "format_version", 5); });
+  const std::string newer_bytes = read_file(newer / "body" / "relax.mid.h5");
+  const auto refused = run_cli("run " + quoted(workflow) + " --body-only --out " + quoted(newer));
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  // One error line (after the note that the killed run's lock was taken over).
+  EXPECT_EQ(count_lines(refused.err.substr(refused.err.find("error:"))), 1) << refused.err;
+  EXPECT_NE(refused.err.find("relax.mid.h5: written by a newer tidalcrust (format 5)"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("kept; remove it to begin relax again"), std::string::npos) << refused.err;
+  EXPECT_EQ(read_file(newer / "body" / "relax.mid.h5"), newer_bytes);
+  EXPECT_FALSE(fs::exists(newer / "body" / "relax.h5"));
+  EXPECT_EQ(read_file(mid), mid_bytes);
+}
