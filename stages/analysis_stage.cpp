@@ -42,8 +42,10 @@ struct Snapshot {
 };
 
 /// Mid-stage snapshots beside `from` that belong to the same encounter (same body, fingerprint
-/// and parent, earlier step); unreadable or foreign files are reported and skipped.
-std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& final_checkpoint) {
+/// and parent, earlier step); unreadable or foreign files are reported, skipped and listed in
+/// `skipped` (an analysis without them is not finished: analysis_is_current).
+std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& final_checkpoint,
+                                     std::vector<std::string>& skipped) {
   std::vector<Snapshot> snapshots;
   for (const auto& found : find_snapshots(from)) {
     if (found.step >= final_checkpoint.state.step) continue;
@@ -60,6 +62,7 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
       snapshots.push_back({std::move(c), found.file});
     } catch (const InputError& err) {
       fmt::print(stderr, "tidalcrust analyze: skipping snapshot: {}\n", err.what());
+      skipped.push_back(found.file.filename().string());
     }
   }
   return snapshots;
@@ -78,7 +81,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
   const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
-  const std::vector<Snapshot> snapshots = load_snapshots(from, checkpoint);
+  std::vector<std::string> skipped_snapshots;
+  const std::vector<Snapshot> snapshots = load_snapshots(from, checkpoint, skipped_snapshots);
 
   // Snapshot row: mid-stage snapshots and the final state, at most a handful of panels.
   std::vector<const Checkpoint*> candidates;
@@ -189,6 +193,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"impulse_estimate_eq4", budget.impulse_estimate},
         {"impulse_estimate_uniform_sphere", budget.impulse_estimate_uniform_sphere}}},
       {"snapshots", snapshot_list},
+      {"skipped_snapshots", skipped_snapshots},
       {"principal_axis_ratios", shape_list},
       {"figures", figure_names}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
@@ -203,7 +208,11 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   if (!in) return false;
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
   const auto hash = summary.find("state_hash");  // end() for a non-object or a parse failure
-  return hash != summary.end() && *hash == state_hash(checkpoint.state);
+  if (hash == summary.end() || *hash != state_hash(checkpoint.state)) return false;
+  // An analysis that had to skip a snapshot (unreadable, or of another run) is not finished:
+  // the next run tries again.
+  const auto skipped = summary.find("skipped_snapshots");
+  return skipped != summary.end() && skipped->is_array() && skipped->empty();
 }
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {

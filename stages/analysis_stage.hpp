@@ -12,12 +12,16 @@
 namespace tidalcrust {
 
 /// Writes the figures and summary.json (last, atomically) of `checkpoint`, read from `from`
-/// (snapshots ENC.snap-<step>.h5 beside it form the hemisphere row). Returns the figure files.
+/// (snapshots ENC.snap-<step>.h5 beside it form the hemisphere row; one that cannot be read is
+/// skipped with a line on stderr and listed in summary.json's "skipped_snapshots"). Returns the
+/// figure files.
 /// InputError for a checkpoint that is not an encounter.
 std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path& from, const Checkpoint& checkpoint,
                                                      const std::filesystem::path& out);
 
-/// True if out/summary.json was written for exactly this state (same state_hash).
+/// True if out/summary.json was written for exactly this state (same state_hash) with every
+/// snapshot read (its "skipped_snapshots" list empty; a summary without the list, written before
+/// it existed, counts as not finished).
 bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
 
 /// One line: failures, fraction, hemisphere fraction, mean angle, cracks, longest crack.

@@ -80,19 +80,41 @@ void check_encounter(const Config& config, const Encounter& spec) {
     checked.encounters = {spec};
     validate(checked, "encounter parameters");
   }
-  const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
-  const double duration = encounter_start(orbit, config.encounter.start_distance).time_to_pericenter +
-                          orbit.time_to_pericenter(config.encounter.end_distance);
+  const std::string what = fmt::format("encounter '{}' (M2 = {:g}, q = {:g}, V_q = {:g})", spec.name,
+                                       spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
   const double dt = config.integrator.dt;
   const double passage = spec.pericenter / spec.pericenter_speed;
-  const double per_passage = passage / dt, in_encounter = duration / dt;
-  if (!(per_passage >= min_steps_per_pericenter_passage) || !(in_encounter >= min_steps_per_pericenter_passage))
+  const double per_passage = passage / dt;
+  // The passage first: it needs no orbit, and an orbit of an unresolvable speed (V_q = 1e308)
+  // has no finite energy to compute.
+  if (!(per_passage >= min_steps_per_pericenter_passage))
+    throw InputError(fmt::format("{} is not resolved by dt = {:g}: the pericenter passage q/V_q = {:.3g} t_grav spans "
+                                 "{:.3g} steps, at least {:g} needed (lower integrator.dt or V_q)",
+                                 what, dt, passage, per_passage, min_steps_per_pericenter_passage));
+  const double specific_energy = 0.5 * spec.pericenter_speed * spec.pericenter_speed -
+                                 (1.0 + spec.perturber_mass) / spec.pericenter;
+  if (!std::isfinite(specific_energy))
+    throw InputError(fmt::format("{}: encounters.perturber_mass, pericenter and pericenter_speed give an orbit whose "
+                                 "energy is not a finite number",
+                                 what));
+  double duration = 0;
+  try {
+    const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
+    duration = encounter_start(orbit, config.encounter.start_distance).time_to_pericenter +
+               orbit.time_to_pericenter(config.encounter.end_distance);
+  } catch (const InputError& err) {
+    // The orbit's own words, with the keys that made it.
+    throw InputError(fmt::format("{}: {} (encounters.perturber_mass, pericenter, pericenter_speed; "
+                                 "encounter.start_distance, end_distance)",
+                                 what, err.what()));
+  }
+  const double in_encounter = duration / dt;
+  if (!(in_encounter >= min_steps_per_pericenter_passage))
     throw InputError(fmt::format(
-        "encounter '{}' (M2 = {:g}, q = {:g}, V_q = {:g}) is not resolved by dt = {:g}: the pericenter passage "
+        "{} is not resolved by dt = {:g}: the pericenter passage "
         "q/V_q = {:.3g} t_grav spans {:.3g} steps and the whole encounter {:.3g} steps, at least {:g} needed "
         "(lower integrator.dt or V_q)",
-        spec.name, spec.perturber_mass, spec.pericenter, spec.pericenter_speed, dt, passage, per_passage,
-        in_encounter, min_steps_per_pericenter_passage));
+        what, dt, passage, per_passage, in_encounter, min_steps_per_pericenter_passage));
 }
 
 Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const Encounter& spec) {

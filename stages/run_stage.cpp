@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/stage_lock.hpp"
@@ -67,16 +68,20 @@ std::optional<Checkpoint> reusable(const fs::path& file, const std::string& fing
   return std::nullopt;
 }
 
-/// A mid-stage checkpoint to resume from, or nothing (stale or corrupt ones are ignored:
-/// they are only a shortcut, and the stage can always start again from its parent).
-std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& fingerprint,
+/// A mid-stage checkpoint to resume from, or nothing: none there, or one of another version of
+/// the stage (stale: the stage begins again and replaces it). One that cannot be read (an I/O
+/// error that persists after read_checkpoint's retries, a damaged file, a format this program
+/// does not read) is never taken for absent: InputError naming it, and it is kept (overwriting
+/// it could throw away a valid run's progress).
+std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& label, const std::string& fingerprint,
                                     const std::string& parent_hash) {
   if (!fs::exists(mid)) return std::nullopt;
   Checkpoint existing;
   try {
     existing = read_checkpoint(mid);
-  } catch (const InputError&) {
-    return std::nullopt;
+  } catch (const InputError& err) {
+    throw InputError(fmt::format("{} (the mid-stage checkpoint of {}: kept; remove it to begin {} again)", err.what(),
+                                 label, label));
   }
   if (!same_fingerprint(existing.stage.fingerprint, fingerprint) || existing.stage.parent_hash != parent_hash ||
       existing.stage.complete)
@@ -101,6 +106,10 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
     result.outcome = LoopOutcome::interrupted;
     return result;
   }
+  // Holding the lock, nobody else writes this stage's files: the temporaries of its files (and of
+  // its derived folder) that a killed process left are removed (those of live processes stay).
+  remove_stale_temporaries(job.file.parent_path(), job.file.stem().string() + ".");
+  if (!options.derived.empty()) remove_stale_temporaries(options.derived, "");
   if (options.reuse_current)
     if (auto existing = reusable(job.file, fingerprint, parent_hash)) {
       say(options, fmt::format("{}: up to date ({})", job.label, job.file.string()));
@@ -129,7 +138,7 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
   fs::path resume_file = options.resume_file;
   std::optional<Checkpoint> checkpoint = std::move(options.resume);
   if (!checkpoint && options.find_resume) {
-    checkpoint = resumable(loop.mid_checkpoint, fingerprint, parent_hash);
+    checkpoint = resumable(loop.mid_checkpoint, job.label, fingerprint, parent_hash);
     resume_file = loop.mid_checkpoint;
   }
   const bool resuming = checkpoint.has_value();

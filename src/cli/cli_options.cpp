@@ -103,7 +103,21 @@ cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char**
   if (!parsed.unmatched().empty())
     throw InputError(fmt::format("{}: unexpected argument '{}' (see --help)", options.program(),
                                  parsed.unmatched().front()));
+  if (parsed.count("out")) check_output_path(parsed["out"].as<std::string>(), "--out");
   return parsed;
+}
+
+void check_output_path(const std::string& text, const std::string& option) {
+  if (text.empty()) throw InputError(fmt::format("{} is empty", option));
+  for (unsigned char ch : text)
+    if (ch < 0x20 || ch == 0x7f)
+      throw InputError(fmt::format("{}: the path holds the control character 0x{:02x}", option, ch));
+  if (text.size() > max_output_path_bytes)
+    throw InputError(fmt::format("{}: the path is {} bytes long (at most {})", option, text.size(), max_output_path_bytes));
+  for (const auto& part : std::filesystem::path(text))
+    if (part.native().size() > max_path_name_bytes)
+      throw InputError(fmt::format("{}: the part '{}...' of {} is {} bytes long (at most {})", option,
+                                   part.native().substr(0, 40), text, part.native().size(), max_path_name_bytes));
 }
 
 Config workflow_config(const cxxopts::ParseResult& parsed) {

@@ -55,6 +55,15 @@ std::vector<std::string> spell_single_letter_long_options(int argc, char** argv)
 /// Single-letter options are accepted as --x (see spell_single_letter_long_options).
 cxxopts::ParseResult parse_arguments(cxxopts::Options& options, int argc, char** argv);
 
+/// The longest --out accepted (bytes): the files below it must stay within PATH_MAX (4096).
+inline constexpr std::size_t max_output_path_bytes = 3000;
+
+/// InputError naming `option` unless `text` can name an output folder or file: not empty, no
+/// control characters, at most max_output_path_bytes and each part at most max_path_name_bytes
+/// (model/config.hpp). Relative parts ("..") and any other characters are the user's choice of
+/// place. parse_arguments applies it to every --out.
+void check_output_path(const std::string& text, const std::string& option);
+
 /// The configuration of the positional "workflow" file of `parsed` (a TOML workflow) with each
 /// --set applied and every range checked, as `run` and `validate` read it. InputError when the
 /// file is not given, unreadable or bad.

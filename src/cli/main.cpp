@@ -3,11 +3,29 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <new>
+#include <string>
 #include <string_view>
 
 #include "base/errors.hpp"
 #include "build_info.hpp"
 #include "cli/commands.hpp"
+
+namespace {
+
+/// "<path>: cannot create directories: Permission denied" from libstdc++'s "filesystem error:
+/// cannot create directories: Permission denied [<path>]".
+std::string filesystem_error_text(const std::filesystem::filesystem_error& err) {
+  std::string what = err.what();
+  if (what.starts_with("filesystem error: ")) what.erase(0, 18);
+  if (const auto bracket = what.find(" ["); bracket != std::string::npos) what.erase(bracket);
+  std::string paths = err.path1().string();
+  if (!err.path2().empty()) paths += " -> " + err.path2().string();
+  return paths.empty() ? what : paths + ": " + what;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace tidalcrust;
@@ -38,6 +56,15 @@ int main(int argc, char** argv) {
     return exit_bad_input;
   } catch (const SimulationError& err) {
     fmt::print(stderr, "tidalcrust {}: simulation failed: {}\n", name, err.what());
+    return exit_simulation_failure;
+  } catch (const std::filesystem::filesystem_error& err) {
+    // A folder that cannot be made or a file that cannot be removed (read-only, no space, no
+    // permission): the user's environment, not a bug; one line naming the path.
+    fmt::print(stderr, "tidalcrust {}: error: {}\n", name, filesystem_error_text(err));
+    return exit_bad_input;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "tidalcrust {}: error: out of memory (the limit of this process, ulimit -v, or of the machine)\n",
+               name);
     return exit_simulation_failure;
   } catch (const std::exception& err) {
     fmt::print(stderr, "tidalcrust {}: internal error: {}\n", name, err.what());

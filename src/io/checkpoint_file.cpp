@@ -12,10 +12,10 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -29,6 +29,7 @@
 #include "io/hdf5_handles.hpp"
 #include "io/state_hash.hpp"
 #include "base/invariant.hpp"
+#include "io/test_points.hpp"
 
 namespace tidalcrust {
 
@@ -449,6 +450,39 @@ void write_observables(hid_t root, const Observables& o) {
 
 /// The bytes of the checkpoint file of `c`, built in memory (h5::create_memory_file); `file`
 /// only names it.
+/// About the bytes the checkpoint file of `c` takes: its arrays, observables and configuration,
+/// and HDF5's metadata.
+std::size_t estimated_file_bytes(const Checkpoint& c) {
+  std::size_t bytes = 256 * 1024 + c.config_toml.size();
+  visit_element_arrays(c, [&](const char*, const auto& values, const Shape&) {
+    bytes += values.size() * sizeof(values[0]);
+  });
+  bytes += c.observables.failures.size() * sizeof(FailureEvent);
+  bytes += c.observables.timeseries.size() * sizeof(TimeseriesSample);
+  return bytes;
+}
+
+/// HDF5 does not survive every failed allocation (a SIGSEGV inside the library when memory runs
+/// out while it opens the in-memory image), so the memory the write needs at its peak (the file
+/// being built, three images of it, HDF5's caches) is reserved before HDF5 starts, and given back
+/// at once (glibc returns blocks this large to the system): an InputError naming the file here,
+/// when the address space (ulimit -v) or the machine cannot hold it, instead of a crash later.
+/// Measured on the quick body (0.4 MB file) and a level-5 one (3.3 MB): every ulimit -v from
+/// 36 to 70 MB gives exit 0, 1 (out of memory before writing) or 2, never a signal.
+void reserve_memory_for_writing(const fs::path& file, const Checkpoint& c) {
+  // HDF5's core driver grows its buffer in 1 MB steps: the file, its image, the image opened for
+  // the digests and the final image, each rounded up, and HDF5's caches.
+  const std::size_t megabytes = (estimated_file_bytes(c) >> 20) + 1;
+  const std::size_t needed = (4 * megabytes + 2) << 20;
+  void* reserve = std::malloc(needed);
+  if (!reserve) {
+    throw InputError(fmt::format("{}: not enough memory to build the checkpoint (about {} MB needed; the limit of this "
+                                 "process, ulimit -v, or of the machine); nothing was written",
+                                 file.string(), needed >> 20));
+  }
+  std::free(reserve);
+}
+
 std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
   h5::File f = h5::create_memory_file(file.string());
   const hid_t root = f.get();
@@ -636,14 +670,6 @@ bool carries_integrity_record(hid_t root, std::int64_t version) {
   return version >= 4 || h5::exists(root, integrity_group);
 }
 
-/// The file's bytes as stored, for an in-memory copy to upgrade.
-std::string stored_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.good() && !in.eof()) throw h5::Error(fmt::format("cannot read the file: {}", std::strerror(errno)));
-  return bytes;
-}
-
 void read_stage_info(hid_t root, Checkpoint& c) {
   h5::Group g = h5::open_group(root, "/checkpoint");
   const std::string stage = h5::read_string_attribute(g.get(), "stage");
@@ -723,45 +749,77 @@ void read_observables(hid_t root, Observables& o) {
   });
 }
 
-/// InputError "<file>: <what>: <strerror(err)>".
-InputError os_error(const fs::path& file, const std::string& what, int err) {
-  return InputError(fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
+/// How often a read that fails with a transient error (EIO, EAGAIN, ESTALE, ETIMEDOUT, ENOMEM:
+/// a flaky disk, an NFS hiccup) is tried in all, and the pause before the first retry (doubled
+/// each time; the wait is for the file system to recover, its length changes no result).
+constexpr int read_attempts = 4;
+constexpr auto first_retry_pause = std::chrono::milliseconds(50);
+
+bool transient_read_error(int err) {
+  return err == EIO || err == EAGAIN || err == ESTALE || err == ETIMEDOUT || err == ENOMEM || err == EINTR;
 }
 
-/// Opens `file` with plain POSIX calls before HDF5 sees it, so that a missing file, a denied
-/// permission, a folder, a FIFO or an I/O error is reported with its real cause (the errno
-/// text) instead of as "not an HDF5 file"; then checks the HDF5 signature at offset 0 (where
-/// every file written here has it).
-void check_readable_hdf5(const fs::path& file) {
-  const std::string name = file.string();
+/// One attempt at the whole file: its bytes, or the errno of the failed call (`what` says which).
+int read_all_bytes(const fs::path& file, std::string& bytes, std::string& what) {
+  bytes.clear();
+  if (const int injected = test_point_read_attempt(); injected != 0) return what = "cannot read checkpoint", injected;
   // O_NONBLOCK: opening a FIFO must not wait for a writer.
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) {
-    const int err = errno;
-    if (err == ENOENT) throw os_error(file, "no such checkpoint file", err);
-    throw os_error(file, "cannot open checkpoint", err);
-  }
+  if (fd < 0) return what = errno == ENOENT ? "no such checkpoint file" : "cannot open checkpoint", errno;
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     const int err = errno;
     ::close(fd);
-    throw os_error(file, "cannot open checkpoint", err);
+    return what = "cannot open checkpoint", err;
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw InputError(fmt::format("{}: not a regular file ({})", name,
-                                 S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "a FIFO, socket or device"));
+    what = S_ISDIR(st.st_mode) ? std::strerror(EISDIR) : "a FIFO, socket or device";
+    return -1;
+  }
+  bytes.resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::pread(fd, bytes.data() + done, bytes.size() - done, static_cast<off_t>(done));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      return what = "cannot read checkpoint", err;
+    }
+    if (n == 0) break;  // shorter than fstat said: truncated meanwhile; the signature or HDF5 says so
+    done += static_cast<std::size_t>(n);
+  }
+  bytes.resize(done);
+  ::close(fd);
+  return 0;
+}
+
+/// The bytes of `file`, read with plain POSIX calls before HDF5 sees them (HDF5 then reads
+/// only memory): a missing file, a denied permission, a folder, a FIFO or an I/O error is
+/// reported with its real cause (the errno text) instead of as "not an HDF5 file" or a missing
+/// group; a transient error is tried again (read_attempts) before it is reported. Then checks
+/// the HDF5 signature at offset 0 (where every file written here has it).
+std::string checkpoint_bytes(const fs::path& file) {
+  const std::string name = file.string();
+  std::string bytes, what;
+  int err = 0;
+  auto pause = first_retry_pause;
+  for (int attempt = 1;; ++attempt, pause *= 2) {
+    err = read_all_bytes(file, bytes, what);
+    if (err == 0 || !transient_read_error(err) || attempt == read_attempts) {
+      if (err == -1) throw InputError(fmt::format("{}: not a regular file ({})", name, what));
+      if (err != 0)
+        throw InputError(fmt::format("{}: {}: {}{}", name, what, std::strerror(err),
+                                     attempt > 1 ? fmt::format(" ({} attempts)", attempt) : ""));
+      break;
+    }
+    std::this_thread::sleep_for(pause);
   }
   static constexpr char signature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
-  char head[8] = {0};
-  ssize_t n;
-  do n = ::pread(fd, head, sizeof head, 0);
-  while (n < 0 && errno == EINTR);
-  const int err = errno;
-  ::close(fd);
-  if (n < 0) throw os_error(file, "cannot read checkpoint", err);
-  if (n < static_cast<ssize_t>(sizeof head) || std::memcmp(head, signature, sizeof head) != 0)
+  if (bytes.size() < sizeof signature || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
     throw InputError(fmt::format("{}: not an HDF5 file or truncated (no HDF5 signature at its start)", name));
+  return bytes;
 }
 
 }  // namespace
@@ -770,32 +828,45 @@ void write_checkpoint(const fs::path& file, const Checkpoint& checkpoint) {
   const auto problem = consistency_problem(checkpoint);
   TIDALCRUST_ASSERT(problem.empty(),
                     fmt::format("write_checkpoint {}: inconsistent checkpoint: {}", file.string(), problem));
-  std::string bytes;
+  std::string bytes, sidecar;
   try {
+    reserve_memory_for_writing(file, checkpoint);
     bytes = hdf5_bytes(file, checkpoint);
+    sidecar = xdmf_text(checkpoint, file.filename().string());
   } catch (const h5::Error& err) {
     throw InputError(fmt::format("{}: cannot build the checkpoint in memory: {}", file.string(), err.what()));
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: not enough memory to build the checkpoint (the limit of this process, ulimit "
+                                 "-v, or of the machine); nothing was written",
+                                 file.string()));
   }
   // The bytes reach the disk through plain writes, so a failure (disk full, quota, folder not
   // writable) is reported with its errno text and HDF5 never holds a half-written file.
   write_file_atomically(file, bytes);
-  write_file_atomically(sidecar_path(file), xdmf_text(checkpoint, file.filename().string()));
+  write_file_atomically(sidecar_path(file), sidecar);
 }
 
-Checkpoint read_checkpoint(const fs::path& file) {
+namespace {
+
+/// read_checkpoint, but for std::bad_alloc.
+Checkpoint read_checkpoint_file(const fs::path& file) {
   const std::string name = file.string();
-  check_readable_hdf5(file);
+  const std::string bytes = checkpoint_bytes(file);
   h5::File f;
   try {
-    f = h5::open_file_readonly(file);
+    // Not the file's own name: the core driver then looks for that file on disk.
+    f = h5::open_memory_image(bytes, name + " (in memory)");
   } catch (const h5::Error& err) {
-    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, err.what()));
+    std::string why = err.what();
+    if (why.starts_with(h5::memory_image_error)) why.erase(0, std::strlen(h5::memory_image_error));
+    throw InputError(fmt::format("{}: not an HDF5 file or truncated (HDF5 cannot open it: {})", name, why));
   }
   Checkpoint c;
   std::string stored_hash;
   std::int64_t version = 0;
   try {
     const hid_t stored = f.get();
+    h5::refuse_external_links(stored);  // before any path is opened: it might lead into another file
     version = readable_format_version(stored);
     // Every byte the reads below use is verified, on the file as stored, before any of it is
     // upgraded or interpreted.
@@ -803,7 +874,7 @@ Checkpoint read_checkpoint(const fs::path& file) {
     // An older layout is upgraded in a writable copy in memory; the file is never touched.
     h5::File upgraded;
     if (needs_layout_upgrade(stored, version)) {
-      upgraded = h5::open_memory_image(stored_bytes(file), name + " (upgraded)", true);
+      upgraded = h5::open_memory_image(bytes, name + " (upgraded)", true);
       upgrade_layout(upgraded.get(), version);
     }
     const hid_t root = upgraded ? upgraded.get() : stored;
@@ -826,6 +897,18 @@ Checkpoint read_checkpoint(const fs::path& file) {
                                  stored_hash, computed));
   upgrade_meaning(c, version);
   return c;
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const fs::path& file) {
+  try {
+    return read_checkpoint_file(file);
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: not enough memory to read the checkpoint (the limit of this process, ulimit -v, "
+                                 "or of the machine)",
+                                 file.string()));
+  }
 }
 
 bool is_valid_checkpoint(const fs::path& file) {

@@ -22,13 +22,15 @@ inline constexpr std::int64_t checkpoint_format_version = 4;
 /// Also writes the .xdmf sidecar beside it. Throws InputError if the folder is not writable.
 void write_checkpoint(const std::filesystem::path& file, const Checkpoint& checkpoint);
 
-/// Reads and validates: format version (formats oldest_readable_format up to the current one;
+/// Reads the file's bytes with plain POSIX calls (a transient EIO, EAGAIN, ESTALE, ETIMEDOUT
+/// or ENOMEM is tried again, 4 attempts in all; HDF5 then reads only memory, so an I/O error is
+/// never mistaken for a missing group or a file that is not HDF5) and validates: format version (formats oldest_readable_format up to the current one;
 /// a newer or older one is an InputError saying which it reads), then the integrity record on
 /// the file as stored (every dataset, attribute and link digested and compared with
 /// /integrity, io/content_hash.hpp), then, for an older format, the upgrade steps on an
 /// in-memory copy (io/checkpoint_upgrade.hpp), then dataset shapes, stage name, indices and
 /// state_hash. Throws InputError naming the file and the dataset or attribute for a missing,
-/// truncated, corrupt or tampered file.
+/// unreadable, truncated, corrupt or tampered file, or one declaring more than it holds.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
 
 /// True if `file` exists and read_checkpoint would succeed (used by restart logic).

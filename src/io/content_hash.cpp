@@ -118,6 +118,7 @@ void digest_attributes(hid_t object, const std::string& path, Walk& walk) {
       Xxh3Hasher h;
       h.text("attribute");
       h.text(row);
+      h5::check_fits_in_file(attr.get(), type.get(), space.get(), what);
       hash_values(h, type.get(), space.get(), what, c.walk.buffer,
                   [&](hid_t memory, void* buffer) { return H5Aread(attr.get(), memory, buffer); });
       c.walk.rows.push_back({row, h.hex()});
@@ -144,6 +145,7 @@ void digest_object(hid_t object, const std::string& path, Walk& walk) {
       const std::string what = "dataset " + path;
       h5::Type type(h5::check(H5Dget_type(object), "cannot read the type of " + what));
       h5::Dataspace space(h5::check(H5Dget_space(object), "cannot read the shape of " + what));
+      h5::check_dataset_readable(object, type.get(), space.get(), what);
       h.text("dataset");
       h.text(path);
       hash_values(h, type.get(), space.get(), what, walk.buffer, [&](hid_t memory, void* buffer) {
@@ -166,6 +168,7 @@ void digest_object(hid_t object, const std::string& path, Walk& walk) {
 /// One link of the walk: hard links by their object, soft and external links by their target.
 void digest_link(hid_t group, const char* name, const std::string& path, H5L_type_t link_type, std::size_t size,
                  Walk& walk) {
+  if (link_type == H5L_TYPE_EXTERNAL) throw h5::Error("link " + path + " is an external link (to another file); refused");
   if (link_type == H5L_TYPE_HARD) {
     h5::Object object(h5::check(H5Oopen(group, name, H5P_DEFAULT), "cannot open " + path + " (corrupt)"));
     digest_object(object.get(), path, walk);

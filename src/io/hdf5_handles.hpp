@@ -119,6 +119,72 @@ void check_type(hid_t type, const std::string& what) {
   if (!ok) throw Error(what + ": stored type is not " + type_of<T>().name);
 }
 
+// ---- bounds: what a file can hold --------------------------------------------------------
+
+/// The size in bytes of the file (or in-memory image) that holds the object `loc`.
+inline hsize_t file_size_of(hid_t loc) {
+  const hid_t file = H5Iget_file_id(loc);
+  if (file < 0) throw Error("cannot find the file of " + object_path(loc, ""));
+  hsize_t size = 0;
+  const herr_t rc = H5Fget_filesize(file, &size);
+  H5Fclose(file);
+  if (rc < 0) throw Error("cannot read the size of the file of " + object_path(loc, ""));
+  return size;
+}
+
+/// Error unless the values a dataset or attribute declares (its dataspace `space` of elements of
+/// type `type`) fit in the file holding `loc`: every file written here stores each value it
+/// declares (no compression, no sparse chunks; a variable-length string takes at least its
+/// 8-byte pointer's worth as a heap reference), so a larger declaration is a damaged or hostile
+/// file and is refused before any memory is reserved for it.
+inline void check_fits_in_file(hid_t loc, hid_t type, hid_t space, const std::string& what) {
+  const hssize_t count = H5Sget_simple_extent_npoints(space);
+  if (count < 0) throw Error("cannot read the shape of " + what);
+  if (count == 0) return;
+  const std::size_t element = H5Tget_size(type);
+  if (element == 0) throw Error("cannot read the type of " + what);
+  const hsize_t file_bytes = file_size_of(loc);
+  if (static_cast<hsize_t>(count) > file_bytes / element)
+    throw Error(what + " declares " + std::to_string(count) + " values of " + std::to_string(element) +
+                " bytes, more than the file's " + std::to_string(file_bytes) + " bytes can hold (damaged or not "
+                "written by tidalcrust)");
+}
+
+/// Error unless the dataset `set` keeps its values in its own file: external raw-data files and
+/// virtual datasets (other files' data) are refused, as external links are (refuse_external_links).
+inline void check_self_contained(hid_t set, const std::string& what) {
+  const hid_t dcpl = H5Dget_create_plist(set);
+  if (dcpl < 0) throw Error("cannot read the properties of " + what);
+  const int external = H5Pget_external_count(dcpl);
+  const H5D_layout_t layout = H5Pget_layout(dcpl);
+  H5Pclose(dcpl);
+  if (external != 0 || layout == H5D_VIRTUAL)
+    throw Error(what + " keeps its values in other files (external storage or a virtual dataset); refused");
+}
+
+/// The shape and size checks of a dataset before it is read: self-contained and fitting its file.
+inline void check_dataset_readable(hid_t set, hid_t type, hid_t space, const std::string& what) {
+  check_self_contained(set, what);
+  check_fits_in_file(set, type, space, what);
+}
+
+/// Error naming the first external link below the root of `file` (H5Lvisit follows neither
+/// soft nor external links): a checkpoint is one self-contained file, and following a link into
+/// another file would read what the integrity record does not cover.
+inline void refuse_external_links(hid_t file) {
+  struct Found {
+    std::string path;
+  } found;
+  auto visit = [](hid_t, const char* name, const H5L_info_t* info, void* data) -> herr_t {
+    if (info->type != H5L_TYPE_EXTERNAL) return 0;
+    static_cast<Found*>(data)->path = std::string("/") + name;
+    return 1;
+  };
+  const herr_t rc = H5Lvisit(file, H5_INDEX_NAME, H5_ITER_INC, visit, &found);
+  if (!found.path.empty()) throw Error("link " + found.path + " is an external link (to another file); refused");
+  if (rc < 0) throw Error("cannot walk the file's groups (corrupt)");
+}
+
 // ---- files and groups ---------------------------------------------------------------------
 
 /// Object creation property list of class `cls` with timestamps switched off.
@@ -239,6 +305,9 @@ inline File open_file_readonly(const std::filesystem::path& path) {
   return File(id);
 }
 
+/// The beginning of the message of a file image HDF5 cannot open.
+inline constexpr const char* memory_image_error = "cannot open the file image: ";
+
 /// Opens the file image `bytes` (as file_image returns it, or a file's bytes) in memory,
 /// read-only or `writable` (HDF5 works on its own copy; nothing is ever written to disk); `name`
 /// only names it in HDF5's messages.
@@ -248,7 +317,7 @@ inline File open_memory_image(const std::string& bytes, const std::string& name,
   check(H5Pset_fapl_core(fapl.get(), 1 << 20, false), "H5Pset_fapl_core");
   check(H5Pset_file_image(fapl.get(), const_cast<char*>(bytes.data()), bytes.size()), "H5Pset_file_image");
   const hid_t id = H5Fopen(name.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl.get());
-  if (id < 0) throw Error("cannot open the file image: " + error_stack_text());
+  if (id < 0) throw Error(memory_image_error + error_stack_text());
   return File(id);
 }
 
@@ -335,6 +404,7 @@ Array<T> read_dataset(hid_t loc, std::string_view name) {
   Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
   check_type<T>(type.get(), what);
   Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  check_dataset_readable(set.get(), type.get(), space.get(), what);
   int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0) throw Error("cannot read the shape of " + what);
   Array<T> out;
@@ -517,6 +587,7 @@ inline std::pair<std::vector<std::string>, int> read_string_values(hid_t loc, st
   Dataset set(check(H5Dopen2(loc, n.c_str(), H5P_DEFAULT), "cannot open " + what));
   Type type(check(H5Dget_type(set.get()), "cannot read the type of " + what));
   Dataspace space(check(H5Dget_space(set.get()), "cannot read the shape of " + what));
+  check_dataset_readable(set.get(), type.get(), space.get(), what);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   const hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (rank < 0 || count < 0) throw Error("cannot read the shape of " + what);
@@ -587,6 +658,7 @@ std::vector<T> read_attribute_array(hid_t loc, std::string_view name) {
   Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
   check_type<T>(type.get(), what);
   Dataspace space(check(H5Aget_space(attr.get()), "cannot read the shape of " + what));
+  check_fits_in_file(attr.get(), type.get(), space.get(), what);
   hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (count < 0) throw Error("cannot read the shape of " + what);
   std::vector<T> values(static_cast<std::size_t>(count));
@@ -608,6 +680,7 @@ inline std::vector<std::string> read_string_array_attribute(hid_t loc, std::stri
   Attribute attr = open_attribute(loc, name, what);
   Type type(check(H5Aget_type(attr.get()), "cannot read the type of " + what));
   Dataspace space(check(H5Aget_space(attr.get()), "cannot read the shape of " + what));
+  check_fits_in_file(attr.get(), type.get(), space.get(), what);
   hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (count < 0) throw Error("cannot read the shape of " + what);
   return read_strings(type.get(), static_cast<std::size_t>(count), what,

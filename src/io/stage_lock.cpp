@@ -42,12 +42,6 @@ InputError os_error(const fs::path& file, const std::string& what, int err) {
   return InputError(fmt::format("{}: {}: {}", file.string(), what, std::strerror(err)));
 }
 
-std::string host_name() {
-  char buffer[256] = {};
-  if (::gethostname(buffer, sizeof buffer - 1) != 0) return "unknown";
-  return buffer;
-}
-
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
@@ -112,18 +106,32 @@ void write_holder(const fs::path& path, int fd, const std::string& identity) {
     throw os_error(path, "cannot write the lock file", errno);
 }
 
-/// False only when the holder is known to be gone: a process of this host that no longer
-/// exists. A holder on another host cannot be checked and counts as alive.
-bool may_be_alive(const LockHolder& holder) {
-  if (holder.host != host_name()) return true;
-  if (holder.pid <= 0) return false;
-  return ::kill(static_cast<pid_t>(holder.pid), 0) == 0 || errno == EPERM;
+bool may_be_alive(const LockHolder& holder) { return process_may_be_alive(holder.pid, holder.host); }
+
+/// InputError unless the open lock file `fd` is a regular file with no other name: a hard link
+/// to another file would have that file truncated and overwritten with the holder's lines.
+void check_plain_lock_file(const fs::path& path, int fd) {
+  struct stat info {};
+  if (::fstat(fd, &info) != 0) throw os_error(path, "cannot examine the lock file", errno);
+  if (!S_ISREG(info.st_mode) || info.st_nlink != 1)
+    throw InputError(fmt::format("{}: the lock file is {}; refusing to write to it (remove it if it is not yours)",
+                                 path.string(), S_ISREG(info.st_mode) ? "a hard link to another file" : "not a regular file"));
+}
+
+/// The errno of a failed open of the lock file as an InputError; a symbolic link at its name
+/// (O_NOFOLLOW: ELOOP) is refused, never followed.
+InputError lock_open_error(const fs::path& path, const char* what, int err) {
+  if (err == ELOOP)
+    return InputError(fmt::format("{}: the lock file is a symbolic link; refusing to follow it (remove it if it is "
+                                  "not yours)",
+                                  path.string()));
+  return os_error(path, what, err);
 }
 
 LockAttempt try_exclusive_create(const fs::path& path, const std::string& identity) {
   std::optional<LockHolder> taken_over;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd >= 0) {
       try {
         write_holder(path, fd, identity);
@@ -135,8 +143,9 @@ LockAttempt try_exclusive_create(const fs::path& path, const std::string& identi
       ::close(fd);
       return StageLockAccess::held(path, -1, LockMethod::exclusive_create, taken_over);
     }
-    if (errno != EEXIST) throw os_error(path, "cannot create the lock file", errno);
-    const int existing = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (errno != EEXIST) throw lock_open_error(path, "cannot create the lock file", errno);
+    const int existing = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (existing < 0 && errno == ELOOP) throw lock_open_error(path, "", ELOOP);
     if (existing < 0) continue;  // released meanwhile
     struct stat info {};
     ::fstat(existing, &info);
@@ -158,6 +167,18 @@ LockAttempt try_exclusive_create(const fs::path& path, const std::string& identi
 }
 
 }  // namespace
+
+std::string host_name() {
+  char buffer[256] = {};
+  if (::gethostname(buffer, sizeof buffer - 1) != 0) return "unknown";
+  return buffer;
+}
+
+bool process_may_be_alive(long pid, const std::string& host) {
+  if (host != host_name()) return true;
+  if (pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM;
+}
 
 std::string LockHolder::describe() const {
   if (pid <= 0) return "a process that has not named itself";
@@ -217,10 +238,20 @@ LockAttempt try_lock_stage(const fs::path& stage_file, const std::string& identi
   const fs::path path = lock_path(stage_file);
   if (method == LockMethod::exclusive_create) return try_exclusive_create(path, identity);
   for (int attempt = 0; attempt < 100; ++attempt) {
-    int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+    // Never through a link: O_NOFOLLOW refuses a symbolic link at the name (ELOOP), and an
+    // existing file must be a plain one (check_plain_lock_file) before it is truncated.
+    int fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0 && errno == ELOOP) throw lock_open_error(path, "", ELOOP);
     const bool existed = fd >= 0;
-    if (!existed) fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd < 0) throw os_error(path, "cannot create the lock file", errno);
+    if (!existed) fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0 && errno == EEXIST) continue;  // made by another process meanwhile
+    if (fd < 0) throw lock_open_error(path, "cannot create the lock file", errno);
+    try {
+      check_plain_lock_file(path, fd);
+    } catch (...) {
+      ::close(fd);
+      throw;
+    }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
       if (err == EWOULDBLOCK) {

@@ -23,6 +23,14 @@ struct LockHolder {
   std::string describe() const;
 };
 
+/// This machine's host name (gethostname), as lock files and temporaries record it.
+std::string host_name();
+
+/// False only when the process `pid` of `host` is known to be gone: a process of this host that
+/// no longer exists (pid <= 0 counts as gone). A process of another host cannot be checked and
+/// counts as alive. Stale locks and stale temporaries (io/atomic_file.hpp) are judged by it.
+bool process_may_be_alive(long pid, const std::string& host);
+
 /// How the lock is held: flock(2), or (no locks on the file system) the lock file's existence.
 enum class LockMethod { flock, exclusive_create };
 

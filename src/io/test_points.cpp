@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "base/errors.hpp"
 #include "io/stop_signal.hpp"
@@ -47,7 +49,28 @@ std::optional<Point> point_from_environment(const char* name, bool writes_allowe
   return Point{kind == "step" ? Counted::step : Counted::write, n};
 }
 
+/// The failing reads "N:K" of TIDALCRUST_TEST_READ_EIO: attempts N to N+K-1; nothing when unset.
+std::optional<std::pair<std::int64_t, std::int64_t>> read_failures_from_environment() {
+  const char* name = "TIDALCRUST_TEST_READ_EIO";
+  const char* value = std::getenv(name);
+  if (!value || !*value) return std::nullopt;
+  const std::string_view text(value);
+  const auto colon = text.find(':');
+  std::int64_t n = 0, k = 0;
+  const char* last = value + text.size();
+  bool ok = colon != std::string_view::npos;
+  if (ok) {
+    const auto [end_n, error_n] = std::from_chars(value, value + colon, n);
+    const auto [end_k, error_k] = std::from_chars(value + colon + 1, last, k);
+    ok = error_n == std::errc() && end_n == value + colon && error_k == std::errc() && end_k == last && n >= 1 && k >= 1;
+  }
+  if (!ok) throw InputError(fmt::format("environment variable {}='{}': expected N:K with N, K >= 1 (a testing aid)", name, value));
+  return std::pair{n, k};
+}
+
 struct Points {
+  std::optional<std::pair<std::int64_t, std::int64_t>> read_failures = read_failures_from_environment();
+  std::int64_t reads = 0;
   std::optional<Point> kill = point_from_environment("TIDALCRUST_TEST_KILL_AT", true);
   std::optional<Point> hold = point_from_environment("TIDALCRUST_TEST_HOLD_AT", false);
   std::filesystem::path hold_file;
@@ -95,6 +118,14 @@ void test_point_after_step() {
   ++p.steps;
   if (reached(p.kill, Counted::step, p.steps)) kill_now();
   if (reached(p.hold, Counted::step, p.steps)) hold(p.hold_file);
+}
+
+int test_point_read_attempt() {
+  Points& p = points();
+  if (!p.read_failures) return 0;
+  ++p.reads;
+  const auto [first, count] = *p.read_failures;
+  return p.reads >= first && p.reads < first + count ? EIO : 0;
 }
 
 void test_point_mid_write() {

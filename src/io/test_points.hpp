@@ -14,6 +14,10 @@
 //                                     named by TIDALCRUST_TEST_HOLD_FILE and wait until that file
 //                                     is removed or SIGINT/SIGTERM arrives (then the loop stops
 //                                     as on any stop)
+//   TIDALCRUST_TEST_READ_EIO=N:K      the N-th to (N+K-1)-th attempt of this process to read a
+//                                     checkpoint file's bytes (io/checkpoint_file.cpp, retries
+//                                     counted) fails with EIO, as a flaky disk or an NFS hiccup
+//                                     makes it (N, K >= 1)
 //
 // A malformed value is an InputError naming the variable.
 #include <string_view>
@@ -22,6 +26,10 @@ namespace tidalcrust {
 
 /// Counts one step of this process; kills or holds it there when the environment asks.
 void test_point_after_step();
+
+/// Counts one attempt to read a checkpoint file's bytes; EIO when the environment asks this
+/// attempt to fail, else 0.
+int test_point_read_attempt();
 
 /// Counts one atomic file write of this process; called when half of its bytes are written.
 /// Kills the process there when the environment asks.

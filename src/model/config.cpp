@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <concepts>
 #include <fstream>
@@ -104,7 +106,7 @@ template <class C, class V>
 void visit_keys(C& c, V&& visit) {
   using enum StageId;
   auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
-  key(c.workflow.name, {"workflow", "name", changes_no_result, "-", "workflow name; default output folder checkpoints/<name>/"});
+  key(c.workflow.name, {"workflow", "name", changes_no_result, "-", "workflow name; default output folder checkpoints/<name>/ (letters, digits, -, _, .; at most 200 bytes)"});
   key(c.workflow.seed,
       {"workflow", "seed", reads(build), "-", "seed of the random interior (std::mt19937_64)", 0, max_toml_integer});
 
@@ -281,7 +283,7 @@ template <class E, class V>
 void visit_keys(E& e, V&& visit) {
   using enum StageId;
   auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
-  key(e.name, {"encounters", "name", reads(encounter), "", "name of the encounter (required): its folder and label"});
+  key(e.name, {"encounters", "name", reads(encounter), "", "name of the encounter (required): its folder and label (letters, digits, -, _, .; not body, slurm, validate, analysis, status.json, dt<F>)"});
   key(e.perturber_mass, {"encounters", "perturber_mass", reads(encounter), "M", "M2", 0, inf, true});
   key(e.pericenter, {"encounters", "pericenter", reads(encounter), "R", "q", 1, inf, true});  // outside the body
   key(e.pericenter_speed,
@@ -384,6 +386,92 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
   }
 }
 
+/// The deepest nesting toml++ would build for `text`, checked before it parses: its parser
+/// descends once per dotted-key part (unbounded: 40,000 parts overflow the stack) and per array
+/// or inline table. A light scan (strings and comments skipped) adds up the table header's parts,
+/// the dotted parts of the keys on the way in and the open arrays and inline tables; more than
+/// max_toml_nesting is an InputError naming `origin` and the line. Workflows nest 3 deep.
+constexpr int max_toml_nesting = 64;
+
+void check_toml_nesting(std::string_view text, const std::string& origin) {
+  int line = 1;
+  int header_parts = 0;   // parts of the last [table] header beyond the first
+  int path_parts = 0;     // dotted parts of the keys enclosing the current position
+  int key_parts = 0;      // dots of the key being read
+  bool in_key = true;     // reading a key (or a table header), not a value
+  bool in_header = false;
+  struct Open {
+    char kind;
+    int path_parts;
+  };
+  std::vector<Open> open;
+  auto check = [&] {
+    if (header_parts + path_parts + key_parts + static_cast<int>(open.size()) > max_toml_nesting)
+      throw InputError(fmt::format("{}:{}: nested deeper than {} levels (table names, dotted keys, arrays and inline "
+                                   "tables together)",
+                                   origin, line, max_toml_nesting));
+  };
+  const std::size_t n = text.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      if (open.empty()) in_key = true, path_parts = 0, key_parts = 0, in_header = false;
+    } else if (c == '#') {
+      while (i + 1 < n && text[i + 1] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {
+      const bool triple = i + 2 < n && text[i + 1] == c && text[i + 2] == c;
+      const std::size_t quotes = triple ? 3 : 1;
+      i += quotes;
+      for (; i < n; ++i) {
+        if (text[i] == '\n') ++line;
+        if (c == '"' && text[i] == '\\') {
+          ++i;
+          if (i < n && text[i] == '\n') ++line;
+          continue;
+        }
+        if (text[i] == c && (!triple || (i + 2 < n && text[i + 1] == c && text[i + 2] == c))) {
+          if (triple) {
+            i += 2;
+            while (i + 1 < n && text[i + 1] == c) ++i;  // up to two more quotes belong to the string
+          }
+          break;
+        }
+        if (!triple && text[i] == '\n') break;  // unterminated: the parser reports it
+      }
+    } else if (in_key) {
+      if (c == '.') {
+        ++key_parts;
+        check();
+      } else if (c == '=') {
+        in_key = false;
+        path_parts += key_parts;
+        key_parts = 0;
+      } else if (c == '[' && open.empty()) {
+        in_header = true;
+      } else if (c == ']' && in_header) {
+        header_parts = key_parts;
+        key_parts = 0;
+        in_header = false;
+      } else if (c == '}' && !open.empty()) {  // an empty inline table, or a trailing comma
+        path_parts = open.back().path_parts;
+        open.pop_back();
+        in_key = false;
+      }
+    } else if (c == '[' || c == '{') {
+      open.push_back({c, path_parts});
+      check();
+      in_key = c == '{';
+    } else if ((c == ']' || c == '}') && !open.empty()) {
+      path_parts = open.back().path_parts;
+      open.pop_back();
+    } else if (c == ',' && !open.empty() && open.back().kind == '{') {
+      path_parts = open.back().path_parts;
+      in_key = true;
+    }
+  }
+}
+
 /// Sets the key `name` of `section` in `target` (a Config or an Encounter) from a TOML node;
 /// false when there is no such key. `where` and `origin`: as for read_value.
 template <class Target>
@@ -413,12 +501,23 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
   }
 }
 
+/// Names of the encounter folders' neighbours in an output root: the body chain, the Slurm
+/// scripts, validate's results and the status file (and dt<F>/, the folders of --dt-factor).
+bool reserved_encounter_name(std::string_view name) {
+  for (std::string_view taken : {"body", "slurm", "validate", "status.json", "analysis"})
+    if (name == taken) return true;
+  return name.size() > 2 && name.starts_with("dt") &&
+         (std::isdigit(static_cast<unsigned char>(name[2])) || name[2] == '.');
+}
+
 void check_encounter_name(const std::string& name, const std::string& origin) {
   if (name.empty()) throw InputError(fmt::format("{}: encounter needs a non-empty 'name'", origin));
-  for (char ch : name)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.'))
-      throw InputError(fmt::format("{}: encounter name '{}' may only use letters, digits, '-', '_', '.'",
-                                   origin, name));
+  if (const std::string problem = path_name_problem(name); !problem.empty())
+    throw InputError(fmt::format("{}: encounter name {}", origin, problem));
+  if (reserved_encounter_name(name))
+    throw InputError(fmt::format("{}: encounter name '{}' is reserved (the output folder holds body/, slurm/, "
+                                 "validate/, status.json and dt<F>/ beside the encounters)",
+                                 origin, name));
 }
 
 std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
@@ -547,6 +646,26 @@ void refuse_derived_key(const Config& config, std::string_view section, std::str
 
 }  // namespace
 
+std::string path_name_problem(std::string_view name) {
+  // Shown with control characters escaped, so that the message stays one line.
+  std::string shown;
+  for (unsigned char ch : name.substr(0, 60))
+    shown += ch < 0x20 || ch == 0x7f ? fmt::format("\\x{:02x}", ch) : std::string(1, static_cast<char>(ch));
+  if (name.size() > 60) shown += "...";
+  if (name.empty()) return "is empty";
+  if (name.size() > max_path_name_bytes)
+    return fmt::format("'{}' is {} bytes long (at most {})", shown, name.size(), max_path_name_bytes);
+  if (name == "." || name == "..") return fmt::format("'{}' names a folder itself, not a new one", shown);
+  if (name.front() == '-') return fmt::format("'{}' must not begin with '-' (it would read as an option)", shown);
+  for (unsigned char ch : name)
+    if (!((ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '-' ||
+          ch == '_' || ch == '.'))
+      return fmt::format("'{}' may only use letters, digits, '-', '_', '.' ({} is not one)", shown,
+                         ch < 0x20 || ch == 0x7f || ch >= 0x80 ? fmt::format("byte 0x{:02x}", ch)
+                                                              : fmt::format("'{}'", static_cast<char>(ch)));
+  return {};
+}
+
 bool derived_by_material(const Config& config, std::string_view section, std::string_view name) {
   if (!config.from_material()) return false;
   const std::string full = fmt::format("{}.{}", section, name);
@@ -620,6 +739,8 @@ void resolve_material(Config& c, const std::string& origin) {
 }
 
 const Encounter& Config::find_encounter(const std::string& name) const {
+  if (const std::string problem = path_name_problem(name); !problem.empty())
+    throw InputError(fmt::format("encounter name {}", problem));
   std::string known;
   for (const auto& e : encounters) {
     if (e.name == name) return e;
@@ -643,23 +764,28 @@ void validate(const Config& config, const std::string& origin) {
     check_range(field, key, fmt::format("{}: {}.{}", origin, key.section, key.name));
   });
   if (!config.from_material()) {
-    bool resolution_given = false;
+    std::string resolution_given;
     visit_keys(config, [&](const auto& field, const auto& key) {
       if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>)
         if (field && key.section == "material")
           throw InputError(fmt::format("{}: material.{} needs material.youngs_modulus", origin, key.name));
       if constexpr (is_optional<std::remove_cvref_t<decltype(field)>>)
-        if (field && key.section == "resolution") resolution_given = true;
+        if (field && key.section == "resolution" && resolution_given.empty()) resolution_given = key.name;
     });
-    if (resolution_given) throw InputError(fmt::format("{}: [resolution] applies only to a [material] body", origin));
+    if (!resolution_given.empty())
+      throw InputError(fmt::format("{}: resolution.{}: [resolution] applies only to a [material] body", origin,
+                                   resolution_given));
   }
   if (config.core.present() && *config.core.radius >= config.interior.radius)
     throw InputError(fmt::format("{}: core.radius = {} must be smaller than the interior radius {}", origin,
                                  *config.core.radius, config.interior.radius));
   if (!config.core.present() && (config.core.density_ratio || config.core.modulus_ratio))
-    throw InputError(fmt::format("{}: [core] needs core.radius", origin));
+    throw InputError(fmt::format("{}: core.{} needs core.radius ([core] needs core.radius)", origin,
+                                 config.core.density_ratio ? "density_ratio" : "modulus_ratio"));
   if (config.workflow.name.empty())
     throw InputError(fmt::format("{}: workflow.name must not be empty", origin));
+  if (const std::string problem = path_name_problem(config.workflow.name); !problem.empty())
+    throw InputError(fmt::format("{}: workflow.name {}", origin, problem));
   if (config.interior.min_separation >= config.interior.spring_distance)
     throw InputError(fmt::format("{}: interior.min_separation ({}) must be smaller than interior.spring_distance ({})",
                                  origin, config.interior.min_separation, config.interior.spring_distance));
@@ -688,6 +814,7 @@ void validate(const Config& config, const std::string& origin) {
 }
 
 Config parse_config(const std::string& toml_text, const std::string& origin) {
+  check_toml_nesting(toml_text, origin);
   toml::table root;
   try {
     root = toml::parse(toml_text, origin);
@@ -736,10 +863,15 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
 
 Config load_config(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open configuration file", file.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_config(buffer.str(), file.string());
+  if (!in) throw InputError(fmt::format("{}: cannot open configuration file: {}", file.string(), std::strerror(errno)));
+  try {
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    if (in.bad()) throw InputError(fmt::format("{}: cannot read configuration file: {}", file.string(), std::strerror(errno)));
+    return parse_config(buffer.str(), file.string());
+  } catch (const std::bad_alloc&) {
+    throw InputError(fmt::format("{}: not enough memory to read the configuration file", file.string()));
+  }
 }
 
 void apply_override(Config& config, const std::string& assignment) {
@@ -756,6 +888,7 @@ void apply_override(Config& config, const std::string& assignment) {
     return std::isalpha(ch) || ch == '_' || ch == '-' || (std::isdigit(ch) != 0);
   }) && std::isalpha(static_cast<unsigned char>(value[0])) && value != "true" && value != "false" && value != "inf" && value != "nan";
   if (bare_word) value = "\"" + value + "\"";
+  check_toml_nesting("v = " + value, where);
   toml::table parsed;
   try {
     parsed = toml::parse(std::string_view("v = " + value), std::string_view("--set"));

@@ -230,6 +230,16 @@ std::string encounter_toml(const Encounter& encounter);
 /// time: at half dt the failure interval t_fail is 6 steps instead of 3, and the run checks dt
 /// alone.
 void scale_time_step(Config& config, double factor);
+/// The longest name that becomes a file or folder name (workflow.name, an encounter's name):
+/// with the suffixes added to it (".tmp-<pid>.<host>", ".snap-<step>.h5") it stays within the
+/// 255 bytes every common file system accepts.
+inline constexpr std::size_t max_path_name_bytes = 200;
+/// Empty if `name` can be used as one file or folder name, else what is wrong with it
+/// ("'..' names a folder itself, not a new one"), the name shown with control characters
+/// escaped: only letters and digits (ASCII), '-', '_' and '.', not "." or "..", not beginning with
+/// '-', 1 to max_path_name_bytes bytes. The one check of every name that becomes a path; validate
+/// applies it to workflow.name and to every encounter (listed or from [sweep]).
+std::string path_name_problem(std::string_view name);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
 

@@ -1,12 +1,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <set>
 #include <string>
@@ -449,4 +451,151 @@ TEST(Checkpoint, BuiltQuickBodyRoundTripsAndWritesReproducibly) {
   expect_identical(c, back);
   EXPECT_EQ(back.body.particle_count(), 1042u);
   EXPECT_EQ(parse_config(back.config_toml, "stored").interior.radius, config.interior.radius);
+}
+
+namespace {
+
+/// The bytes of address space this process has mapped (/proc/self/statm, first field).
+rlim_t mapped_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  unsigned long pages = 0;
+  statm >> pages;
+  return static_cast<rlim_t>(pages) * static_cast<rlim_t>(::sysconf(_SC_PAGESIZE));
+}
+
+/// Runs in a death-test child: with only `headroom` bytes of address space beyond what is mapped
+/// now (ulimit -v), writes `c` to `file` and reads it back; exit code 3 when either failed with
+/// an InputError naming the file, 0 when both succeeded (never a crash, never another error).
+[[noreturn]] void write_and_read_with_headroom(const fs::path& file, const Checkpoint& c, rlim_t headroom) {
+  const rlim_t limit = mapped_bytes() + headroom;
+  rlimit rl{limit, limit};
+  setrlimit(RLIMIT_AS, &rl);
+  try {
+    write_checkpoint(file, c);
+    read_checkpoint(file);
+  } catch (const InputError& e) {
+    std::_Exit(std::string(e.what()).find(file.string() + ": ") != std::string::npos ? 3 : 4);
+  } catch (...) {
+    std::_Exit(5);
+  }
+  std::_Exit(0);
+}
+
+/// Runs in a death-test child: reads `file` with `headroom` bytes of address space beyond what is
+/// mapped now; exit code 3 when the InputError holds `expected`, 4 otherwise.
+[[noreturn]] void read_with_headroom(const fs::path& file, rlim_t headroom, const std::string& expected) {
+  const rlim_t limit = mapped_bytes() + headroom;
+  rlimit rl{limit, limit};
+  setrlimit(RLIMIT_AS, &rl);
+  std::_Exit(checkpoint_read_error(file).find(expected) != std::string::npos ? 3 : 4);
+}
+
+/// The exit of write_and_read_with_headroom when it wrote and read (0) or was refused (3).
+bool written_or_refused(int status) { return WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 3); }
+
+/// A copy of `valid` named `name` in `folder` edited in place by `edit` (the integrity record as
+/// it was: the reader's checks must refuse the edit before reading what it declares).
+template <typename Edit>
+fs::path hostile_copy(const fs::path& valid, const fs::path& folder, const std::string& name, Edit edit) {
+  const fs::path file = folder / name;
+  fs::copy_file(valid, file, fs::copy_options::overwrite_existing);
+  edit_in_place(file, edit);
+  return file;
+}
+
+/// Creates at `path` a chunked dataset declaring `count` elements of `type`, none written (so
+/// the file stays small).
+void declare_unwritten_dataset(hid_t f, const char* path, hid_t type, hsize_t count) {
+  h5::Dataspace space(h5::check(H5Screate_simple(1, &count, nullptr), path));
+  h5::PropList dcpl(h5::check(H5Pcreate(H5P_DATASET_CREATE), path));
+  const hsize_t chunk = 1 << 16;
+  h5::check(H5Pset_chunk(dcpl.get(), 1, &chunk), path);
+  h5::Dataset set(h5::check(H5Dcreate2(f, path, type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT), path));
+}
+
+}  // namespace
+
+TEST(Checkpoint, FilesThatDeclareMoreThanTheyHoldOrPointElsewhereAreRefusedBeforeReading) {
+  // Issue 28: /integrity/path declared as 2^40 strings gave "internal error: std::bad_alloc"; a
+  // 150 KB file declaring 400,000,000 doubles had inspect allocate 3.1 GB before refusing it.
+  const ScratchFolder scratch("hostile");
+  const fs::path& dir = scratch.path;
+  write_checkpoint(dir / "valid.h5", synthetic_checkpoint());
+  const fs::path valid = dir / "valid.h5";
+  struct Case {
+    fs::path file;
+    std::string expected;
+  };
+  std::vector<Case> cases;
+  cases.push_back({hostile_copy(valid, dir, "integrity_path.h5",
+                                [](hid_t f) {
+                                  H5Ldelete(f, "/integrity/path", H5P_DEFAULT);
+                                  h5::Type type = h5::fixed_string_type(32);
+                                  declare_unwritten_dataset(f, "/integrity/path", type.get(), hsize_t{1} << 40);
+                                }),
+                   "dataset /integrity/path declares 1099511627776 values of 32 bytes, more than the file's"});
+  cases.push_back({hostile_copy(valid, dir, "huge_dataset.h5",
+                                [](hid_t f) {
+                                  declare_unwritten_dataset(f, "/checkpoint/huge", H5T_IEEE_F64LE, 400'000'000);
+                                }),
+                   "dataset /checkpoint/huge declares 400000000 values of 8 bytes"});
+  cases.push_back({hostile_copy(valid, dir, "huge_mass.h5",
+                                [](hid_t f) {
+                                  H5Ldelete(f, "/particles/body/mass", H5P_DEFAULT);
+                                  declare_unwritten_dataset(f, "/particles/body/mass", H5T_IEEE_F64LE, 400'000'000);
+                                }),
+                   "/particles/body/mass declares 400000000 values"});
+  cases.push_back({hostile_copy(valid, dir, "external_link.h5",
+                                [](hid_t f) {
+                                  h5::check(H5Lcreate_external("valid.h5", "/checkpoint", f, "/checkpoint/elsewhere",
+                                                               H5P_DEFAULT, H5P_DEFAULT),
+                                            "external link");
+                                }),
+                   "link /checkpoint/elsewhere is an external link (to another file); refused"});
+  cases.push_back({hostile_copy(valid, dir, "external_storage.h5",
+                                [](hid_t f) {
+                                  const hsize_t n = 4;
+                                  h5::Dataspace space(h5::check(H5Screate_simple(1, &n, nullptr), "space"));
+                                  h5::PropList dcpl(h5::check(H5Pcreate(H5P_DATASET_CREATE), "dcpl"));
+                                  h5::check(H5Pset_external(dcpl.get(), "raw.bin", 0, n * 8), "external");
+                                  h5::Dataset set(h5::check(H5Dcreate2(f, "/checkpoint/outside", H5T_IEEE_F64LE,
+                                                                       space.get(), H5P_DEFAULT, dcpl.get(),
+                                                                       H5P_DEFAULT),
+                                                            "create"));
+                                }),
+                   "dataset /checkpoint/outside keeps its values in other files"});
+  for (const Case& c : cases) {
+    const std::string message = checkpoint_read_error(c.file);
+    EXPECT_EQ(message.rfind(c.file.string() + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_LT(fs::file_size(c.file), 1u << 20) << c.file;  // small files, as in the issue
+  }
+  // The refusals come before the allocation: with 200 MB of address space the reader reports the
+  // declaration, not a lack of memory.
+  EXPECT_EXIT(read_with_headroom(dir / "huge_dataset.h5", rlim_t{200} << 20, "declares 400000000"),
+              ::testing::ExitedWithCode(3), "");
+}
+
+TEST(Checkpoint, RunningOutOfMemoryWhileWritingOrReadingIsAnErrorNamingTheFile) {
+  // Issue 28: with ulimit -v at 40-41 MB HDF5 crashed (SIGSEGV in H5AC_create, opening the
+  // in-memory image) while writing a checkpoint; at 39 MB "internal error: std::bad_alloc". At
+  // every headroom the write and the read either succeed or are an InputError naming the file,
+  // and a failed write leaves the file that was there.
+  const ScratchFolder scratch("memory");
+  const fs::path file = scratch.path / "build.h5";
+  const Checkpoint& body = quick_built();
+  write_checkpoint(file, body);
+  const std::string before = read_file(file);
+  Checkpoint changed = body;
+  changed.state.step += 1;
+  for (rlim_t mb = 0; mb <= 64; mb += 4) {
+    EXPECT_EXIT(write_and_read_with_headroom(file, changed, mb << 20), written_or_refused, "") << mb << " MB of headroom";
+    const std::string now = read_file(file);
+    if (now != before) {
+      EXPECT_EQ(read_checkpoint(file).state.step, changed.state.step) << mb << " MB: a damaged file";
+      write_checkpoint(file, body);
+    }
+    EXPECT_TRUE(tmp_files_in(scratch.path).empty()) << mb << " MB";
+  }
 }

@@ -72,6 +72,37 @@ TEST_P(StageLockTest, LockFileOfADeadProcessIsTakenOver) {
   EXPECT_NE(read_file(lock_path(stage)).find("identity=new\n"), std::string::npos);
 }
 
+TEST_P(StageLockTest, ALinkPlantedAsTheLockFileIsRefusedAndItsTargetKept) {
+  // Issue 28: a symbolic link at OUT/body/build.h5.lock had its target truncated and overwritten
+  // with the lock's text. Neither a symbolic link (dangling or not) nor a hard link is written to.
+  const ScratchFolder scratch("lock_link");
+  const fs::path stage = scratch.path / "build.h5";
+  const fs::path target = scratch.path / "precious.txt";
+  write_file(target, "the user's data\n");
+  for (const bool hard : {false, true}) {
+    for (const bool dangling : {false, true}) {
+      if (hard && dangling) continue;
+      fs::remove(lock_path(stage));
+      if (hard) fs::create_hard_link(target, lock_path(stage));
+      else fs::create_symlink(dangling ? scratch.path / "nothing-here" : target, lock_path(stage));
+      // The exclusive-create method never writes to a file it did not create: a hard link
+      // there is only a lock file naming nobody (its target stays as it is).
+      const bool must_refuse = !hard || GetParam() == LockMethod::flock;
+      try {
+        const LockAttempt attempt = try_lock_stage(stage, "abc", GetParam());
+        if (must_refuse) ADD_FAILURE() << "locked through a " << (hard ? "hard" : "symbolic") << " link";
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find(lock_path(stage).string()), std::string::npos) << message;
+        EXPECT_NE(message.find("refusing"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+      EXPECT_EQ(read_file(target), "the user's data\n");
+      EXPECT_FALSE(fs::exists(scratch.path / "nothing-here"));
+    }
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(BothMethods, StageLockTest,
                          ::testing::Values(LockMethod::flock, LockMethod::exclusive_create));
 

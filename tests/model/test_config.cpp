@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
@@ -230,4 +231,105 @@ TEST(Config, BadSweepsAreOneLineErrorsNamingTheFileAndKey) {
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
   }
+}
+
+namespace {
+/// The message of the InputError for `text`, checked to be one line naming bad.toml.
+std::string one_line_error(const std::string& text) {
+  const std::string message = message_of(text);
+  EXPECT_FALSE(message.empty()) << "accepted: " << text.substr(0, 200);
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_EQ(message.rfind("bad.toml", 0), 0u) << message;
+  return message;
+}
+}  // namespace
+
+TEST(Config, EveryNameThatBecomesAPathIsOnePortableFileName) {
+  const std::string long_name(max_path_name_bytes + 1, 'a');
+  // TOML basic strings: \u0000 is a NUL, \t a tab, \u00e9 a non-ASCII letter.
+  const std::string bad[] = {"..", ".", "../../x", "a/b", "/abs", "a\\\\b", "x\\u0000y", "tab\\there", "new\\nline",
+                             "-looks-like-an-option", "caf\\u00e9", "sp ace", "a:b", long_name};
+  for (const std::string& name : bad) {
+    const std::string workflow_message = one_line_error(fmt::format("[workflow]\nname = \"{}\"\n", name));
+    EXPECT_NE(workflow_message.find("workflow.name"), std::string::npos) << workflow_message;
+    const std::string encounter_message = one_line_error(fmt::format("[[encounters]]\nname = \"{}\"\n", name));
+    EXPECT_NE(encounter_message.find("encounter name"), std::string::npos) << encounter_message;
+    EXPECT_FALSE(path_name_problem(name).empty()) << name;
+  }
+  // The folders beside the encounters are not encounter names.
+  for (const char* reserved : {"body", "slurm", "validate", "status.json", "analysis", "dt2", "dt0.5"})
+    EXPECT_NE(one_line_error(fmt::format("[[encounters]]\nname = \"{}\"\n", reserved)).find("reserved"),
+              std::string::npos);
+  // The names in use stay valid, up to the length limit.
+  for (const std::string& name : {std::string("T10b"), std::string("M0.5_q2_V1.94_eps0.002"), std::string("a.b-c_d"),
+                                  std::string(".hidden"), std::string("dtx"), std::string(max_path_name_bytes, 'n')}) {
+    EXPECT_EQ(path_name_problem(name), "") << name;
+    EXPECT_EQ(message_of(fmt::format("[workflow]\nname = \"{}\"\n[[encounters]]\nname = \"{}\"\n", name, name)), "")
+        << name;
+  }
+  // --only NAME and --set overrides go through the same check.
+  Config config = parse_config("[[encounters]]\nname = \"a\"\n", "w.toml");
+  EXPECT_THROW(config.find_encounter(".."), InputError);
+  apply_override(config, "workflow.name=\"../x\"");
+  EXPECT_THROW(validate(config, "--set"), InputError);
+  // The control character is shown escaped: the message stays one line.
+  const std::string nul = one_line_error("[workflow]\nname = \"a\\u0000b\"\n");
+  EXPECT_NE(nul.find("a\\x00b"), std::string::npos) << nul;
+}
+
+TEST(Config, NestingIsBoundedBeforeParsing) {
+  std::string dotted = "x";
+  for (int i = 0; i < 40'000; ++i) dotted += ".x";
+  std::string inline_tables = "a = ", arrays = "a = ";
+  for (int i = 0; i < 200; ++i) inline_tables += "{b = ", arrays += "[";
+  inline_tables += "1" + std::string(200, '}');
+  arrays += "1" + std::string(200, ']');
+  std::string header = "[t";
+  for (int i = 0; i < 100; ++i) header += ".t";
+  const std::string cases[] = {"[workflow]\nname = \"w\"\n" + dotted + " = 1\n", inline_tables + "\n", arrays + "\n",
+                               header + "]\nk = 1\n", "[[encounters]]\nname = \"a\"\n" + header.substr(1) + " = 2\n"};
+  for (const std::string& text : cases) {
+    const std::string message = one_line_error(text);
+    EXPECT_NE(message.find("nested deeper than"), std::string::npos) << message;
+  }
+  EXPECT_NE(one_line_error("\n\n" + dotted + " = 1\n").find("bad.toml:3:"), std::string::npos);
+  // Dots, brackets and braces inside strings and comments are not nesting.
+  const std::string quoted = "[workflow]\nname = \"w\"  # " + dotted + "\n[[encounters]]\nname = \"" +
+                             std::string(10, '.') + "x\"\n";
+  const std::string message = message_of(quoted + "'''" + std::string(300, '[') + "'''\n");
+  EXPECT_EQ(message.find("nested"), std::string::npos) << message;
+  // A --set value is checked the same way.
+  Config config;
+  try {
+    apply_override(config, "integrator.dt=" + arrays.substr(4));
+    ADD_FAILURE() << "accepted a deep --set value";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("nested deeper than"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Config, EveryRangeErrorOfANumericKeyNamesTheKey) {
+  // The key fuzz of issue 28: every numeric key, in its section and in an [[encounters]] table.
+  const Config base = parse_config("[workflow]\nname = \"w\"\n[[encounters]]\nname = \"e\"\n", "w.toml");
+  const char* values[] = {"nan", "inf", "-inf", "-1", "0", "1e308", "-1e308", "1e-320", "9223372036854775807",
+                          "-9223372036854775808", "9223372036854775808"};
+  std::vector<std::string> keys;
+  for (const KeyInfo& key : describe_keys(base))
+    if (key.type == "number" || key.type == "integer") keys.push_back(key.section + "." + key.name);
+  for (const KeyInfo& key : describe_keys(base.encounters[0], base))
+    if (key.type == "number" || key.type == "integer") keys.push_back("encounters.e." + key.name);
+  ASSERT_GT(keys.size(), 40u);
+  for (const std::string& key : keys)
+    for (const char* value : values) {
+      Config config = base;
+      try {
+        apply_override(config, key + "=" + value);
+        validate(config, "--set");
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        const std::string name = key.substr(key.rfind('.') + 1);
+        EXPECT_NE(message.find(name), std::string::npos) << key << "=" << value << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+    }
 }

@@ -24,12 +24,12 @@ struct CliResult {
 inline std::string quoted(const std::filesystem::path& path) { return "'" + path.string() + "'"; }
 
 /// Runs `tidalcrust ARGS` through the shell (ARGS may quote paths), from the current folder,
-/// with stdin from /dev/null.
-inline CliResult run_cli(const std::string& args) {
+/// with stdin from /dev/null; `environment` ("VAR=value ...") is added to its environment.
+inline CliResult run_cli(const std::string& args, const std::string& environment = "") {
   const ScratchFolder capture("cli");
   const auto out = capture.path / "out.txt", err = capture.path / "err.txt";
-  const std::string command =
-      fmt::format("'{}' {} >{} 2>{} </dev/null", TIDALCRUST_EXE, args, quoted(out), quoted(err));
+  const std::string command = fmt::format("{}'{}' {} >{} 2>{} </dev/null", environment.empty() ? "" : "env " + environment + " ",
+                                          TIDALCRUST_EXE, args, quoted(out), quoted(err));
   const int status = std::system(command.c_str());
   CliResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
