@@ -104,6 +104,12 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   add(write_fracture_map(fractures, out / "fracture_map",
                          title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
                                            percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))));
+  add(write_crack_geometry(fractures, out / "crack_geometry",
+                           title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name,
+                                             fractures.geometry.arcs.size(),
+                                             std::isfinite(fractures.geometry.orientations.concentricity)
+                                                 ? fmt::format("{:.2f}", fractures.geometry.orientations.concentricity)
+                                                 : "n/a"))));
   add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
                              title(name + ": hemisphere facing pericenter")));
   add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", title(name + ": perturber orbit")));
@@ -130,12 +136,14 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   Json failed_springs = {{"spring", Json::array()},
                          {"longitude_deg", Json::array()},
                          {"latitude_deg", Json::array()},
-                         {"angle_from_subsatellite_deg", Json::array()}};
+                         {"angle_from_subsatellite_deg", Json::array()},
+                         {"crack_azimuth_deg", Json::array()}};
   for (const auto& f : fractures.failed) {
     failed_springs["spring"].push_back(f.spring);
     failed_springs["longitude_deg"].push_back(f.longitude_deg);
     failed_springs["latitude_deg"].push_back(f.latitude_deg);
     failed_springs["angle_from_subsatellite_deg"].push_back(f.angle_from_subsatellite_deg);
+    failed_springs["crack_azimuth_deg"].push_back(f.crack_azimuth_deg);
   }
   Json clusters = Json::array();
   for (const auto& cluster : fractures.clusters)
@@ -190,7 +198,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"impulse_estimate_uniform_sphere", budget.impulse_estimate_uniform_sphere}}},
       {"snapshots", snapshot_list},
       {"principal_axis_ratios", shape_list},
-      {"figures", figure_names}};
+      {"figures", figure_names},
+      {"crack_geometry", crack_geometry_json(fractures.geometry)}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
   // is up to date.
   write_file_atomically(out / "summary.json", json_text(summary));

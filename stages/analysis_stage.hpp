@@ -1,7 +1,7 @@
 #pragma once
 // Stage 5 (paper section 3): analysis of one encounter checkpoint into a folder of figures
-// (fracture map, hemisphere views, orbit, failures over time, conservation; PNG + SVG) and
-// summary.json.
+// (fracture map, crack geometry, hemisphere views, orbit, failures over time, conservation; PNG +
+// SVG) and summary.json (its crack_geometry object last: docs/crack-geometry.md).
 #include <filesystem>
 #include <string>
 #include <vector>
