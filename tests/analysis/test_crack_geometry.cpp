@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -250,4 +251,19 @@ TEST(CrackGeometry, ShortClustersGetNoCircle) {
   EXPECT_EQ(json["arc_selection"]["min_extent"], CrackGeometry::min_arc_extent);
   EXPECT_EQ(json["concentricity_random"], random_concentricity);
   EXPECT_EQ(json["rose"]["histogram"].size(), CrackOrientations::bins);
+}
+
+// The lattice itself: with every shell spring failed, the crack directions are those of the
+// icosphere's edges, which over the sphere take every orientation to the subsatellite direction
+// alike: the concentricity is the random 2/pi, to within the lattice's own anisotropy.
+TEST(CrackGeometry, EveryEdgeOfTheLatticeIsNearlyRandom) {
+  for (const int level : {3, 4}) {
+    Checkpoint c = synthetic_encounter(level);
+    for (std::size_t s = 0; s < c.body.spring_count(); ++s)
+      if (c.body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::shell)) c.state.springs.failed[s] = 1;
+    const FractureSummary f = analyze_fractures(c.body, c.state);
+    std::printf("[ info ] level %d: every edge failed, concentricity %.4f (2/pi = %.4f)\n", level,
+                f.geometry.orientations.concentricity, random_concentricity);
+    EXPECT_NEAR(f.geometry.orientations.concentricity, random_concentricity, 0.005) << level;
+  }
 }
