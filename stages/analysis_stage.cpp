@@ -104,12 +104,6 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   add(write_fracture_map(fractures, out / "fracture_map",
                          title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
                                            percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))));
-  add(write_crack_geometry(fractures, out / "crack_geometry",
-                           title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name,
-                                             fractures.geometry.arcs.size(),
-                                             std::isfinite(fractures.geometry.orientations.concentricity)
-                                                 ? fmt::format("{:.2f}", fractures.geometry.orientations.concentricity)
-                                                 : "n/a"))));
   add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
                              title(name + ": hemisphere facing pericenter")));
   add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", title(name + ": perturber orbit")));
@@ -127,6 +121,12 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   add(write_body_slices(panels, record.pericenter_time, out / "body_shape",
                         title(name + ": the body in the orbital plane")));
   add(write_axis_ratios(shape_times, shapes, out / "axis_ratios", title(name + ": principal axis ratios")));
+  add(write_crack_geometry(fractures, out / "crack_geometry",
+                           title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name,
+                                             fractures.geometry.arcs.size(),
+                                             std::isfinite(fractures.geometry.orientations.concentricity)
+                                                 ? fixed_text(fractures.geometry.orientations.concentricity, 2)
+                                                 : "n/a"))));
   Json shape_list = Json::array();
   for (std::size_t k = 0; k < shapes.size(); ++k)
     shape_list.push_back({{"time_from_pericenter", shape_times[k]},
@@ -212,7 +212,8 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   if (!in) return false;
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
   const auto hash = summary.find("state_hash");  // end() for a non-object or a parse failure
-  return hash != summary.end() && *hash == state_hash(checkpoint.state);
+  // An analysis written before summary.json had its newest object (crack_geometry) is redone.
+  return hash != summary.end() && *hash == state_hash(checkpoint.state) && summary.contains("crack_geometry");
 }
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {

@@ -17,7 +17,8 @@ namespace tidalcrust {
 std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path& from, const Checkpoint& checkpoint,
                                                      const std::filesystem::path& out);
 
-/// True if out/summary.json was written for exactly this state (same state_hash).
+/// True if out/summary.json was written for exactly this state (same state_hash) by an analysis
+/// that writes everything this one does (it has the crack_geometry object, summary.json's newest).
 bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
 
 /// One line: failures, fraction, hemisphere fraction, mean angle, cracks, longest crack.

@@ -6,13 +6,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
+#include "io/checkpoint_file.hpp"
 #include "io/json.hpp"
 #include "stages/analysis_stage.hpp"
 #include "stages/encounter_stage.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/synthetic_encounter.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -79,6 +82,22 @@ TEST(AnalysisStage, SummaryOfAQuickEncounterHasTheCrackGeometry) {
   EXPECT_GT(failures["concentricity"].get<double>(), 0.7);
   EXPECT_TRUE(fs::exists(out / "crack_geometry.png"));
   EXPECT_TRUE(fs::exists(out / "crack_geometry.svg"));
+}
+
+// `run` reuses an analysis only when it is of this state and has the crack geometry: a summary.json
+// written before it existed is redone.
+TEST(AnalysisStage, AnAnalysisWithoutTheCrackGeometryIsNotCurrent) {
+  const ScratchFolder scratch("analysis_stage_current");
+  Checkpoint c = synthetic_encounter(2);
+  c.state.springs.failed[3] = 1;
+  const fs::path file = scratch.path / "enc.h5", out = scratch.path / "analysis";
+  write_checkpoint(file, c);
+  analyze_encounter(file, c, out);
+  EXPECT_TRUE(analysis_is_current(out, c));
+  Json summary = Json::parse(read_file(out / "summary.json"));
+  summary.erase("crack_geometry");
+  std::ofstream(out / "summary.json") << json_text(summary);
+  EXPECT_FALSE(analysis_is_current(out, c));
 }
 
 }  // namespace
