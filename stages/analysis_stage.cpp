@@ -125,6 +125,12 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   add(write_body_slices(panels, record.pericenter_time, out / "body_shape",
                         title(name + ": the body in the orbital plane")));
   add(write_axis_ratios(shape_times, shapes, out / "axis_ratios", title(name + ": principal axis ratios")));
+  add(write_crack_geometry(fractures, out / "crack_geometry",
+                           title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name,
+                                             fractures.geometry.arcs.size(),
+                                             std::isfinite(fractures.geometry.orientations.concentricity)
+                                                 ? fixed_text(fractures.geometry.orientations.concentricity, 2)
+                                                 : "n/a"))));
   Json shape_list = Json::array();
   for (std::size_t k = 0; k < shapes.size(); ++k)
     shape_list.push_back({{"time_from_pericenter", shape_times[k]},
@@ -134,12 +140,14 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   Json failed_springs = {{"spring", Json::array()},
                          {"longitude_deg", Json::array()},
                          {"latitude_deg", Json::array()},
-                         {"angle_from_subsatellite_deg", Json::array()}};
+                         {"angle_from_subsatellite_deg", Json::array()},
+                         {"crack_azimuth_deg", Json::array()}};
   for (const auto& f : fractures.failed) {
     failed_springs["spring"].push_back(f.spring);
     failed_springs["longitude_deg"].push_back(f.longitude_deg);
     failed_springs["latitude_deg"].push_back(f.latitude_deg);
     failed_springs["angle_from_subsatellite_deg"].push_back(f.angle_from_subsatellite_deg);
+    failed_springs["crack_azimuth_deg"].push_back(f.crack_azimuth_deg);
   }
   Json clusters = Json::array();
   for (const auto& cluster : fractures.clusters)
@@ -195,7 +203,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"snapshots", snapshot_list},
       {"skipped_snapshots", skipped_snapshots},
       {"principal_axis_ratios", shape_list},
-      {"figures", figure_names}};
+      {"figures", figure_names},
+      {"crack_geometry", crack_geometry_json(fractures.geometry)}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
   // is up to date.
   write_file_atomically(out / "summary.json", json_text(summary));
@@ -209,8 +218,10 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
   const auto hash = summary.find("state_hash");  // end() for a non-object or a parse failure
   if (hash == summary.end() || *hash != state_hash(checkpoint.state)) return false;
-  // An analysis that had to skip a snapshot (unreadable, or of another run) is not finished:
-  // the next run tries again.
+  // An analysis written before summary.json had its newest object (crack_geometry) is redone, and
+  // one that had to skip a snapshot (unreadable, or of another run) is not finished: the next run
+  // tries again.
+  if (!summary.contains("crack_geometry")) return false;
   const auto skipped = summary.find("skipped_snapshots");
   return skipped != summary.end() && skipped->is_array() && skipped->empty();
 }

@@ -1,7 +1,7 @@
 #pragma once
 // Stage 5 (paper section 3): analysis of one encounter checkpoint into a folder of figures
-// (fracture map, hemisphere views, orbit, failures over time, conservation; PNG + SVG) and
-// summary.json.
+// (fracture map, crack geometry, hemisphere views, orbit, failures over time, conservation; PNG +
+// SVG) and summary.json (its crack_geometry object last: docs/crack-geometry.md).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -19,9 +19,10 @@ namespace tidalcrust {
 std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path& from, const Checkpoint& checkpoint,
                                                      const std::filesystem::path& out);
 
-/// True if out/summary.json was written for exactly this state (same state_hash) with every
-/// snapshot read (its "skipped_snapshots" list empty; a summary without the list, written before
-/// it existed, counts as not finished).
+/// True if out/summary.json was written for exactly this state (same state_hash) by an analysis
+/// that writes everything this one does (it has the crack_geometry object, summary.json's newest)
+/// with every snapshot read (its "skipped_snapshots" list empty; a summary without the list,
+/// written before it existed, counts as not finished).
 bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
 
 /// One line: failures, fraction, hemisphere fraction, mean angle, cracks, longest crack.

@@ -77,6 +77,7 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
     f.longitude_deg = longitude_deg(f.midpoint);
     f.latitude_deg = latitude_deg(f.midpoint);
     f.angle_from_subsatellite_deg = angle_from_subsatellite_deg(f.midpoint);
+    f.crack_azimuth_deg = crack_azimuth_deg(f.midpoint, position(body.springs[s][1]) - position(body.springs[s][0]));
     on_subsatellite_hemisphere += f.midpoint.dot(subsatellite_direction) > 0;
     angle_sum += f.angle_from_subsatellite_deg;
     const auto bin = std::min(summary.angle_bins - 1,
@@ -147,10 +148,31 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
     summary.longest_crack_length = summary.clusters.front().length;
     summary.longest_crack_extent = summary.clusters.front().extent;
   }
+
+  // Crack geometry: each cluster by its failed springs' midpoints (ascending spring order), every
+  // failed spring's crack azimuth.
+  std::vector<std::vector<Vec3>> cluster_points;
+  std::vector<double> cluster_lengths, cluster_extents, azimuths;
+  for (const auto& cluster : summary.clusters) {
+    cluster_points.emplace_back();
+    for (const std::int32_t s : cluster.springs) {
+      const auto f = std::lower_bound(summary.failed.begin(), summary.failed.end(), s,
+                                      [](const FailedShellSpring& a, std::int32_t b) { return a.spring < b; });
+      cluster_points.back().push_back(f->midpoint);
+    }
+    cluster_lengths.push_back(cluster.length);
+    cluster_extents.push_back(cluster.extent);
+  }
+  for (const auto& f : summary.failed) azimuths.push_back(f.crack_azimuth_deg);
+  summary.geometry = crack_geometry(cluster_points, cluster_lengths, cluster_extents, azimuths);
   return summary;
 }
 
 Json failure_summary_json(const FractureSummary& summary) {
+  const CrackGeometry& g = summary.geometry;
+  const SmallCircleFit longest = g.arcs.empty() ? SmallCircleFit{} : g.arcs.front().fit;
+  // The crack-geometry keys hold null where undefined, so that two summaries compare equal.
+  const auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
   return {{"count", summary.count()},
           {"fraction_shell", summary.fraction_shell},
           {"hemisphere_fraction", summary.hemisphere_fraction},
@@ -160,7 +182,16 @@ Json failure_summary_json(const FractureSummary& summary) {
           {"longest_crack_extent", summary.longest_crack_extent},
           {"clusters", summary.clusters.size()},
           {"total_crack_length", summary.total_crack_length},
-          {"failed_area_fraction", summary.failed_area_fraction}};
+          {"failed_area_fraction", summary.failed_area_fraction},
+          {"concentricity", number(g.orientations.concentricity)},
+          {"crack_rose_peak_deg", number(g.orientations.rose_peak_deg)},
+          {"fitted_arcs", g.arcs.size()},
+          {"median_arc_radius_deg", number(g.median_arc_radius_deg)},
+          {"median_arc_pole_axis_from_subsatellite_deg", number(g.median_pole_axis_from_subsatellite_deg)},
+          {"longest_arc_radius_deg", number(longest.radius_deg)},
+          {"longest_arc_pole_axis_from_subsatellite_deg", number(longest.pole_axis_from_subsatellite_deg)},
+          {"longest_arc_span_deg", number(longest.arc_deg)},
+          {"longest_arc_misfit_deg", number(longest.rms_misfit_deg)}};
 }
 
 }  // namespace tidalcrust

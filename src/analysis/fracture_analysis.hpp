@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "analysis/crack_geometry.hpp"
 #include "io/json.hpp"
 #include "model/body.hpp"
 #include "model/state.hpp"
@@ -22,6 +23,9 @@ struct FailedShellSpring {
   double longitude_deg = 0;             ///< (-180, 180], subsatellite point at +90
   double latitude_deg = 0;              ///< [-90, 90], orbital plane at 0
   double angle_from_subsatellite_deg = 0;
+  /// Orientation of its crack (perpendicular to the spring, tangent to the sphere) from the local
+  /// direction toward the subsatellite point, [0, 180) deg (crack_azimuth_deg); NaN where undefined.
+  double crack_azimuth_deg = 0;
 };
 
 /// Half of a dual-lattice bar: inside face `face`, from its centroid to the midpoint of the
@@ -64,6 +68,9 @@ struct FractureSummary {
   /// of springs, whose size shrinks as L_S^2) it converges with resolution. NaN without faces.
   double failed_area_fraction = 0;
   std::array<std::int64_t, angle_bins> angle_histogram{};  ///< failed springs per 10-degree bin
+  /// Small circles fitted to the long clusters, the rose of crack azimuths and the concentricity
+  /// (crack_geometry.hpp, docs/crack-geometry.md).
+  CrackGeometry geometry;
 
   std::size_t count() const { return failed.size(); }
   std::vector<double> angles_from_subsatellite_deg() const;
@@ -75,9 +82,14 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 
 /// The `failures` object of summary.json, compare --json and inspect: count, fraction_shell,
 /// hemisphere_fraction, mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg,
-/// longest_crack, longest_crack_extent (R), clusters (number of clusters), total_crack_length (R)
-/// and failed_area_fraction, in that order (new keys go at the end: readers of summary.json rely on
-/// it); count and clusters are integers, undefined (NaN) values are written as null.
+/// longest_crack, longest_crack_extent (R), clusters (number of clusters), total_crack_length (R),
+/// failed_area_fraction, then the crack geometry (docs/crack-geometry.md): concentricity (1),
+/// crack_rose_peak_deg, fitted_arcs (number of CrackGeometry::arcs), median_arc_radius_deg,
+/// median_arc_pole_axis_from_subsatellite_deg, and of the longest fitted arc longest_arc_radius_deg,
+/// longest_arc_pole_axis_from_subsatellite_deg, longest_arc_span_deg (its arc_deg) and
+/// longest_arc_misfit_deg (rms), in that order (new keys go at the end: readers of summary.json rely
+/// on it); count, clusters and fitted_arcs are integers, undefined (NaN) values are written as null
+/// (the crack-geometry keys hold null in the Json too, where no failure or no arc defines them).
 Json failure_summary_json(const FractureSummary& summary);
 
 }  // namespace tidalcrust

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include <xxhash.h>
@@ -158,7 +159,7 @@ void add_failures_section(const Checkpoint& c, InspectReport& r) {
     const bool length = key.starts_with("longest_crack") || key == "total_crack_length";
     const std::string unit = key.ends_with("_deg") ? "deg" : length ? "R" : "1";
     if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>(), unit);
-    else failures.add(key, value.get<double>(), unit);
+    else failures.add(key, value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>(), unit);
   }
 }
 

@@ -39,6 +39,10 @@ void fill_results(SweepRow& row, const Checkpoint& c) {
   row.energy_deposited = budget.internal_change;
   row.energy_dissipated = budget.dissipated;
   row.state_hash = state_hash(c.state);
+  row.concentricity = fractures.geometry.orientations.concentricity;
+  row.fitted_arcs = fractures.geometry.arcs.size();
+  row.median_arc_radius_deg = fractures.geometry.median_arc_radius_deg;
+  row.median_arc_pole_axis_deg = fractures.geometry.median_pole_axis_from_subsatellite_deg;
 }
 
 /// The row of one encounter: its status from encounter.h5 or its mid-stage checkpoint in `dir`.
@@ -49,7 +53,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   row.failure_strain = spec.failure_strain.value_or(encounter_config.shell.failure_strain);
   row.strain_estimate = eq5_strain(spec, youngs);
   row.failed_fraction = row.hemisphere_fraction = row.median_angle_deg = row.longest_crack = row.energy_deposited =
-      row.energy_dissipated = nan;
+      row.energy_dissipated = row.concentricity = row.median_arc_radius_deg = row.median_arc_pole_axis_deg = nan;
   const fs::path file = dir / "encounter.h5";
   const fs::path mid = sibling_checkpoint(file, "mid");
   try {
@@ -157,15 +161,18 @@ std::string sweep_report_csv(const SweepReport& report) {
   std::string csv =
       "name,status,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],failures [1],failed_fraction [1],"
       "hemisphere_fraction [1],median_angle [deg],longest_crack [R],energy_deposited [GM^2/R],"
-      "energy_dissipated [GM^2/R],state_hash,note\n";
+      "energy_dissipated [GM^2/R],state_hash,note,concentricity [1],fitted_arcs [1],median_arc_radius [deg],"
+      "median_arc_pole_axis [deg]\n";
   for (const auto& r : report.rows) {
     const bool done = r.status == SweepStatus::finished;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.encounter.name),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.encounter.name),
                        status_name(r.status), r.encounter.perturber_mass, r.encounter.pericenter,
                        r.encounter.pericenter_speed, r.failure_strain, r.strain_estimate,
                        done ? std::to_string(r.failures) : "", csv_number(r.failed_fraction),
                        csv_number(r.hemisphere_fraction), csv_number(r.median_angle_deg), csv_number(r.longest_crack),
-                       csv_number(r.energy_deposited), csv_number(r.energy_dissipated), r.state_hash, csv_text(r.note));
+                       csv_number(r.energy_deposited), csv_number(r.energy_dissipated), r.state_hash, csv_text(r.note),
+                       csv_number(r.concentricity), done ? std::to_string(r.fitted_arcs) : "",
+                       csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg));
   }
   return csv;
 }
@@ -194,7 +201,11 @@ Json sweep_report_json(const SweepReport& report) {
                           {"energy_deposited", number(r.energy_deposited)},
                           {"energy_dissipated", number(r.energy_dissipated)},
                           {"state_hash", done ? Json(r.state_hash) : Json(nullptr)},
-                          {"note", r.note}});
+                          {"note", r.note},
+                          {"concentricity", number(r.concentricity)},
+                          {"fitted_arcs", done ? Json(r.fitted_arcs) : Json(nullptr)},
+                          {"median_arc_radius_deg", number(r.median_arc_radius_deg)},
+                          {"median_arc_pole_axis_deg", number(r.median_arc_pole_axis_deg)}});
   }
   Json boundaries = Json::array();
   for (const auto& b : report.boundaries)

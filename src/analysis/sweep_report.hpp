@@ -40,6 +40,11 @@ struct SweepRow {
   double energy_deposited = 0;                  ///< internal energy after minus before, G M^2/R
   double energy_dissipated = 0;                 ///< to damping and failures, G M^2/R
   std::string state_hash;
+  // Crack geometry (FractureSummary::geometry, docs/crack-geometry.md); finished encounters only:
+  double concentricity = 0;                     ///< mean |sin| of the crack azimuths; NaN if none failed
+  std::size_t fitted_arcs = 0;                  ///< long cracks with a fitted small circle
+  double median_arc_radius_deg = 0;             ///< median angular radius of those circles; NaN if none
+  double median_arc_pole_axis_deg = 0;          ///< median angle of their poles' axes from the subsatellite axis; NaN if none
   bool cracked() const { return status == SweepStatus::finished && failures > 0; }
 };
 
@@ -75,11 +80,14 @@ SweepReport build_sweep_report(const Config& config, const std::filesystem::path
 double eq5_strain(const Encounter& encounter, double youngs_in_e_g);
 
 /// CSV, one header row with the unit of each column in brackets, then one row per encounter;
-/// cells of values an encounter does not have (not finished, NaN) are empty.
+/// cells of values an encounter does not have (not finished, NaN) are empty. The crack-geometry
+/// columns (concentricity, fitted_arcs, median_arc_radius, median_arc_pole_axis) come last, after
+/// the note: readers rely on the order of the others.
 std::string sweep_report_csv(const SweepReport& report);
 
 /// The report as JSON: workflow, folder, dt_factor, youngs_modulus_E_I, counts per status, the
-/// encounters (one object per row, NaN as null) and the crack boundaries.
+/// encounters (one object per row, NaN as null; the crack-geometry keys last) and the crack
+/// boundaries.
 Json sweep_report_json(const SweepReport& report);
 
 }  // namespace tidalcrust

@@ -16,6 +16,8 @@ inline constexpr Rgb perturber_color{0.85, 0.0, 0.75};   ///< magenta perturber 
 inline constexpr Rgb tick_marker_color{0.85, 0.0, 0.0};  ///< red diamonds and arrows (Figure 7)
 inline constexpr Rgb eq5_line_color{0.90, 0.10, 0.10};   ///< phase diagram: eq. 5 strain = eps_S line
 inline constexpr Rgb boundary_color{0.0, 0.0, 0.0};      ///< phase diagram: crack/no-crack boundary
+inline constexpr Rgb arc_color{0.05, 0.35, 0.85};      ///< crack geometry: fitted small circles and poles
+inline constexpr Rgb rose_color{0.55, 0.70, 0.90};     ///< crack geometry: rose petals
 inline constexpr double map_crack_width = 1.3;           ///< points
 
 inline void set_color(cairo_t* cr, const Rgb& c, double alpha = 1.0) {

@@ -48,6 +48,24 @@ FigureFiles write_fracture_map_row(const std::vector<const FractureSummary*>& pa
 /// panels are 320 x 160 points; the figure is as wide as its panels need).
 PlotAxes fracture_map_row_axes(std::size_t index);
 
+/// The crack geometry (docs/crack-geometry.md), one figure: left the fracture map
+/// (draw_fracture_map) with the small circles fitted to the long cracks (FractureSummary::geometry;
+/// the arc each crack covers thick in arc_color, the rest of its circle dashed) and their poles
+/// as numbered dots; right the rose of crack azimuths (CrackOrientations: 18 axial bins, each
+/// drawn at a and a + 180 deg, equal-area petals of radius ~ sqrt(count), 0 = toward the
+/// subsatellite point up, counter-clockwise as seen from outside; dashed: the uniform level),
+/// below it the concentricity and a line per fitted arc (pole, its angle from the subsatellite
+/// axis, radius, arc, misfit).
+FigureFiles write_crack_geometry(const FractureSummary& fractures, const std::filesystem::path& stem,
+                                 const std::string& title);
+/// Where write_crack_geometry puts longitude (x) and latitude (y) of its map, degrees, in points.
+PlotAxes crack_geometry_map_axes();
+/// Where write_crack_geometry draws its rose: centre and the radius of the fullest bin, points.
+struct CrackRoseLayout {
+  double center_x = 0, center_y = 0, radius = 0;
+};
+CrackRoseLayout crack_rose_layout();
+
 /// Figure 6 (fig:T5): one panel per checkpoint (all of one body, in the given order), each an
 /// orthographic view of the hemisphere centred on the subsatellite point. The viewer sits on the
 /// +y axis in the orbital plane, looking toward -y, north (+z) up, so +x points left and the

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
 
@@ -189,8 +190,9 @@ TEST(FractureAnalysis, FailureSummaryJson) {
   Checkpoint c = synthetic_encounter(1);
   c.state.springs.failed[0] = 1;
   const FractureSummary s = analyze_fractures(c.body, c.state);
-  // Ordered JSON compares key order too.
-  EXPECT_EQ(failure_summary_json(s), Json({{"count", 1},
+  // Ordered JSON compares key order too; as text, since NaN (null in the file) equals nothing.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(failure_summary_json(s).dump(), Json({{"count", 1},
                                            {"fraction_shell", 1.0 / 120},
                                            {"hemisphere_fraction", s.hemisphere_fraction},
                                            {"mean_angle_from_subsatellite_deg", s.mean_angle_from_subsatellite_deg},
@@ -199,8 +201,20 @@ TEST(FractureAnalysis, FailureSummaryJson) {
                                            {"longest_crack_extent", s.longest_crack_extent},
                                            {"clusters", 1},
                                            {"total_crack_length", s.total_crack_length},
-                                           {"failed_area_fraction", s.failed_area_fraction}}));
+                                           {"failed_area_fraction", s.failed_area_fraction},
+                                           {"concentricity", s.geometry.orientations.concentricity},
+                                           {"crack_rose_peak_deg", s.geometry.orientations.rose_peak_deg},
+                                           {"fitted_arcs", 0},
+                                           {"median_arc_radius_deg", nan},
+                                           {"median_arc_pole_axis_from_subsatellite_deg", nan},
+                                           {"longest_arc_radius_deg", nan},
+                                           {"longest_arc_pole_axis_from_subsatellite_deg", nan},
+                                           {"longest_arc_span_deg", nan},
+                                           {"longest_arc_misfit_deg", nan}}).dump());
   EXPECT_GT(s.longest_crack_length, 0.0);
+  // One failed spring: one crack element (its azimuth defined), too short for a circle.
+  EXPECT_TRUE(std::isfinite(s.geometry.orientations.concentricity));
+  EXPECT_TRUE(s.geometry.arcs.empty());
 }
 
 // On the regular icosahedron (level 0, vertices on the unit sphere) every face has the same area,

@@ -83,9 +83,11 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
   ASSERT_EQ(rows.size(), 5u) << "a header and one row per encounter";
   const auto& header = rows[0];
-  ASSERT_EQ(header.size(), 16u);
+  ASSERT_EQ(header.size(), 20u);
   EXPECT_EQ(header[3], "q [R]");
   EXPECT_EQ(header[11], "longest_crack [R]");
+  EXPECT_EQ(header[15], "note");
+  EXPECT_EQ(header[16], "concentricity [1]");  // the crack geometry after the others
   const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
   EXPECT_EQ(json["counts"]["finished"], 2);
   EXPECT_EQ(json["counts"]["unfinished"], 1);
@@ -124,6 +126,12 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
     EXPECT_EQ(entry["energy_deposited"].get<double>(), budget.internal_change);
     EXPECT_EQ(row[14], state_hash(c.state));
     EXPECT_EQ(entry["state_hash"], state_hash(c.state));
+    EXPECT_EQ(row[17], std::to_string(fractures.geometry.arcs.size())) << names[i];
+    EXPECT_EQ(entry["fitted_arcs"], fractures.geometry.arcs.size());
+    if (fractures.count() > 0) {
+      EXPECT_EQ(row[16], fmt::format("{}", fractures.geometry.orientations.concentricity)) << names[i];
+      EXPECT_EQ(entry["concentricity"].get<double>(), fractures.geometry.orientations.concentricity);
+    }
   }
   for (const char* figure : {"phase_M0.5_eps0.002.png", "phase_M1_eps0.002.png", "phase_M1_eps0.002.svg"})
     EXPECT_TRUE(fs::exists(out / "report" / figure)) << figure;
