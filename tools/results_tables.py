@@ -349,21 +349,27 @@ VALIDATE_ROWS = [
 ]
 
 
+def comparison_cells(docs, key, cell):
+    """One cell per validation.json for its comparison `key` ("" where absent), and the tolerance."""
+    cells, tolerance = [], ""
+    for _, d in docs:
+        c = d["comparisons"].get(key)
+        cells.append("" if c is None else cell(c))
+        if c is not None:
+            tolerance = pct(c["tolerance"], 0)
+    return cells, tolerance
+
+
 def validation_lines(p, columns):
     """One row per check of validation.json, one column per body: measured / theory = ratio."""
     docs = [(label, p.load(Path(folder) / "validate" / "validation.json")) for label, folder in columns]
     header = ["check", "theory"] + [f"{label}: measured / theory = ratio" for label, _ in docs] + ["tolerance"]
     rows = []
+    def cell(c):
+        digits = 4 if c["measured"] >= 0.1 else 3
+        return f"{sig(c['measured'], digits)} / {sig(c['theory'], digits)} = {fixed(c['ratio'], 3)}"
     for key, check, theory in VALIDATE_ROWS:
-        cells, tolerance = [], ""
-        for _, d in docs:
-            c = d["comparisons"].get(key)
-            if c is None:
-                cells.append("")
-                continue
-            digits = 4 if c["measured"] >= 0.1 else 3
-            cells.append(f"{sig(c['measured'], digits)} / {sig(c['theory'], digits)} = {fixed(c['ratio'], 3)}")
-            tolerance = pct(c["tolerance"], 0)
+        cells, tolerance = comparison_cells(docs, key, cell)
         rows.append([check, theory] + cells + [tolerance])
     extra = []
     for key, check, theory, field in (("breathing", "", "Lamb with self-gravity", "self_gravitating_ratio"),
@@ -795,14 +801,8 @@ def crust_coupling(p):
     docs = [(label, p.load(folder / "validate" / "validation.json")) for label, folder in columns]
     rows = []
     for key, label in COUPLING_ROWS:
-        cells, tolerance = [], ""
-        for _, d in docs:
-            c = d["comparisons"].get(key)
-            if c is None:
-                cells.append("")
-                continue
-            cells.append(f"{sig(c['measured'], 4)} ({sig(c['theory'], 4)}, {fixed(c['ratio'], 3)}x)")
-            tolerance = pct(c["tolerance"], 0)
+        cells, tolerance = comparison_cells(
+            docs, key, lambda c: f"{sig(c['measured'], 4)} ({sig(c['theory'], 4)}, {fixed(c['ratio'], 3)}x)")
         rows.append([label] + cells + [tolerance])
     rows.append(["scatter of the ratio (half the 16-84% range)"]
                 + [fixed(d["details"]["tide"]["ratio_scatter"], 3) for _, d in docs] + [""])
