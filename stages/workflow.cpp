@@ -120,6 +120,20 @@ WorkflowResult interrupted(WorkflowResult& result) {
 
 }  // namespace
 
+Config body_chain_config(const Config& config, const fs::path& root) {
+  Config prepared = config;
+  fs::path parent_file;
+  for (const StageKind& kind : stage_kinds()) {
+    if (kind.per_encounter) continue;
+    if (kind.prepare && !parent_file.empty()) {
+      if (!fs::exists(parent_file)) return prepared;  // nothing run yet: the caller says so
+      kind.prepare(prepared, read_checkpoint(parent_file), parent_file.string());
+    }
+    parent_file = stage_file(root / "body", kind);
+  }
+  return prepared;
+}
+
 WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
   RunContext ctx;
   ctx.quiet = options.quiet;

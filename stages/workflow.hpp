@@ -42,6 +42,13 @@ struct WorkflowResult {
 /// builds: InputError naming the file and the first difference. Nothing when the file is absent.
 void check_same_body(const std::filesystem::path& build_file, const Config& config);
 
+/// The configuration as the body chain's StageKind::prepare steps leave it (the relax's time
+/// step, chosen from the stretched body when integrator.dt is not given), from the body
+/// checkpoints `run` wrote in root/body: what the encounters of run_workflow were computed with,
+/// so that `report` judges them as run does. Stops at the first body checkpoint that is missing
+/// (nothing run yet); InputError naming one that cannot be read.
+Config body_chain_config(const Config& config, const std::filesystem::path& root);
+
 /// Runs (or resumes) the workflow of `config`, which must be validated. InputError before
 /// anything is written if root holds checkpoints of another body; SimulationError on a blow-up
 /// (with a diagnostic checkpoint beside the stage's file).

@@ -16,6 +16,7 @@
 #include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
+#include "stages/workflow.hpp"
 
 namespace tidalcrust {
 
@@ -48,7 +49,8 @@ int command_report(int argc, char** argv) {
   auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
   const WorkflowArguments w = read_workflow_arguments(parsed);
-  const SweepReport report = build_sweep_report(w.config, w.root, w.dt_factor);
+  // The time step as run resolved it (chosen from the stretched body for a [material] body).
+  const SweepReport report = build_sweep_report(body_chain_config(w.config, w.root), w.root, w.dt_factor);
   const fs::path dir = report.folder / "report";
   std::error_code ec;
   fs::create_directories(dir, ec);

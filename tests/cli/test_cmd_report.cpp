@@ -148,3 +148,21 @@ TEST(Report, NothingRunIsOneLineErrorAndWritesNothing) {
   EXPECT_NE(result.err.find("relax.h5"), std::string::npos) << result.err;
   EXPECT_FALSE(fs::exists(out));
 }
+
+// A [material] body without integrator.dt has its time step chosen by run from the stretched
+// body (stages/time_step.hpp); report resolves it the same way, so an encounter run with that
+// time step is finished, not "computed with other values" (issue 28).
+TEST(Report, AMaterialBodyWhoseTimeStepRunChoseIsFinishedNotStale) {
+  const ScratchFolder scratch("report_material");
+  const fs::path out = scratch.path / "out";
+  const std::string workflow = quoted(fs::path(TIDALCRUST_SOURCE_DIR) / "workflows" / "material-L3.toml");
+  const std::string shorter =
+      " --set relax.duration=0.3 --set relax.settle_duration=0.1 --set relax.stability_probe=false"
+      " --set encounter.start_distance=2.0 --set encounter.end_distance=2.0";
+  const auto ran = run_cli("run " + workflow + " --only T5 --quiet --out " + quoted(out) + shorter);
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  const auto r = run_cli("report " + workflow + " --out " + quoted(out) + shorter);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("finished: 1"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("stale"), std::string::npos) << r.out;
+}
