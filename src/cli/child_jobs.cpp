@@ -16,8 +16,30 @@
 #include "base/errors.hpp"
 #include "io/stop_signal.hpp"
 
+extern char** environ;
+
 namespace tidalcrust {
 namespace {
+
+/// /proc/self/exe opened before main (static initialisation): the binary this process started
+/// as, whatever later happens to its file. Close-on-exec: fexecve of an ELF file does not need it
+/// open in the new image. -1 if it could not be opened.
+const int own_executable_fd = ::open("/proc/self/exe", O_RDONLY | O_CLOEXEC);
+
+/// Writes "cannot start <what>: errno <e>\n" to fd 2 with async-signal-safe calls only.
+void report_exec_failure(const std::string& what, int e) {
+  char digits[16];
+  int n = 0;
+  do digits[sizeof digits - 1 - n++] = static_cast<char>('0' + e % 10), e /= 10;
+  while (e > 0 && n < 15);
+  const char prefix[] = "cannot start ";
+  const char middle[] = ": errno ";
+  [[maybe_unused]] ssize_t ignored = ::write(2, prefix, sizeof prefix - 1);
+  ignored = ::write(2, what.data(), what.size());
+  ignored = ::write(2, middle, sizeof middle - 1);
+  ignored = ::write(2, digits + sizeof digits - n, static_cast<std::size_t>(n));
+  ignored = ::write(2, "\n", 1);
+}
 
 /// One running child: its pid, the read ends of its stdout and stderr pipes, what came so far.
 struct RunningChild {
@@ -58,7 +80,7 @@ void drain(int& fd, std::string& into) {
   }
 }
 
-RunningChild start_child(const std::string& executable, const std::vector<std::string>& args, std::size_t job,
+RunningChild start_child(const Executable& executable, const std::vector<std::string>& args, std::size_t job,
                          std::size_t slot) {
   int out_pipe[2], err_pipe[2];
   if (::pipe2(out_pipe, O_CLOEXEC) != 0) throw InputError(fmt::format("cannot create a pipe: {}", std::strerror(errno)));
@@ -68,7 +90,7 @@ RunningChild start_child(const std::string& executable, const std::vector<std::s
   }
   // Everything the child needs is prepared before fork: after it only async-signal-safe calls.
   std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(executable.c_str()));
+  argv.push_back(const_cast<char*>(executable.path.c_str()));
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const pid_t parent = ::getpid();
@@ -80,7 +102,11 @@ RunningChild start_child(const std::string& executable, const std::vector<std::s
     if (::getppid() != parent) ::_exit(130);
     ::dup2(out_pipe[1], 1);
     ::dup2(err_pipe[1], 2);
-    ::execv(executable.c_str(), argv.data());
+    if (executable.fd >= 0)
+      ::fexecve(executable.fd, argv.data(), environ);
+    else
+      ::execv(executable.path.c_str(), argv.data());
+    report_exec_failure(executable.path, errno);
     ::_exit(127);
   }
   const int fork_errno = errno;
@@ -88,7 +114,7 @@ RunningChild start_child(const std::string& executable, const std::vector<std::s
   ::close(err_pipe[1]);
   if (pid < 0) {
     ::close(out_pipe[0]), ::close(err_pipe[0]);
-    throw InputError(fmt::format("cannot start {}: {}", executable, std::strerror(fork_errno)));
+    throw InputError(fmt::format("cannot start {}: {}", executable.path, std::strerror(fork_errno)));
   }
   ::fcntl(out_pipe[0], F_SETFL, O_NONBLOCK);
   ::fcntl(err_pipe[0], F_SETFL, O_NONBLOCK);
@@ -109,7 +135,7 @@ int exit_code_of(int status) {
 
 }  // namespace
 
-std::vector<ChildOutcome> run_child_jobs(const std::string& executable, const std::vector<std::string>& names,
+std::vector<ChildOutcome> run_child_jobs(const Executable& executable, const std::vector<std::string>& names,
                                          std::size_t slots, const ChildArguments& arguments,
                                          const ChildFinished& on_finished) {
   install_stop_handlers();
@@ -164,11 +190,13 @@ std::vector<ChildOutcome> run_child_jobs(const std::string& executable, const st
   return outcomes;
 }
 
-std::string own_executable() {
+Executable own_executable() {
+  if (own_executable_fd < 0)
+    throw InputError("cannot open this program's executable (/proc/self/exe) to start its child processes");
   std::error_code ec;
   const auto path = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) throw InputError(fmt::format("cannot find this program's executable (/proc/self/exe): {}", ec.message()));
-  return path.string();
+  return {path.string(), own_executable_fd};
 }
 
 std::vector<int> split_threads(int total, std::size_t slots) {

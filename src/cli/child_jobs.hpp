@@ -11,6 +11,14 @@
 
 namespace tidalcrust {
 
+/// A program to start: its path (for messages and argv[0]) and, for this process's own
+/// executable, a file descriptor on it opened when the program started, so that children run the
+/// very binary the parent runs even after the file at `path` is rebuilt, reinstalled or removed.
+struct Executable {
+  std::string path;
+  int fd = -1;  ///< -1: started by path
+};
+
 /// How one job ended.
 struct ChildOutcome {
   std::size_t job = 0;   ///< index into the job list
@@ -28,13 +36,15 @@ using ChildFinished = std::function<void(const ChildOutcome& outcome, std::size_
 /// Runs `job_count` jobs of `executable`, at most `slots` at once, each job's stderr lines
 /// prefixed with "[names[job]] ". Returns the outcomes of the jobs that ran, in the order they
 /// finished; after a stop request (SIGINT/SIGTERM) no new job starts, the running ones get
-/// SIGTERM and are waited for. InputError if a process cannot be started.
-std::vector<ChildOutcome> run_child_jobs(const std::string& executable, const std::vector<std::string>& names,
+/// SIGTERM and are waited for. InputError if a process cannot be created; a child whose program
+/// cannot be executed writes "cannot start PATH: errno N" to its stderr and exits with 127.
+std::vector<ChildOutcome> run_child_jobs(const Executable& executable, const std::vector<std::string>& names,
                                          std::size_t slots, const ChildArguments& arguments,
                                          const ChildFinished& on_finished);
 
-/// This process's executable (/proc/self/exe).
-std::string own_executable();
+/// This process's executable: /proc/self/exe as opened at program start (fd), and its path.
+/// InputError if /proc/self/exe could not be opened then or cannot be resolved now.
+Executable own_executable();
 
 /// Threads of each of `slots` slots when `total` threads are shared among them: total/slots, the
 /// first total%slots slots one more, and at least 1 each.

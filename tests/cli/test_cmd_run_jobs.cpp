@@ -151,3 +151,41 @@ TEST(RunJobs, BadJobCountIsOneLineErrorAndWritesNothing) {
     EXPECT_FALSE(fs::exists(scratch.path / "out")) << value;
   }
 }
+
+// The children of `run --jobs` run the very binary the parent started (issue 28): the file at
+// the program's path is replaced (rebuilt or reinstalled) while the parent relaxes the body, and
+// every encounter still runs and finishes. The parent is held after its 5th step until the file
+// is replaced; the children, which inherit the hold, are released as they arrive.
+TEST(RunJobs, ChildrenRunTheBinaryTheParentStartedAfterItsFileIsReplaced) {
+  const ScratchFolder scratch("jobs_replaced_binary");
+  const auto workflow = sweep_workflow(scratch.path);
+  const auto out = scratch.path / "out";
+  const fs::path program = scratch.path / "bin" / "tidalcrust";
+  fs::create_directories(program.parent_path());
+  fs::copy_file(TIDALCRUST_EXE, program);
+  const fs::path hold = scratch.path / "held";
+  const std::string command = fmt::format(
+      "exec env TIDALCRUST_TEST_HOLD_AT=step:5 TIDALCRUST_TEST_HOLD_FILE={} {} {} >{} 2>{} </dev/null", quoted(hold),
+      quoted(program), run_args(workflow, out, "--quiet --jobs 2 --threads 2"), quoted(scratch.path / "out.txt"),
+      quoted(scratch.path / "err.txt"));
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_TRUE(wait_while_running(pid, [&] { return count_lines(read_file(hold)) == 1; }));
+  const fs::path replacement = scratch.path / "bin" / "new";
+  std::ofstream(replacement) << "#!/bin/sh\nexit 99\n";
+  fs::permissions(replacement, fs::perms::owner_all);
+  fs::rename(replacement, program);  // as `install` or a linker replaces a binary
+  while (is_running(pid)) {
+    std::error_code ec;
+    fs::remove(hold, ec);  // releases the parent, then each child at its 5th step
+    ::usleep(2000);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << read_file(scratch.path / "err.txt");
+  for (const auto& name : sweep_names) EXPECT_TRUE(fs::exists(out / name / "encounter.h5")) << name;
+}
