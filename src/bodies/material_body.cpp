@@ -61,7 +61,7 @@ SpringConstants material_spring_constants(const Config& config, const BodyType& 
   if (!shell.empty()) {
     const double per_shell_node = config.resolution.cross_per_shell_node.value_or(2.33);
     k.cross_distance = cross_distance_for(interior_nodes, shell, per_shell_node);
-    if (!(k.cross_distance > 0))
+    if (!welded && !(k.cross_distance > 0))  // a welded body's shell is held by its welded springs
       throw InputError(fmt::format("resolution.cross_per_shell_node = {} gives no cross spring to the {} shell nodes",
                                    per_shell_node, shell.size()));
     k.bending = hinge_constant_for_rigidity(material_flexural_rigidity(config.material));
