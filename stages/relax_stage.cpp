@@ -34,13 +34,23 @@ void zero_crust_stress(const Body& body, State& state) {
 
 /// The "balanced" support: the crust stress removed exactly, then the cross springs' rest
 /// lengths chosen so that they alone carry every shell node's weight (balance_cross_springs).
-/// The welded coupling's springs span orders of magnitude in stiffness: the balance then moves
-/// every rest length alike (stiffness_weighted).
+/// The "lithostatic" support: every shell spring set to eps_L (lithostatic_crust_strain, the
+/// compression its weight gives on the welded interior), hinges at rest, and the cross springs
+/// carry the weight less the crust's outward push. The welded coupling's springs span orders of
+/// magnitude in stiffness: the balance then moves every rest length alike (stiffness_weighted).
 void support_crust_by_cross_springs(ForceField& forces, const Body& body, State& state, const Config& config) {
   zero_crust_stress(body, state);
   std::vector<double> gravity(state.position.size());
   forces.compute_gravity(state.position.data(), gravity.data());
-  balance_cross_springs(body, state, gravity, config.cross.coupling == CrossCoupling::welded);
+  const bool weighted = config.cross.coupling == CrossCoupling::welded;
+  if (config.relax.crust_support != CrustSupport::lithostatic) {
+    balance_cross_springs(body, state, gravity, weighted);
+    return;
+  }
+  set_shell_strain(body, state,
+                   lithostatic_crust_strain(body, state, gravity, config.interior.radius, config.interior.spring_distance));
+  const std::vector<double> crust_force = shell_spring_forces(body, state);
+  balance_cross_springs(body, state, gravity, weighted, &crust_force);
 }
 
 /// The relaxation proper: leapfrog at damping relax.damping, all schedules counted in steps
@@ -66,7 +76,7 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
   const RelaxConfig& relax = config.relax;
   const std::int64_t start = checkpoint.stage.clock.start_step;
   const std::int64_t creep_end = record.creep_end_step;
-  const bool balanced = relax.crust_support == CrustSupport::balanced;
+  const bool balanced = relax.crust_support != CrustSupport::paper;  // balanced or lithostatic
   auto after_step = [&](Checkpoint& c) {
     const std::int64_t done = c.state.step - start;
     if (balanced) {
@@ -150,7 +160,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   record.creep_end_step =
       std::max(clock.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, clock.dt));
   if (record.creep_end_step == clock.start_step) {  // settle only
-    if (config.relax.crust_support == CrustSupport::balanced) {
+    if (config.relax.crust_support != CrustSupport::paper) {
       ForceField forces(c.body, force_options(config, record.damping));
       support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else {

@@ -16,7 +16,6 @@
 #include "forces/spring_force.hpp"
 #include "integrate/leapfrog.hpp"
 #include "model/center_of_mass.hpp"
-#include "model/derived_quantities.hpp"
 #include "physics/continuum_elasticity.hpp"
 
 namespace tidalcrust {
@@ -85,26 +84,6 @@ double dominant_frequency(const std::vector<double>& t, const std::vector<double
   }
   return 0.5 * (lo + hi);
 }
-
-namespace {
-
-/// Eq. 15 over the interior springs whose midpoints lie within `radius` of the centre of mass
-/// (rest lengths of `state`), over that ball's volume, e_g.
-double inner_network_youngs_modulus(const Body& body, const State& state, double radius) {
-  const Vec3 center = body_center_of_mass(body, state);
-  double sum = 0;
-  for (std::size_t n = 0; n < body.spring_count(); ++n) {
-    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
-    const auto [i, j] = body.springs[n];
-    const Vec3 mid = 0.5 * (position_of(state, static_cast<std::size_t>(i)) + position_of(state, static_cast<std::size_t>(j)));
-    if (!((mid - center).norm() < radius)) continue;
-    const double length = state.springs.rest_length[n];
-    sum += state.springs.stiffness[n] * length * length;
-  }
-  return network_youngs_modulus(sum, 4.0 / 3.0 * pi * radius * radius * radius);
-}
-
-}  // namespace
 
 BodyMaterial body_material(const Checkpoint& relaxed, const Config& config) {
   const DerivedQuantities q = derive_quantities(relaxed.body, relaxed.state, config.interior.radius);

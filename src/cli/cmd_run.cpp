@@ -187,8 +187,11 @@ int command_run(int argc, char** argv) {
 
   fmt::print("\nworkflow {} finished: checkpoints in {}\n", config.workflow.name, workflow_options.root.string());
   if (result.relaxed && result.relaxed->probe_runs > 0)
-    fmt::print("relaxed body: stability probe {} failures, largest shell strain {:.2e}\n",
-               result.relaxed->probe_failures, result.relaxed->probe_max_shell_strain);
+    fmt::print("relaxed body: largest |shell strain| {:.2e} (tension {:.2e}); stability probe at eps_S = {:.2g}: "
+               "{} failures, largest tension {:.2e}\n",
+               result.relaxed->max_shell_strain, result.relaxed->max_shell_tension,
+               result.relaxed->probe_failure_strain, result.relaxed->probe_failures,
+               result.relaxed->probe_max_shell_strain);
   for (const auto& e : result.encounters) fmt::print("  {}\n    figures: {}\n", e.summary, e.analysis.string());
   // What a batch job must request (the level-6 T5 run: 567 MB with its analysis figures).
   fmt::print("peak memory: {:.0f} MB{}\n", peak_memory_mb(true), jobs > 1 ? " (largest process)" : "");

@@ -38,12 +38,15 @@ concept Choice = std::is_enum_v<E> && requires { ChoiceTable<E>::rows; };
 enum class CrustSupport {
   paper,     ///< section 2.8: the crust carries the cross springs' tangential push
   balanced,  ///< cross-spring rest lengths chosen so that they alone carry each shell node's weight
+  lithostatic,  ///< balanced, but the crust keeps the compression its weight gives on a welded interior
 };
 template <>
 struct ChoiceTable<CrustSupport> {
   static constexpr std::array rows{
       ChoiceRow<CrustSupport>{CrustSupport::paper, "paper", "crust carries the cross springs' sideways push"},
       ChoiceRow<CrustSupport>{CrustSupport::balanced, "balanced", "no crust pre-stress"},
+      ChoiceRow<CrustSupport>{CrustSupport::lithostatic, "lithostatic",
+                              "crust compressed by its own weight; welded crust only"},
   };
 };
 

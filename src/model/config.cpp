@@ -794,9 +794,14 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.settle_duration > config.relax.duration)
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
-  if (config.relax.crust_support == CrustSupport::balanced && config.cross.nonlinear)
-    throw InputError(fmt::format("{}: relax.crust_support = \"balanced\" needs linear cross springs "
+  if (config.relax.crust_support != CrustSupport::paper && config.cross.nonlinear)
+    throw InputError(fmt::format("{}: relax.crust_support = \"{}\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
+                                 origin, choice_name(config.relax.crust_support)));
+  if (config.relax.crust_support == CrustSupport::lithostatic &&
+      (config.cross.coupling != CrossCoupling::welded || !config.shell.enabled))
+    throw InputError(fmt::format("{}: relax.crust_support = \"lithostatic\" needs a crust welded to the interior "
+                                 "(cross.coupling = \"welded\"): its compression is derived for a welded crust",
                                  origin));
   if (config.cross.coupling == CrossCoupling::welded && config.cross.nonlinear)
     throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "

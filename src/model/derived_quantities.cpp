@@ -7,6 +7,9 @@
 #include <numbers>
 #include <vector>
 
+#include "base/vec3.hpp"
+#include "model/center_of_mass.hpp"
+
 namespace tidalcrust {
 namespace {
 
@@ -100,6 +103,21 @@ DerivedQuantities derive_quantities(const Body& body, const State& state, double
   }
   q.dt_max = stability_bound(body, state);
   return q;
+}
+
+double inner_network_youngs_modulus(const Body& body, const State& state, double radius) {
+  const Vec3 center = body_center_of_mass(body, state);
+  double sum = 0;
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
+    const auto [i, j] = body.springs[n];
+    const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(i)) +
+                            vec3_at(state.position, static_cast<std::size_t>(j)));
+    if (!((mid - center).norm() < radius)) continue;
+    const double length = state.springs.rest_length[n];
+    sum += state.springs.stiffness[n] * length * length;
+  }
+  return network_youngs_modulus(sum, 4.0 / 3.0 * std::numbers::pi * radius * radius * radius);
 }
 
 }  // namespace tidalcrust

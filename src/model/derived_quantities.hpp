@@ -54,6 +54,12 @@ inline double spring_constant_for_modulus(double youngs_modulus, double volume, 
 /// ratio 1/4, in sqrt(GM/R).
 double p_wave_speed(double youngs_modulus);
 
+/// Eq. 15 over the interior springs whose midpoints lie within `radius` (R) of the centre of mass
+/// (rest lengths and stiffnesses of `state`), over that ball's volume, e_g. A welded body's
+/// modulus is this over the springs deeper than d_I (radius r_I - d_I): its welded springs restore
+/// what the network lacks near its surface (docs/crust-support.md, "The welded coupling").
+double inner_network_youngs_modulus(const Body& body, const State& state, double radius);
+
 /// `interior_radius` is r_I (the volume V of eq. 15 is that of the sphere of radius r_I).
 DerivedQuantities derive_quantities(const Body& body, const State& state, double interior_radius);
 

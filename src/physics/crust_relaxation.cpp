@@ -5,11 +5,14 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <numbers>
 
 #include "forces/hinge_geometry.hpp"
 #include "model/center_of_mass.hpp"
 #include "base/errors.hpp"
 #include "base/vec3.hpp"
+#include "base/invariant.hpp"
+#include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
 
@@ -33,7 +36,7 @@ void reset_hinge_rest_angles(const Body& body, State& state) {
 }
 
 CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity,
-                                   bool stiffness_weighted) {
+                                   bool stiffness_weighted, const std::vector<double>* crust_force) {
   // The cross springs of each shell node, in spring index order.
   std::vector<std::vector<std::size_t>> cross_of(body.particle_count());
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
@@ -46,7 +49,9 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
   CrossBalance result;
   for (std::size_t s = 0; s < body.particle_count(); ++s) {
     if (body.species[s] != static_cast<std::uint8_t>(Species::shell)) continue;
-    const Vec3 weight = body.mass[s] * vec3_at(gravity, s);
+    // What the cross springs carry: the weight, and the crust's push when it is pre-stressed.
+    Vec3 load = body.mass[s] * vec3_at(gravity, s);
+    if (crust_force) load += vec3_at(*crust_force, s);
     const auto& springs = cross_of[s];
     const std::size_t m = springs.size();
     std::vector<Vec3> direction(m);
@@ -68,7 +73,7 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
     // Gram matrix, dropping directions no spring can push along.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(gram);
     const Eigen::Vector3d lambda = eigen.eigenvalues();
-    const Eigen::Vector3d projected = eigen.eigenvectors().transpose() * (weight - pushed);
+    const Eigen::Vector3d projected = eigen.eigenvectors().transpose() * (load - pushed);
     Eigen::Vector3d scaled = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3; ++k)
       if (lambda(k) > 1e-12 * lambda(2)) scaled(k) = projected(k) / lambda(k);
@@ -79,7 +84,7 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
       tension[c] += share * direction[c].dot(y);
       carried += tension[c] * direction[c];
     }
-    const double relative = (carried - weight).norm() / weight.norm();
+    const double relative = (carried - load).norm() / load.norm();
     result.max_residual = std::max(result.max_residual, relative);
     if (relative > 1e-9) ++result.unbalanced_nodes;
     for (std::size_t c = 0; c < m; ++c) {
@@ -94,6 +99,55 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
     }
   }
   return result;
+}
+
+double lithostatic_crust_strain(const Body& body, const State& state, const std::vector<double>& gravity,
+                                double interior_radius, double interior_spring_distance) {
+  const double shell_radius = mean_shell_radius(body, state);
+  double weight = 0;
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) weight += body.mass[i] * vec3_at(gravity, i).norm();
+  double stiffness_length2 = 0;
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const double rest = state.springs.rest_length[n];
+    stiffness_length2 += state.springs.stiffness[n] * rest * rest;
+  }
+  const double deep = interior_radius - interior_spring_distance;
+  TIDALCRUST_ASSERT(shell_radius > 0 && stiffness_length2 > 0 && deep > 0, "lithostatic crust strain needs a shell and deep interior springs");
+  const double area = 4 * std::numbers::pi * shell_radius * shell_radius;
+  const double youngs = inner_network_youngs_modulus(body, state, deep);
+  TIDALCRUST_ASSERT(youngs > 0, "lithostatic crust strain: no interior springs deeper than d_I");
+  constexpr double poisson = 0.25;
+  const double bulk = youngs / (3 * (1 - 2 * poisson));
+  const double membrane = stiffness_length2 / (2 * area);
+  return -(weight / area) / (3 * bulk + 2 * membrane / shell_radius);
+}
+
+void set_shell_strain(const Body& body, State& state, double strain) {
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const auto i = static_cast<std::size_t>(body.springs[n][0]);
+    const auto j = static_cast<std::size_t>(body.springs[n][1]);
+    state.springs.rest_length[n] = (vec3_at(state.position, i) - vec3_at(state.position, j)).norm() / (1 + strain);
+  }
+}
+
+std::vector<double> shell_spring_forces(const Body& body, const State& state) {
+  std::vector<double> force(state.position.size(), 0.0);
+  for (std::size_t n = 0; n < body.spring_count(); ++n) {
+    if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::shell)) continue;
+    const auto i = static_cast<std::size_t>(body.springs[n][0]);
+    const auto j = static_cast<std::size_t>(body.springs[n][1]);
+    const Vec3 d = vec3_at(state.position, i) - vec3_at(state.position, j);
+    const double length = d.norm();
+    const Vec3 on_i = -state.springs.stiffness[n] * (length - state.springs.rest_length[n]) / length * d;
+    for (int k = 0; k < 3; ++k) {
+      force[3 * i + static_cast<std::size_t>(k)] += on_i(k);
+      force[3 * j + static_cast<std::size_t>(k)] -= on_i(k);
+    }
+  }
+  return force;
 }
 
 double mean_shell_radius(const Body& body, const State& state) {

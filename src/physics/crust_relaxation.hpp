@@ -19,8 +19,8 @@ void reset_hinge_rest_angles(const Body& body, State& state);
 
 /// What balance_cross_springs() achieved.
 struct CrossBalance {
-  /// Largest |sum of cross-spring forces + weight| over the shell nodes, relative to the node's
-  /// weight m g: 0 (to rounding) when every node has cross springs spanning three directions.
+  /// Largest |sum of cross-spring forces + weight (+ crust force)| over the shell nodes, relative
+  /// to what they carry: 0 (to rounding) when every node has cross springs spanning three directions.
   double max_residual = 0;
   std::int64_t unbalanced_nodes = 0;  ///< shell nodes whose residual exceeds 1e-9 of their weight
 };
@@ -37,9 +37,35 @@ struct CrossBalance {
 /// t = t0 + K A^T (A K A^T)^+ (m g - A t0), K = diag(k_n), i.e. every rest length changes by
 /// u_n . y, as if the node sank by one common y against its springs (the welded coupling, whose
 /// stiffnesses span orders of magnitude: equal tension changes would strain its softest springs most).
+/// `crust_force` [N*3] (G M^2/R^2, optional): a force the crust puts on each shell node, carried
+/// too (sum_n t_n u_n = m_s g_s + F_s); the lithostatic crust's compression pushes outward.
 /// Throws InputError if a rest length would not stay positive. docs/crust-support.md.
 CrossBalance balance_cross_springs(const Body& body, State& state, const std::vector<double>& gravity,
-                                   bool stiffness_weighted = false);
+                                   bool stiffness_weighted = false, const std::vector<double>* crust_force = nullptr);
+
+/// The horizontal strain (negative: compression) of a crust whose own weight rests on a welded
+/// elastic interior, for the lithostatic support (docs/crust-support.md, "The lithostatic crust"):
+///
+///     eps_L = -w / (3 K + 2 C / R_S),
+///
+/// w = sum_s m_s |g_s| / (4 pi R_S^2) the crust's weight per area (G M^2/R^4), K = E / (3 (1 - 2 nu))
+/// the interior's bulk modulus (E = inner_network_youngs_modulus over the springs deeper than
+/// interior_spring_distance below interior_radius, nu = 1/4), C = sum k L0^2 / (2 * 4 pi R_S^2) the
+/// membrane's stiffness in equal two-way stretch (e_g R; sqrt(3) k for an equilateral triangular
+/// lattice), R_S the mean shell radius. Degree-0 load on a homogeneous interior; the change of the
+/// interior's own gravity as it compresses is neglected (relative size rho g R / K). Internal error
+/// (TIDALCRUST_ASSERT) without shell springs or deep interior springs.
+/// gravity: self-gravity accelerations [N*3] (G M/R^2) at the current positions.
+double lithostatic_crust_strain(const Body& body, const State& state, const std::vector<double>& gravity,
+                                double interior_radius, double interior_spring_distance);
+
+/// Shell springs only: L0 = L / (1 + strain), so that every shell spring sits at `strain`.
+void set_shell_strain(const Body& body, State& state, double strain);
+
+/// The elastic force of the shell springs on each particle [N*3] (G M^2/R^2) at the current
+/// positions and rest lengths (eq. 12 without damping): what the cross springs must carry besides
+/// the weight when the crust is pre-stressed.
+std::vector<double> shell_spring_forces(const Body& body, const State& state);
 
 /// Mean distance of the shell nodes from the body's centre of mass (R); 0 without shell.
 double mean_shell_radius(const Body& body, const State& state);

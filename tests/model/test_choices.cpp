@@ -43,17 +43,17 @@ void expect_table_round_trips() {
 /// Sets `key` to every name of E's table in a Config (--set and a [section] table of a workflow
 /// file), prints the configuration and reads the print back: the same value each time.
 template <Choice E, class Get>
-void expect_config_round_trips(const std::string& key, Get get) {
+void expect_config_round_trips(const std::string& key, Get get, const std::string& other_keys = "") {
   const std::string section = key.substr(0, key.find('.')), name = key.substr(key.find('.') + 1);
   for (const auto& row : ChoiceTable<E>::rows) {
-    Config config;
+    Config config = parse_config(other_keys, "other keys");
     apply_override(config, key + "=" + std::string(row.name));  // a bare word, as a shell passes it
     EXPECT_EQ(get(config), row.value) << key << " = " << row.name;
     const std::string text = to_toml(config);
     EXPECT_NE(text.find(name + " = '" + std::string(row.name) + "'"), std::string::npos) << text;
     EXPECT_EQ(get(parse_config(text, "printed")), row.value) << key << " = " << row.name;
     const Config from_file =
-        parse_config("[" + section + "]\n" + name + " = \"" + std::string(row.name) + "\"\n", "file.toml");
+        parse_config(other_keys + "[" + section + "]\n" + name + " = \"" + std::string(row.name) + "\"\n", "file.toml");
     EXPECT_EQ(get(from_file), row.value) << key << " = " << row.name;
   }
 }
@@ -79,7 +79,9 @@ TEST(Choices, EveryNameTableRoundTrips) {
 }
 
 TEST(Choices, EveryChoiceKeyRoundTripsThroughTheResolvedConfiguration) {
-  expect_config_round_trips<CrustSupport>("relax.crust_support", [](const Config& c) { return c.relax.crust_support; });
+  // "lithostatic" needs the welded coupling.
+  expect_config_round_trips<CrustSupport>("relax.crust_support", [](const Config& c) { return c.relax.crust_support; },
+                                          "[cross]\ncoupling = \"welded\"\n");
   expect_config_round_trips<CrossCoupling>("cross.coupling", [](const Config& c) { return c.cross.coupling; });
   expect_config_round_trips<HydrostaticSupport>("stretch.hydrostatic_support",
                                                 [](const Config& c) { return c.stretch.hydrostatic_support; });
@@ -91,7 +93,8 @@ TEST(Choices, EveryChoiceKeyRoundTripsThroughTheResolvedConfiguration) {
 
 TEST(Choices, TheKeyCommentComesFromTheTable) {
   EXPECT_EQ(choice_doc<CrustSupport>(),
-            "\"paper\" (crust carries the cross springs' sideways push) or \"balanced\" (no crust pre-stress)");
+            "\"paper\" (crust carries the cross springs' sideways push), \"balanced\" (no crust pre-stress) or "
+            "\"lithostatic\" (crust compressed by its own weight; welded crust only)");
   EXPECT_EQ(choice_names<GravityKernel>(), "fast, portable");
   const std::string text = to_toml(Config{});
   EXPECT_NE(text.find("method = 'direct'  # [-] \"direct\" (every pair, the reference) or \"tree\" (octree, "
@@ -102,7 +105,7 @@ TEST(Choices, TheKeyCommentComesFromTheTable) {
 
 TEST(Choices, AValueOutsideTheTableNamesTheKeyAndListsTheChoices) {
   EXPECT_EQ(parse_error("[relax]\ncrust_support = \"glued\"\n"),
-            "bad.toml: relax.crust_support = \"glued\" is not one of: paper, balanced");
+            "bad.toml: relax.crust_support = \"glued\" is not one of: paper, balanced, lithostatic");
   EXPECT_EQ(parse_error("[cross]\ncoupling = \"glued\"\n"),
             "bad.toml: cross.coupling = \"glued\" is not one of: paper, welded");
   EXPECT_EQ(parse_error("[stretch]\nhydrostatic_support = \"stiffen\"\n"),

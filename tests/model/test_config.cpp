@@ -170,7 +170,7 @@ TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {
     apply_override(config, "relax.crust_support=glued");
     ADD_FAILURE() << "an unknown crust support was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "--set: relax.crust_support = \"glued\" is not one of: paper, balanced");
+    EXPECT_EQ(std::string(e.what()), "--set: relax.crust_support = \"glued\" is not one of: paper, balanced, lithostatic");
   }
 }
 
