@@ -207,7 +207,8 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
 /// Leapfrog::step with the field and the drag as its extra acceleration, for `steps` steps of
 /// clock.dt.
 void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag,
-                          const StepClock& clock, std::int64_t steps) {
+                          const StepClock& clock, std::int64_t steps,
+                          const std::function<void(std::int64_t)>& after_step) {
   Leapfrog leapfrog(forces, clock);
   leapfrog.set_extra_acceleration([&](const double* x, const double* v, std::vector<double>& a) {
     for (std::size_t p = 0; p < a.size() / 3; ++p) {
@@ -217,7 +218,10 @@ void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, 
     }
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = a[i] - drag * v[i];
   });
-  leapfrog.advance(state, steps);
+  for (std::int64_t s = 1; s <= steps; ++s) {
+    leapfrog.step(state);
+    if (after_step) after_step(s);
+  }
 }
 
 namespace {

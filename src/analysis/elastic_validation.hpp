@@ -4,6 +4,7 @@
 // relaxed state with the project's force field; the checkpoint itself is never changed.
 // Units G = M = R = 1 (times t_grav, moduli e_g, rigidities G M^2/R).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "base/vec3.hpp"
@@ -119,9 +120,11 @@ std::int64_t step_count(double duration, double dt);
 /// W = eps r^2 P2(cos theta) about `center`, per unit mass) with a drag -drag v on every particle
 /// (v at the start of the step, as the spring damping takes it): the leapfrog of Leapfrog::step
 /// (drift, kick with the forces at the half-step positions plus the field and the drag, drift),
-/// for `steps` steps of clock.dt. Used by measure_love_h2 and measure_tide.
+/// for `steps` steps of clock.dt. Used by measure_love_h2 and measure_tide. `after_step`
+/// (optional) is called after every step with the number of steps done (progress lines).
 void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, double eps, double drag,
-                          const StepClock& clock, std::int64_t steps);
+                          const StepClock& clock, std::int64_t steps,
+                          const std::function<void(std::int64_t)>& after_step = {});
 
 /// Least-squares fit of s(t) = a cos(omega t) + b sin(omega t) + c: its amplitude sqrt(a^2 + b^2).
 double sinusoid_amplitude(const std::vector<double>& t, const std::vector<double>& s, double omega);

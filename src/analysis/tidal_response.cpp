@@ -4,11 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "analysis/elastic_validation.hpp"
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
 #include "integrate/leapfrog.hpp"
+#include "io/progress.hpp"
 #include "model/center_of_mass.hpp"
 
 namespace tidalcrust {
@@ -132,7 +134,8 @@ SurfaceStrain continuum_surface_strain(double h2, double l2, double gamma) {
 }
 
 TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
-                        const LoveNumbers& theory, double surface_displacement, double drag, double duration) {
+                        const LoveNumbers& theory, double surface_displacement, double drag, double duration,
+                        bool progress) {
   const Body& body = relaxed.body;
   if (body.count_species(Species::shell) == 0) throw InputError("--measure tide needs a body with a crust");
   TideResult r;
@@ -153,11 +156,21 @@ TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const B
   r.minus = rest;
   const double eps = r.tidal_strength;
   const StepClock clock{rest.time, rest.step, dt};
-  relax_in_tidal_field(forces, r.plus, center, eps, r.drag, clock, early);
-  relax_in_tidal_field(forces, r.minus, center, -eps, r.drag, clock, early);
+  // Progress over the four runs (+eps and -eps, to 2/3 and on to the end): 2 * steps in all.
+  std::optional<ProgressReporter> line;
+  if (progress) line.emplace("validate: tide", 0, 2 * steps, std::nullopt);
+  std::int64_t before = 0;
+  const auto run = [&](State& state, double strength, std::int64_t count) {
+    relax_in_tidal_field(forces, state, center, strength, r.drag, clock, count,
+                         [&](std::int64_t done) { if (line) line->update(before + done); });
+    before += count;
+  };
+  run(r.plus, eps, early);
+  run(r.minus, -eps, early);
   r.early_fit = fit_degree_two_displacement(body, rest, r.plus, &r.minus, eps);
-  relax_in_tidal_field(forces, r.plus, center, eps, r.drag, clock, steps - early);
-  relax_in_tidal_field(forces, r.minus, center, -eps, r.drag, clock, steps - early);
+  run(r.plus, eps, steps - early);
+  run(r.minus, -eps, steps - early);
+  if (line) line->finish(before);
   r.fit = fit_degree_two_displacement(body, rest, r.plus, &r.minus, eps);
 
   // Every intact crust spring: measured and continuum strain per unit eps.
@@ -253,7 +266,7 @@ StrainRatioSpread strain_ratio_spread(const std::vector<double>& measured, const
 }
 
 RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config, const TideResult& tide,
-                                double expected_omega, double duration) {
+                                double expected_omega, double duration, bool progress) {
   const Body& body = relaxed.body;
   RingdownResult r;
   State plus = tide.plus, minus = tide.minus;
@@ -261,11 +274,15 @@ RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config,
   const StepClock clock{plus.time, plus.step, relaxed.stage.clock.dt};
   Leapfrog plus_step(plus_forces, clock), minus_step(minus_forces, clock);
   const std::int64_t steps = step_count(duration, clock.dt);
+  std::optional<ProgressReporter> line;
+  if (progress) line.emplace("validate: ring-down", 0, steps, std::nullopt);
   for (std::int64_t s = 0; s <= steps; ++s) {
     if (s > 0) plus_step.step(plus), minus_step.step(minus);
+    if (line) line->update(s);
     r.time.push_back(static_cast<double>(s) * clock.dt);
     r.signal.push_back(p2_signal(body, relaxed.state, plus, minus));
   }
+  if (line) line->finish(steps);
   r.initial = r.signal.front();
   const double omega = dominant_frequency(r.time, r.signal, 0.5 * expected_omega, 2 * expected_omega);
   r.period = 2 * pi / omega;

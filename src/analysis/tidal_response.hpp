@@ -105,9 +105,10 @@ struct TideResult {
 /// l2 (fit_degree_two_displacement) and compares every intact crust spring's strain change
 /// (L+ - L-) / (2 L_rest) / eps with the continuum's chord strain ((u(b) - u(a)).(x_b - x_a)/L^2,
 /// u the surface field of theory.h, theory.l at the rest positions).
+/// `progress`: a progress line (io/progress.hpp) on stderr while it runs.
 TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const BodyMaterial& material,
                         const LoveNumbers& theory, double surface_displacement = 1e-3, double drag = 0,
-                        double duration = 0);
+                        double duration = 0, bool progress = false);
 
 /// The free degree-2 oscillation after the tide is switched off: the settled tidal states of
 /// measure_tide are integrated with Leapfrog without tide, drag or spring damping for `duration`
@@ -122,6 +123,6 @@ struct RingdownResult {
   std::vector<double> signal;  ///< R
 };
 RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config, const TideResult& tide,
-                                double expected_omega, double duration);
+                                double expected_omega, double duration, bool progress = false);
 
 }  // namespace tidalcrust

@@ -284,7 +284,8 @@ int command_validate(int argc, char** argv) {
     const BodyMaterial& sphere = measured_moduli ? network_material : material;
     const LoveNumbers theory =
         homogeneous_sphere_love_numbers(2, sphere.youngs_modulus, sphere.poisson_ratio, sphere.density, sphere.radius);
-    const TideResult t = measure_tide(relaxed, config, sphere, theory);
+    const TideResult t = measure_tide(relaxed, config, sphere, theory, /*surface_displacement=*/1e-3, /*drag=*/0,
+                                      /*duration=*/0, !workflow_options.quiet);
     std::vector<ElasticLayer> layers = body_layers(relaxed, body_center_of_mass(relaxed.body, relaxed.state), 6, true);
     for (auto& layer : layers) {
       layer.youngs_modulus *= measured_moduli ? moduli.youngs_factor : 1.0;
@@ -342,7 +343,8 @@ int command_validate(int argc, char** argv) {
       const double omega = spheroidal_fundamental_frequency(2, sphere_layer, true);
       const double omega_lamb = spheroidal_fundamental_frequency(2, sphere_layer, false);
       const double omega_layered = spheroidal_fundamental_frequency(2, layers, true);
-      const RingdownResult d = measure_ringdown(relaxed, config, t, omega, 6 * 2 * std::numbers::pi / omega);
+      const RingdownResult d =
+          measure_ringdown(relaxed, config, t, omega, 6 * 2 * std::numbers::pi / omega, !workflow_options.quiet);
       add("ringdown", d.period, 2 * std::numbers::pi / omega);
       add("ringdown-lamb", d.period, 2 * std::numbers::pi / omega_lamb);
       const double shear_speed = std::sqrt(sphere.youngs_modulus / (2 * (1 + sphere.poisson_ratio)) / sphere.density);
