@@ -736,6 +736,27 @@ def material_runs(p):
                     + FAILURE_COLUMNS[1:], rows))
 
 
+@full_table("welded-T5")
+def welded_t5(p):
+    """T5 on the material of material-L4 with the paper's coupling, the welded crust and the welded
+    lithostatic crust (issue 23 items 4-5)."""
+    rows, files = [], []
+    for label, name in (("material-L4: paper coupling, balanced crust", "material-L4"),
+                        ("welded-L4: welded, balanced crust", "welded-L4"),
+                        ("welded-L4: welded, lithostatic crust", "welded-L4-litho")):
+        r = p.inspect(p.work / name / "body" / "relax.h5")["record"]
+        f = summary(p, p.work / name / "T5")["failures"]
+        files.append(p.work / name / "T5" / "encounter.h5")
+        rows.append([label, sci(r["max_shell_strain"], 2), sci(r["max_shell_tension"], 1), str(r["probe_failures"]),
+                     f"{count(f['count'])} ({pct(f['fraction_shell'])})"] + failures_row(f)[1:])
+    return (commands("tidalcrust run workflows/material-L4.toml --out material-L4",
+                     "tidalcrust run workflows/welded-L4.toml --out welded-L4",
+                     "tidalcrust run workflows/welded-L4.toml --out welded-L4-litho --set relax.crust_support=lithostatic")
+            + measured_line(p, *files)
+            + table(["body", "relaxed: largest |shell strain|", "largest tension", "probe failures (eps_S = 3e-3)",
+                     "T5: failed shell springs (fraction)"] + FAILURE_COLUMNS[1:], rows))
+
+
 @full_table("resolution")
 def resolution(p):
     files = [p.work / name / "T5" / "encounter.h5" for name in MATERIAL if (p.work / name / "T5").is_dir()]
