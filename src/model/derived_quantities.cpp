@@ -106,18 +106,35 @@ DerivedQuantities derive_quantities(const Body& body, const State& state, double
 }
 
 double inner_network_youngs_modulus(const Body& body, const State& state, double radius) {
+  return interior_modulus_profile(body, state, {radius})[0];
+}
+
+std::vector<double> interior_modulus_profile(const Body& body, const State& state,
+                                             const std::vector<double>& outer_radii) {
   const Vec3 center = body_center_of_mass(body, state);
-  double sum = 0;
+  std::vector<double> sum(outer_radii.size(), 0.0);
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     if (body.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::interior)) continue;
     const auto [i, j] = body.springs[n];
     const Vec3 mid = 0.5 * (vec3_at(state.position, static_cast<std::size_t>(i)) +
                             vec3_at(state.position, static_cast<std::size_t>(j)));
-    if (!((mid - center).norm() < radius)) continue;
+    const double r = (mid - center).norm();
+    const auto b = static_cast<std::size_t>(std::upper_bound(outer_radii.begin(), outer_radii.end(), r) - outer_radii.begin());
+    if (b == outer_radii.size()) continue;
     const double length = state.springs.rest_length[n];
-    sum += state.springs.stiffness[n] * length * length;
+    sum[b] += state.springs.stiffness[n] * length * length;
   }
-  return network_youngs_modulus(sum, 4.0 / 3.0 * std::numbers::pi * radius * radius * radius);
+  std::vector<double> modulus(outer_radii.size());
+  double inner = 0;
+  for (std::size_t b = 0; b < outer_radii.size(); ++b) {
+    const double outer = outer_radii[b];
+    // Written as the difference of two balls so that one bin from 0 rounds as 4/3 pi r r r did.
+    const double volume = 4.0 / 3.0 * std::numbers::pi * outer * outer * outer -
+                          4.0 / 3.0 * std::numbers::pi * inner * inner * inner;
+    modulus[b] = network_youngs_modulus(sum[b], volume);
+    inner = outer;
+  }
+  return modulus;
 }
 
 }  // namespace tidalcrust

@@ -1,5 +1,7 @@
 #pragma once
 // Table 3 quantities computed from a stored body with the paper's equations 15-25.
+#include <vector>
+
 #include "model/body.hpp"
 #include "model/state.hpp"
 
@@ -59,6 +61,12 @@ double p_wave_speed(double youngs_modulus);
 /// modulus is this over the springs deeper than d_I (radius r_I - d_I): its welded springs restore
 /// what the network lacks near its surface (docs/crust-support.md, "The welded coupling").
 double inner_network_youngs_modulus(const Body& body, const State& state, double radius);
+
+/// Eq. 15 per spherical shell about the centre of mass: element b is over the interior springs whose
+/// midpoints lie in [outer_radii[b-1], outer_radii[b]) (from 0 for b = 0), over that shell's volume,
+/// e_g. `outer_radii` must increase (R). The layered form of inner_network_youngs_modulus.
+std::vector<double> interior_modulus_profile(const Body& body, const State& state,
+                                             const std::vector<double>& outer_radii);
 
 /// `interior_radius` is r_I (the volume V of eq. 15 is that of the sphere of radius r_I).
 DerivedQuantities derive_quantities(const Body& body, const State& state, double interior_radius);

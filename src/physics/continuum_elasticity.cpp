@@ -289,5 +289,35 @@ double plate_sinusoidal_deflection(double load_amplitude, double wavenumber, dou
   return load_amplitude / (flexural_rigidity * std::pow(wavenumber, 4));
 }
 
+double layered_sphere_compression(const std::vector<ElasticLayer>& layers) {
+  if (layers.empty()) throw InputError("layered sphere: no layer");
+  // (A, B) of the current layer, up to a common factor: B = 0 at the centre.
+  double a = 1, b = 0, inner = 0;
+  double bulk = 0, shear = 0;
+  for (std::size_t n = 0; n < layers.size(); ++n) {
+    const ElasticLayer& layer = layers[n];
+    if (!(layer.outer_radius > inner) || !(layer.youngs_modulus > 0) || !(layer.poisson_ratio > -1) ||
+        !(layer.poisson_ratio < 0.5))
+      throw InputError(fmt::format("layered sphere: layer {} has outer radius {}, E {}, nu {}", n, layer.outer_radius,
+                                   layer.youngs_modulus, layer.poisson_ratio));
+    const double next_bulk = layer.youngs_modulus / (3 * (1 - 2 * layer.poisson_ratio));
+    const double next_shear = layer.youngs_modulus / (2 * (1 + layer.poisson_ratio));
+    if (n > 0) {
+      // At r = inner: u / r = A + B / r^3 and sigma_rr = 3 K A - 4 mu B / r^3 carry over.
+      const double r3 = inner * inner * inner;
+      const double strain = a + b / r3, stress = 3 * bulk * a - 4 * shear * b / r3;
+      // Solve A' + B'/r3 = strain, 3 K' A' - 4 mu' B'/r3 = stress.
+      const double b_over_r3 = (3 * next_bulk * strain - stress) / (3 * next_bulk + 4 * next_shear);
+      a = strain - b_over_r3;
+      b = b_over_r3 * r3;
+    }
+    bulk = next_bulk;
+    shear = next_shear;
+    inner = layer.outer_radius;
+  }
+  const double r3 = inner * inner * inner;
+  const double strain = a + b / r3, stress = 3 * bulk * a - 4 * shear * b / r3;
+  return strain / stress;  // u/a = -c p and sigma_rr = -p, both per the common factor
+}
 
 }  // namespace tidalcrust

@@ -67,6 +67,14 @@ struct ElasticLayer {
   double density = 0;
 };
 
+/// The degree-0 compliance of a sphere of welded homogeneous layers (innermost first): under a
+/// uniform pressure p on its surface a the surface moves by u(a) = -c p a; returns c (1/e_g). No
+/// gravity. In each layer u = A r + B / r^2 and sigma_rr = 3 K A - 4 mu B / r^3 (Love 1927 sec. 98),
+/// with B = 0 in the first; u and sigma_rr are continuous at each boundary. One layer gives
+/// c = 1 / (3 K); a core of volume fraction f in a mantle gives Hashin's composite sphere. InputError
+/// for no layer, radii that do not increase, or a modulus or Poisson ratio out of range.
+double layered_sphere_compression(const std::vector<ElasticLayer>& layers);
+
 /// Static Love numbers of degree n >= 2 of a self-gravitating sphere of welded homogeneous layers
 /// (innermost first): the same TS72 equations, with each layer's lambda, mu, rho and the gravity
 /// g(r) = m(r)/r^2 of the mass inside r, integrated through the layers with y1..y6 continuous at

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 
@@ -13,6 +14,7 @@
 #include "base/vec3.hpp"
 #include "base/invariant.hpp"
 #include "model/derived_quantities.hpp"
+#include "physics/continuum_elasticity.hpp"
 
 namespace tidalcrust {
 
@@ -114,14 +116,23 @@ double lithostatic_crust_strain(const Body& body, const State& state, const std:
     stiffness_length2 += state.springs.stiffness[n] * rest * rest;
   }
   const double deep = interior_radius - interior_spring_distance;
-  TIDALCRUST_ASSERT(shell_radius > 0 && stiffness_length2 > 0 && deep > 0, "lithostatic crust strain needs a shell and deep interior springs");
+  TIDALCRUST_ASSERT(shell_radius > 0 && stiffness_length2 > 0 && deep > 0 && deep < shell_radius,
+                    "lithostatic crust strain needs a shell and deep interior springs");
+  // Shells of about d_I / 2 (the springs' own reach) out to r_I - d_I, below which eq. 15 counts every
+  // spring; the outermost continued to the shell.
+  const auto shells = static_cast<std::size_t>(std::max(1.0, std::round(deep / (0.5 * interior_spring_distance))));
+  std::vector<double> radii(shells);
+  for (std::size_t b = 0; b < shells; ++b) radii[b] = deep * static_cast<double>(b + 1) / static_cast<double>(shells);
+  const std::vector<double> modulus = interior_modulus_profile(body, state, radii);
+  std::vector<ElasticLayer> layers;
+  for (std::size_t b = 0; b < shells; ++b) {
+    TIDALCRUST_ASSERT(modulus[b] > 0, "lithostatic crust strain: a shell of the interior without springs");
+    layers.push_back({b + 1 < shells ? radii[b] : shell_radius, modulus[b], 0.25, 0});
+  }
+  const double compliance = layered_sphere_compression(layers);
   const double area = 4 * std::numbers::pi * shell_radius * shell_radius;
-  const double youngs = inner_network_youngs_modulus(body, state, deep);
-  TIDALCRUST_ASSERT(youngs > 0, "lithostatic crust strain: no interior springs deeper than d_I");
-  constexpr double poisson = 0.25;
-  const double bulk = youngs / (3 * (1 - 2 * poisson));
   const double membrane = stiffness_length2 / (2 * area);
-  return -(weight / area) / (3 * bulk + 2 * membrane / shell_radius);
+  return -(weight / area) / (1 / compliance + 2 * membrane / shell_radius);
 }
 
 void set_shell_strain(const Body& body, State& state, double strain) {

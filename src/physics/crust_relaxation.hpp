@@ -46,15 +46,16 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
 /// The horizontal strain (negative: compression) of a crust whose own weight rests on a welded
 /// elastic interior, for the lithostatic support (docs/crust-support.md, "The lithostatic crust"):
 ///
-///     eps_L = -w / (3 K + 2 C / R_S),
+///     eps_L = -w / (1/c + 2 C / R_S),
 ///
-/// w = sum_s m_s |g_s| / (4 pi R_S^2) the crust's weight per area (G M^2/R^4), K = E / (3 (1 - 2 nu))
-/// the interior's bulk modulus (E = inner_network_youngs_modulus over the springs deeper than
-/// interior_spring_distance below interior_radius, nu = 1/4), C = sum k L0^2 / (2 * 4 pi R_S^2) the
-/// membrane's stiffness in equal two-way stretch (e_g R; sqrt(3) k for an equilateral triangular
-/// lattice), R_S the mean shell radius. Degree-0 load on a homogeneous interior; the change of the
-/// interior's own gravity as it compresses is neglected (relative size rho g R / K). Internal error
-/// (TIDALCRUST_ASSERT) without shell springs or deep interior springs.
+/// w = sum_s m_s |g_s| / (4 pi R_S^2) the crust's weight per area (G M^2/R^4); c the interior's
+/// degree-0 compliance (layered_sphere_compression; 1/c = 3K for a homogeneous interior) of its
+/// radial profile of eq. 15 (interior_modulus_profile in shells of d_I/2 out to r_I - d_I, the
+/// outermost one continued to R_S, as the welded springs continue the network; nu = 1/4);
+/// C = sum k L0^2 / (2 * 4 pi R_S^2) the membrane's stiffness in equal two-way stretch (e_g R;
+/// sqrt(3) k for an equilateral triangular lattice); R_S the mean shell radius. Degree-0 load; the
+/// change of the interior's own gravity as it compresses is neglected (relative size rho g R / K).
+/// Internal error (TIDALCRUST_ASSERT) without shell springs or deep interior springs.
 /// gravity: self-gravity accelerations [N*3] (G M/R^2) at the current positions.
 double lithostatic_crust_strain(const Body& body, const State& state, const std::vector<double>& gravity,
                                 double interior_radius, double interior_spring_distance);

@@ -192,3 +192,21 @@ TEST(ContinuumElasticity, SelfGravityRaisesTheFootballModeByAnAmountFixedByTheDe
   EXPECT_GT(gravitating, lamb);
   EXPECT_LT(gravitating, 1.05 * lamb);
 }
+
+// Degree-0 compression of a layered sphere: one layer is 1/(3K); a core in a mantle is Hashin's
+// composite sphere (Hashin 1962, J. Appl. Mech. 29, 143: the coated sphere under uniform pressure),
+// K = K_m + f (K_c - K_m) / (1 + (1 - f)(K_c - K_m) / (K_m + 4 mu_m / 3)), f = (r_c / a)^3; splitting a
+// layer in two changes nothing.
+TEST(ContinuumElasticity, ALayeredSphereUnderPressureCompressesAsHashinsCompositeSphere) {
+  const auto bulk = [](double e, double nu) { return e / (3 * (1 - 2 * nu)); };
+  EXPECT_NEAR(layered_sphere_compression({{1.0, 3.0, 0.25, 0}}), 1 / (3 * bulk(3.0, 0.25)), 1e-15);
+  const double rc = 0.5, ec = 30, nuc = 0.3, em = 3, num = 0.25;
+  const double kc = bulk(ec, nuc), km = bulk(em, num), mum = em / (2 * (1 + num)), f = rc * rc * rc;
+  const double hashin = km + f * (kc - km) / (1 + (1 - f) * (kc - km) / (km + 4 * mum / 3));
+  EXPECT_NEAR(layered_sphere_compression({{rc, ec, nuc, 0}, {1.0, em, num, 0}}) * 3 * hashin, 1.0, 1e-13);
+  EXPECT_NEAR(layered_sphere_compression({{0.3, ec, nuc, 0}, {rc, ec, nuc, 0}, {0.8, em, num, 0}, {1.0, em, num, 0}}) *
+                  3 * hashin, 1.0, 1e-13);
+  EXPECT_THROW(layered_sphere_compression({}), InputError);
+  EXPECT_THROW(layered_sphere_compression({{0.5, 3, 0.25, 0}, {0.4, 3, 0.25, 0}}), InputError);
+  EXPECT_THROW(layered_sphere_compression({{1.0, 3, 0.5, 0}}), InputError);
+}
