@@ -157,6 +157,28 @@ struct CoreConfig {
 };
 // ---- end of issue 12 ---------------------------------------------------------------------------
 
+/// A [sweep] table (docs/cluster.md): the axes of a product of encounters, each as the list of
+/// its values (a range {from, to, count} of the file is kept as the values it gives). Stored
+/// as itself in every checkpoint's configuration (to_toml), so that a checkpoint's size does not
+/// grow with the number of encounters; Config::encounters holds its expansion.
+struct SweepConfig {
+  std::vector<double> perturber_mass;    ///< M2, M (required)
+  std::vector<double> pericenter;        ///< q, R (required)
+  std::vector<double> pericenter_speed;  ///< V_q; empty: the parabolic speed sqrt(2 (1 + M2) / q)
+  std::vector<double> failure_strain;    ///< eps_S; empty: shell.failure_strain
+  bool operator==(const SweepConfig&) const = default;
+};
+
+/// The most encounters one workflow may have: its [[encounters]] tables and the expansion of its
+/// [sweep] together (checked before a sweep is expanded).
+inline constexpr std::size_t max_encounters = 10'000;
+
+/// How many encounters `sweep` expands into (the product of its axes), without expanding it.
+std::size_t sweep_size(const SweepConfig& sweep);
+/// The one expansion of a [sweep]: the product of its axes, M2 outermost, then q, V_q, eps_S,
+/// each named M<M2>_q<q>_V<V_q, or "par">[_eps<eps_S>] (numbers in their shortest form, no '+').
+std::vector<Encounter> expand_sweep(const SweepConfig& sweep);
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -167,7 +189,12 @@ struct Config {
   RelaxConfig relax;
   EncounterDefaults encounter;
   GravityConfig gravity;
+  /// Every encounter: the [[encounters]] tables in file order, then the expansion of `sweep`.
   std::vector<Encounter> encounters;
+  /// The [sweep] table, when the workflow has one. to_toml writes it instead of its expansion
+  /// while the last sweep_size(*sweep) encounters are exactly expand_sweep(*sweep) (else, after
+  /// a --set of one of them, every encounter as a table).
+  std::optional<SweepConfig> sweep;
   MaterialConfig material;
   ResolutionConfig resolution;
   CoreConfig core;

@@ -287,3 +287,40 @@ TEST(RunLocking, ChangedBodyChainRemovesEncountersOfTheOldBody) {
   EXPECT_EQ(read_checkpoint(out / "strong" / "encounter.h5").stage.parent_hash,
             state_hash(read_checkpoint(out / "body" / "relax.h5").state));
 }
+
+// Issue 28, item 9: the encounter folders are checked for ones of another body once per relaxed
+// body (body/encounters-checked records it), not by every task of a sweep: a task reads no other
+// encounter's files, so a sweep of N encounters costs O(N), not O(N^2). Shown with a folder of
+// the old body planted after the check: a task on the same body does not look at it; once the
+// record is gone (or names another body), the next run finds and removes it.
+TEST(RunLocking, EncounterFoldersAreCheckedOncePerRelaxedBody) {
+  const ScratchFolder scratch("lock_checked_once");
+  const fs::path workflow = two_encounter_workflow(scratch.path);
+  const fs::path out = scratch.path / "out", saved = scratch.path / "weak-of-the-old-body";
+  ASSERT_EQ(run_cli(quick_run(out, workflow) + " --quiet").exit_code, 0);
+  const fs::path record = out / "body" / "encounters-checked";
+  EXPECT_EQ(read_file(record), state_hash(read_checkpoint(out / "body" / "relax.h5").state) + "\n");
+  fs::copy(out / "weak", saved, fs::copy_options::recursive);
+
+  const std::string changed = quick_run(out, workflow) + " --only strong --set relax.damping=40";
+  ASSERT_EQ(run_cli(changed).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out / "weak" / "encounter.h5"));
+  const std::string new_body = state_hash(read_checkpoint(out / "body" / "relax.h5").state);
+  EXPECT_EQ(read_file(record), new_body + "\n");
+
+  fs::remove_all(out / "weak");
+  fs::copy(saved, out / "weak", fs::copy_options::recursive);
+  const CliResult task = run_cli(changed);
+  ASSERT_EQ(task.exit_code, 0) << task.err;
+  EXPECT_EQ(task.out.find("removed the encounter"), std::string::npos) << task.out;
+  EXPECT_TRUE(fs::exists(out / "weak" / "encounter.h5"));
+
+  fs::remove(record);
+  const CliResult checking = run_cli(changed);
+  ASSERT_EQ(checking.exit_code, 0) << checking.err;
+  EXPECT_NE(checking.out.find("weak: removed the encounter, which branched from another relaxed body"),
+            std::string::npos)
+      << checking.out;
+  EXPECT_FALSE(fs::exists(out / "weak" / "encounter.h5"));
+  EXPECT_EQ(read_file(record), new_body + "\n");
+}
