@@ -811,6 +811,13 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep) {
   return out;
 }
 
+void validate_encounter(const Encounter& e, const std::string& origin) {
+  check_encounter_name(e.name, origin);
+  visit_keys(e, [&](const auto& field, const auto& key) {
+    check_range(field, key, fmt::format("{}: encounter '{}': {}", origin, e.name, key.name));
+  });
+}
+
 void validate(const Config& config, const std::string& origin) {
   visit_keys(config, [&](const auto& field, const auto& key) {
     check_range(field, key, fmt::format("{}: {}.{}", origin, key.section, key.name));
@@ -858,10 +865,7 @@ void validate(const Config& config, const std::string& origin) {
   check_encounter_count(config.encounters.size() - swept, swept, origin);
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
-    check_encounter_name(e.name, origin);
-    visit_keys(e, [&](const auto& field, const auto& key) {
-      check_range(field, key, fmt::format("{}: encounter '{}': {}", origin, e.name, key.name));
-    });
+    validate_encounter(e, origin);
     if (!names.insert(e.name).second)
       throw InputError(fmt::format("{}: encounter name '{}' appears twice", origin, e.name));
   }

@@ -269,6 +269,9 @@ inline constexpr std::size_t max_path_name_bytes = 200;
 std::string path_name_problem(std::string_view name);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
+/// The checks validate makes of one encounter: its name and the range of each of its values
+/// (without copying the configuration: a sweep checks each of its 10,000 encounters).
+void validate_encounter(const Encounter& encounter, const std::string& origin);
 
 /// Keys that [material] and [resolution] derive ("interior.spring_constant", ...): given together
 /// with [material] they are an error; to_toml leaves them out of a material body's text.
