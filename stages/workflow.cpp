@@ -12,6 +12,7 @@
 #include "io/json.hpp"
 #include "io/progress.hpp"
 #include "io/stage_lock.hpp"
+#include "io/test_points.hpp"
 #include "io/state_hash.hpp"
 #include "model/stage_fingerprint.hpp"
 #include "stages/analysis_stage.hpp"
@@ -67,11 +68,18 @@ void check_same_body(const fs::path& build_file, const Config& config) {
   if (!fs::exists(build_file)) return;
   const Checkpoint existing = read_checkpoint(build_file);
   const std::string wanted = stage_fingerprint(config, stage_kinds().front().id);
-  if (!same_fingerprint(existing.stage.fingerprint, wanted))
-    throw InputError(fmt::format(
-        "{}: the output folder holds checkpoints of a different body ({}); use --out DIR or remove the folder",
-        build_file.string(),
-        existing.stage.fingerprint.empty() ? "no fingerprint" : first_difference(existing.stage.fingerprint, wanted)));
+  if (same_fingerprint(existing.stage.fingerprint, wanted)) return;
+  std::string existing_workflow = "?";  // the name in its stored configuration, to say whose body it is
+  try {
+    existing_workflow = parse_config(existing.config_toml, build_file.string()).workflow.name;
+  } catch (const InputError&) {
+  }
+  throw InputError(fmt::format(
+      "{}: the output folder holds checkpoints of a different body: the body of workflow '{}' (build state {}), not "
+      "the body of workflow '{}' this run builds ({}); use --out DIR or remove the folder",
+      build_file.string(), existing_workflow, state_hash(existing.state), config.workflow.name,
+      existing.stage.fingerprint.empty() ? "no fingerprint"
+                                         : "first difference " + first_difference(existing.stage.fingerprint, wanted)));
 }
 
 namespace {
@@ -159,7 +167,11 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   ctx.quiet = options.quiet;
   ctx.allow_kernel_change = options.allow_kernel_change;
   const fs::path body_dir = options.root / "body";
-  check_same_body(stage_file(body_dir, stage_kinds().front()), config);
+  // Checked before anything is written, and again under the first stage's lock (a process with
+  // another body may have written it since: one folder, one body chain, decided under that lock).
+  const fs::path first_file = stage_file(body_dir, stage_kinds().front());
+  check_same_body(first_file, config);
+  test_point_after_body_check();
   fs::create_directories(body_dir);
   ctx.status_file = options.root / "status.json";
   WorkflowResult result;
@@ -173,7 +185,9 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
     if (kind.per_encounter) continue;
     if (body) prepare_stage(ctx, kind, body_config, *body, body_file);
     const StageJob job{&kind, kind.name(), stage_file(body_dir, kind), body ? &*body : nullptr, body_file, nullptr};
-    StageResult done = run_stage(job, body_config, workflow_stage_options(ctx));
+    StageRunOptions stage_options = workflow_stage_options(ctx);
+    if (job.file == first_file) stage_options.check_locked = [&] { check_same_body(first_file, config); };
+    StageResult done = run_stage(job, body_config, std::move(stage_options));
     if (done.outcome == LoopOutcome::interrupted) return interrupted(result);
     body = std::move(done.checkpoint);
     body_file = job.file;

@@ -97,6 +97,52 @@ TEST(RunLocking, AnotherProcessCheckingTheFolderIsWaitedFor) {
 
 }  // namespace
 
+// Issue 28, item 6: two workflows with different bodies started on one empty folder. The first
+// stalls between its check of the folder's body and the lock of its first stage (as on a file
+// system that hangs for seconds); the second builds its body meanwhile. The first then finds the
+// other body under the lock and refuses (exit 2, one line naming the folder and both bodies);
+// the second's files are as it wrote them.
+TEST(RunLocking, TwoBodiesOnOneEmptyFolderCannotBothWin) {
+  const ScratchFolder scratch("lock_bodies");
+  const fs::path out = scratch.path / "out";
+  const fs::path hold = scratch.path / "held";
+  const std::string stall = "env TIDALCRUST_TEST_HOLD_AT=body-check:1 TIDALCRUST_TEST_HOLD_FILE=" + quoted(hold);
+  BackgroundCli first(quick_run(out) + " --quiet --body-only", stall);
+  ASSERT_TRUE(wait_while_running(first.pid(), [&] { return fs::exists(hold); }));
+  const CliResult second = run_cli(quick_run(out) + " --quiet --body-only --set workflow.seed=4");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  std::vector<std::string> written;
+  for (const char* name : {"build.h5", "stretch.h5", "relax.h5"}) written.push_back(read_file(out / "body" / name));
+  fs::remove(hold);
+  const CliResult loser = first.finish();
+  EXPECT_EQ(loser.exit_code, 2) << loser.err;
+  EXPECT_EQ(count_lines(loser.err), 1) << loser.err;
+  const std::string build_state = state_hash(read_checkpoint(out / "body" / "build.h5").state);
+  EXPECT_NE(loser.err.find((out / "body" / "build.h5").string() + ": the output folder holds checkpoints of a different "
+                           "body: the body of workflow 'quick' (build state " + build_state + "), not the body of "
+                           "workflow 'quick' this run builds (first difference 'workflow.seed = 4' -> 'workflow.seed = 7')"),
+            std::string::npos)
+      << loser.err;
+  int i = 0;
+  for (const char* name : {"build.h5", "stretch.h5", "relax.h5"})
+    EXPECT_TRUE(read_file(out / "body" / name) == written[i++]) << name << " was changed";
+}
+
+// Issue 28, item 7: on a file system without flock (NFS `nolock`; injected: flock fails with
+// ENOLCK) every stage used to wait 10 s for its own lock file and then "take over the stale lock
+// of a process that has not named itself". Now each stage holds the lock file it creates.
+TEST(RunLocking, WithoutFlockARunHoldsItsOwnLockFiles) {
+  const ScratchFolder scratch("lock_noflock_run");
+  const fs::path out = scratch.path / "out";
+  const CliResult result = run_cli(quick_run(out) + " --set relax.duration=0.5 --set relax.settle_duration=0.2",
+                                   "TIDALCRUST_TEST_FLOCK_ERROR=ENOLCK");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err.find("took over"), std::string::npos) << result.err;
+  EXPECT_EQ(result.out.find("waiting for"), std::string::npos) << result.out;
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".lock"), std::string::npos) << entry.path();
+}
+
 TEST(RunLocking, ConcurrentRunsWithOtherValuesOfOneEncounterCannotBothWin) {
   const ScratchFolder scratch("lock_clash");
   const fs::path out = scratch.path / "out";
