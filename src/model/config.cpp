@@ -156,7 +156,7 @@ void visit_keys(C& c, V&& visit) {
   key(c.cross.coupling, {"cross", "coupling", changes_no_result.and_when(welded_crust, build, stretch, relax), "-",
                          choice_doc<CrossCoupling>()});
 
-  key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", 1e-7, 1.0});
+  key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", min_time_step, 1.0});
   key(c.integrator.softening_fraction,
       {"integrator", "softening_fraction", reads(build), "-",
        "Plummer softening as a fraction of the minimum initial spacing", 0, 1});

@@ -61,6 +61,10 @@ struct CrossConfig {
   CrossCoupling coupling = CrossCoupling::paper;
 };
 
+/// The smallest integrator.dt a configuration may give (t_grav): the one home of that bound, also
+/// of the check that a built body's springs can be integrated at all (bodies/build_body.cpp).
+inline constexpr double min_time_step = 1e-7;
+
 struct IntegratorConfig {
   double dt = 0.002;                 ///< t_grav
   double softening_fraction = 0.01;  ///< Plummer softening / min initial spacing
