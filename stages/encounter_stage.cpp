@@ -74,12 +74,9 @@ std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t p
 }  // namespace
 
 void check_encounter(const Config& config, const Encounter& spec) {
-  {
-    // validate() checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0).
-    Config checked = config;
-    checked.encounters = {spec};
-    validate(checked, "encounter parameters");
-  }
+  // validate_encounter checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0);
+  // the configuration was validated as a whole before (no copy of it here: O(1) per encounter).
+  validate_encounter(spec, "encounter parameters");
   const std::string what = fmt::format("encounter '{}' (M2 = {:g}, q = {:g}, V_q = {:g})", spec.name,
                                        spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
   const double dt = config.integrator.dt;

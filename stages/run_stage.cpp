@@ -106,6 +106,7 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
     result.outcome = LoopOutcome::interrupted;
     return result;
   }
+  if (options.check_locked) options.check_locked();
   // Holding the lock, nobody else writes this stage's files: the temporaries of its files (and of
   // its derived folder) that a killed process left are removed (those of live processes stay).
   remove_stale_temporaries(job.file.parent_path(), job.file.stem().string() + ".");

@@ -55,6 +55,10 @@ struct StageRunOptions {
   std::optional<std::filesystem::path> status_file;
   std::function<void(const std::string&)> say;   ///< stage lines ("relax: up to date (...)"); null: none
   std::function<void(const Checkpoint&)> finish; ///< on the result, still under the lock; null: none
+  /// Called as soon as the lock is held, before anything is reused, removed or begun: checks
+  /// that must hold under the lock (`run`, first stage: the folder's body, check_same_body), so
+  /// that a decision taken before the lock is taken again under it. Null: none.
+  std::function<void()> check_locked;
 };
 
 struct StageResult {

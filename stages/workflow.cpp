@@ -2,13 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <fstream>
+
 #include "analysis/fracture_analysis.hpp"
 #include "base/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/json.hpp"
 #include "io/progress.hpp"
 #include "io/stage_lock.hpp"
+#include "io/test_points.hpp"
 #include "io/state_hash.hpp"
 #include "model/stage_fingerprint.hpp"
 #include "stages/analysis_stage.hpp"
@@ -58,15 +62,24 @@ void prepare_stage(const RunContext& ctx, const StageKind& kind, Config& config,
 
 }  // namespace
 
+fs::path superseded_check_file(const fs::path& root) { return root / "body" / "encounters-checked"; }
+
 void check_same_body(const fs::path& build_file, const Config& config) {
   if (!fs::exists(build_file)) return;
   const Checkpoint existing = read_checkpoint(build_file);
   const std::string wanted = stage_fingerprint(config, stage_kinds().front().id);
-  if (!same_fingerprint(existing.stage.fingerprint, wanted))
-    throw InputError(fmt::format(
-        "{}: the output folder holds checkpoints of a different body ({}); use --out DIR or remove the folder",
-        build_file.string(),
-        existing.stage.fingerprint.empty() ? "no fingerprint" : first_difference(existing.stage.fingerprint, wanted)));
+  if (same_fingerprint(existing.stage.fingerprint, wanted)) return;
+  std::string existing_workflow = "?";  // the name in its stored configuration, to say whose body it is
+  try {
+    existing_workflow = parse_config(existing.config_toml, build_file.string()).workflow.name;
+  } catch (const InputError&) {
+  }
+  throw InputError(fmt::format(
+      "{}: the output folder holds checkpoints of a different body: the body of workflow '{}' (build state {}), not "
+      "the body of workflow '{}' this run builds ({}); use --out DIR or remove the folder",
+      build_file.string(), existing_workflow, state_hash(existing.state), config.workflow.name,
+      existing.stage.fingerprint.empty() ? "no fingerprint"
+                                         : "first difference " + first_difference(existing.stage.fingerprint, wanted)));
 }
 
 namespace {
@@ -81,13 +94,26 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
+/// The relaxed body's state_hash against which every encounter folder of `root` was last checked
+/// (remove_superseded_encounters), or "" when none was.
+std::string checked_against(const fs::path& root) {
+  std::ifstream in(superseded_check_file(root));
+  std::string hash;
+  if (in) std::getline(in, hash);
+  return hash;
+}
+
 /// Encounter folders below `root` (also in dt<factor>/) whose first per-encounter stage (`files`:
 /// the per-encounter stages' file names, in chain order) branched from another relaxed body (the
 /// body chain changed) are superseded: their checkpoints, snapshots and analysis are removed,
 /// unless another process holds the first stage's lock. Unreadable ones are left alone (run
-/// reports them when it reaches them).
+/// reports them when it reaches them). Once every folder was checked (none locked by another
+/// process), superseded_check_file records `relaxed_hash`, and later runs on the same relaxed body
+/// skip the scan: each task of a sweep then reads no other encounter's files (O(1), not O(N)).
 void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const std::vector<fs::path>& files,
                                   const std::string& relaxed_hash) {
+  if (checked_against(root) == relaxed_hash) return;
+  bool every_folder_checked = true;
   std::vector<fs::path> folders;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(root, ec)) {
@@ -103,6 +129,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
     if (!fs::exists(found)) continue;
     try {
       const LockAttempt attempt = try_lock_stage(file, "");
+      if (!attempt.lock) every_folder_checked = false;
       if (!attempt.lock || read_checkpoint(found).stage.parent_hash == relaxed_hash) continue;
       for (const auto& name : files) remove_stage_outputs(dir / name, false);
       fs::remove_all(dir / "analysis", ec);
@@ -111,6 +138,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
       continue;
     }
   }
+  if (every_folder_checked) write_file_atomically(superseded_check_file(root), relaxed_hash + "\n");
 }
 
 WorkflowResult interrupted(WorkflowResult& result) {
@@ -139,7 +167,11 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   ctx.quiet = options.quiet;
   ctx.allow_kernel_change = options.allow_kernel_change;
   const fs::path body_dir = options.root / "body";
-  check_same_body(stage_file(body_dir, stage_kinds().front()), config);
+  // Checked before anything is written, and again under the first stage's lock (a process with
+  // another body may have written it since: one folder, one body chain, decided under that lock).
+  const fs::path first_file = stage_file(body_dir, stage_kinds().front());
+  check_same_body(first_file, config);
+  test_point_after_body_check();
   fs::create_directories(body_dir);
   ctx.status_file = options.root / "status.json";
   WorkflowResult result;
@@ -153,7 +185,9 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
     if (kind.per_encounter) continue;
     if (body) prepare_stage(ctx, kind, body_config, *body, body_file);
     const StageJob job{&kind, kind.name(), stage_file(body_dir, kind), body ? &*body : nullptr, body_file, nullptr};
-    StageResult done = run_stage(job, body_config, workflow_stage_options(ctx));
+    StageRunOptions stage_options = workflow_stage_options(ctx);
+    if (job.file == first_file) stage_options.check_locked = [&] { check_same_body(first_file, config); };
+    StageResult done = run_stage(job, body_config, std::move(stage_options));
     if (done.outcome == LoopOutcome::interrupted) return interrupted(result);
     body = std::move(done.checkpoint);
     body_file = job.file;

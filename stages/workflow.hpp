@@ -38,6 +38,11 @@ struct WorkflowResult {
   std::vector<WorkflowEncounter> encounters;
 };
 
+/// root/body/encounters-checked: the state_hash of the relaxed body against which `run` last
+/// checked every encounter folder of `root` for ones branched from another body (and removed
+/// those); a run on the same relaxed body does not check them again.
+std::filesystem::path superseded_check_file(const std::filesystem::path& root);
+
 /// Refuses an output folder whose body/build.h5 (`build_file`) holds another body than `config`
 /// builds: InputError naming the file and the first difference. Nothing when the file is absent.
 void check_same_body(const std::filesystem::path& build_file, const Config& config);

@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <numbers>
+#include <string_view>
 #include <vector>
 
 #include "base/errors.hpp"
@@ -118,6 +121,67 @@ void add_shell_hinges(BuiltBody& out, const Icosphere& shell, std::int32_t shell
   }
 }
 
+/// The keys that set the stiffness of each spring kind and of the hinges, and of the node
+/// masses, as messages name them.
+std::string stiffness_keys(const Config& config, std::string_view element) {
+  const char* material = config.from_material() ? " (derived from [material])" : "";
+  if (element == "interior") return fmt::format("interior.spring_constant{}", material);
+  if (element == "shell") return fmt::format("shell.spring_constant{}", material);
+  if (element == "cross") return fmt::format("cross.spring_constant{}", material);
+  return fmt::format("shell.bending_constant{}", material);
+}
+
+/// InputError naming the keys unless every spring and hinge of the built body oscillates at a
+/// finite omega^2 that some allowed time step resolves (omega^2 dt^2 <= 4 with dt >= the smallest
+/// integrator.dt): valid-looking keys can give derived quantities that overflow or underflow
+/// (shell.mass = 1e-320 gives shell nodes of 6e-323 M; a spring constant of 1e308 an omega^2 of
+/// inf), which no stage can integrate. omega^2 of a spring k (1/m_i + 1/m_j); of a hinge k_e over
+/// the lightest node's mass and its shortest side (k_e is a force: k_e/L a stiffness).
+void check_body_scales(const BuiltBody& built, const Config& config) {
+  constexpr double limit = 4.0 / (min_time_step * min_time_step);
+  const Body& body = built.body;
+  const auto refuse = [&](std::string_view element, double omega2, double k, double mass) {
+    throw InputError(fmt::format(
+        "{} = {:g} and node masses of {:g} M (shell.mass = {:g}, interior.count = {}) give {} springs omega^2 = {:g} "
+        "1/t_grav^2, which no time step resolves (integrator.dt >= {:g} needs omega^2 <= {:g})",
+        stiffness_keys(config, element), k, mass, config.shell.mass, config.interior.count,
+        element == "bending" ? "the shell's hinges (bending)" : fmt::format("the {}", element), omega2, min_time_step,
+        limit));
+  };
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    if (!std::isnormal(body.mass[i]))
+      throw InputError(fmt::format("shell.mass = {:g} and interior.count = {} give {} nodes of {:g} M, not a normal "
+                                   "number (the arithmetic of every step would lose it)",
+                                   config.shell.mass, config.interior.count,
+                                   body.species[i] == static_cast<std::uint8_t>(Species::shell) ? "shell" : "interior",
+                                   body.mass[i]));
+  for (std::size_t s = 0; s < body.spring_count(); ++s) {
+    const auto [i, j] = body.springs[s];
+    const double mi = body.mass[static_cast<std::size_t>(i)], mj = body.mass[static_cast<std::size_t>(j)];
+    const double k = built.state.springs.stiffness[s];
+    const double omega2 = k * (1.0 / mi + 1.0 / mj);
+    if (!(omega2 <= limit)) {
+      const auto kind = static_cast<SpringKind>(body.spring_kind[s]);
+      refuse(kind == SpringKind::interior ? "interior" : kind == SpringKind::shell ? "shell" : "cross", omega2, k,
+             std::min(mi, mj));
+    }
+  }
+  for (std::size_t h = 0; h < body.hinge_count(); ++h) {
+    const auto& v = body.hinges[h];
+    double mass = std::numeric_limits<double>::infinity(), side2 = mass;
+    for (int a = 0; a < 4; ++a) {
+      const auto i = static_cast<std::size_t>(v[a]);
+      mass = std::min(mass, body.mass[i]);
+      for (int b = a + 1; b < 4; ++b)
+        side2 = std::min(side2, (vec3_at(built.state.position, i) -
+                                 vec3_at(built.state.position, static_cast<std::size_t>(v[b])))
+                                    .squaredNorm());
+    }
+    const double omega2 = body.hinge_stiffness[h] / (mass * std::sqrt(side2));  // k_e/L: a stiffness
+    if (!(omega2 <= limit)) refuse("bending", omega2, body.hinge_stiffness[h], mass);
+  }
+}
+
 }  // namespace
 
 BuiltBody build_body(const Config& config) {
@@ -150,6 +214,7 @@ BuiltBody build_body(const Config& config) {
   out.min_spacing = min_pair_distance(positions);
   out.body.softening = config.integrator.softening_fraction * out.min_spacing;
   out.interior_trials = interior.trials;
+  check_body_scales(out, config);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <ctime>
 
 #include "base/errors.hpp"
+#include "io/test_points.hpp"
 
 namespace tidalcrust {
 
@@ -35,7 +36,8 @@ struct StageLockAccess {
 namespace {
 
 /// A lock file of the exclusive_create method that names no holder and is older than this was
-/// abandoned by a process that died between creating and writing it (seconds).
+/// abandoned by a process that died between creating and writing it (seconds, measured by the
+/// file system's clock: unnamed_lock_age).
 constexpr long abandoned_unnamed_lock_age = 10;
 
 InputError os_error(const fs::path& file, const std::string& what, int err) {
@@ -43,7 +45,7 @@ InputError os_error(const fs::path& file, const std::string& what, int err) {
 }
 
 std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
+  const std::time_t now = std::time(nullptr) + test_point_clock_skew();
   std::tm utc{};
   ::gmtime_r(&now, &utc);
   char text[32];
@@ -128,31 +130,54 @@ InputError lock_open_error(const fs::path& path, const char* what, int err) {
   return os_error(path, what, err);
 }
 
+/// How old (seconds) the lock file `existing` (its fstat) is by the clock of the file system
+/// that holds it: its mtime against that of a file created there now (`<lock>.clock-<pid>.<host>`), not
+/// against this process's clock, which may be off the file server's by any amount. Nothing when
+/// no file can be created there (then the lock is not judged abandoned).
+std::optional<long> unnamed_lock_age(const fs::path& path, const struct stat& existing) {
+  fs::path probe = path;
+  probe += fmt::format(".clock-{}.{}", static_cast<long>(::getpid()), host_name());
+  const int fd = ::open(probe.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) return std::nullopt;
+  struct stat now {};
+  const bool measured = ::fstat(fd, &now) == 0;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  if (!measured) return std::nullopt;
+  return static_cast<long>(now.st_mtime - existing.st_mtime);
+}
+
+/// Writes this process's holder lines into the lock file `fd` it has just created (O_EXCL) and
+/// returns the lock held by its existence; on failure removes the file.
+LockAttempt hold_created(const fs::path& path, int fd, const std::string& identity,
+                         std::optional<LockHolder> taken_over) {
+  try {
+    write_holder(path, fd, identity);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(path.c_str());
+    throw;
+  }
+  ::close(fd);
+  return StageLockAccess::held(path, -1, LockMethod::exclusive_create, std::move(taken_over));
+}
+
 LockAttempt try_exclusive_create(const fs::path& path, const std::string& identity) {
   std::optional<LockHolder> taken_over;
   for (int attempt = 0; attempt < 100; ++attempt) {
     const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (fd >= 0) {
-      try {
-        write_holder(path, fd, identity);
-      } catch (...) {
-        ::close(fd);
-        ::unlink(path.c_str());
-        throw;
-      }
-      ::close(fd);
-      return StageLockAccess::held(path, -1, LockMethod::exclusive_create, taken_over);
-    }
+    if (fd >= 0) return hold_created(path, fd, identity, taken_over);
     if (errno != EEXIST) throw lock_open_error(path, "cannot create the lock file", errno);
     const int existing = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     if (existing < 0 && errno == ELOOP) throw lock_open_error(path, "", ELOOP);
     if (existing < 0) continue;  // released meanwhile
     struct stat info {};
-    ::fstat(existing, &info);
+    const bool examined = ::fstat(existing, &info) == 0;
     const std::optional<LockHolder> holder = parse_holder(read_fd(existing));
     ::close(existing);
-    const bool gone = holder ? !may_be_alive(*holder)
-                             : std::time(nullptr) - info.st_mtime > abandoned_unnamed_lock_age;
+    std::optional<long> age;
+    if (!holder && examined) age = unnamed_lock_age(path, info);
+    const bool gone = holder ? !may_be_alive(*holder) : age && *age > abandoned_unnamed_lock_age;
     if (!gone) return {std::nullopt, holder.value_or(LockHolder{})};
     // Move the dead holder's file aside: rename is atomic, so of several processes that found
     // it dead only one moves it, and the others then see the new holder's file or none.
@@ -252,15 +277,22 @@ LockAttempt try_lock_stage(const fs::path& stage_file, const std::string& identi
       ::close(fd);
       throw;
     }
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      const int err = errno;
+    const int injected = test_point_flock_error();
+    if (injected != 0 || ::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int err = injected != 0 ? injected : errno;
       if (err == EWOULDBLOCK) {
         const std::optional<LockHolder> holder = parse_holder(read_fd(fd));
         ::close(fd);
         return {std::nullopt, holder.value_or(LockHolder{})};
       }
+      if (err == ENOLCK || err == EOPNOTSUPP || err == ENOSYS) {
+        // No locks here: the lock is the file's existence. A file this call has just created
+        // (O_EXCL) is already that lock: it is ours, not one "that names nobody" to wait for.
+        if (!existed) return hold_created(path, fd, identity, std::nullopt);
+        ::close(fd);
+        return try_exclusive_create(path, identity);
+      }
       ::close(fd);
-      if (err == ENOLCK || err == EOPNOTSUPP || err == ENOSYS) return try_exclusive_create(path, identity);
       throw os_error(path, "cannot lock the lock file", err);
     }
     // The holder we waited for may have removed the file between our open and our flock: then

@@ -4,8 +4,10 @@
 // the holder's pid, host, start time and the identity of what it computes (a digest of the
 // stage's fingerprint and parent), so that another process can name the holder and tell whether
 // it computes the same version of the stage (wait for it) or another one (refuse). Where the file
-// system has no locks (flock fails with ENOLCK) the lock is the file's existence instead
-// (O_CREAT|O_EXCL); a holder that died is then recognised only on the same host (by its pid).
+// system has no locks (flock fails with ENOLCK or EOPNOTSUPP) the lock is the file's existence
+// instead (O_CREAT|O_EXCL; the file just created for the flock is already it); a holder that died
+// is then recognised only on the same host (by its pid), and a file that names nobody is
+// abandoned after 10 s by the file system's clock (not this process's).
 // Limits: docs/architecture.md, "Locks".
 #include <filesystem>
 #include <optional>

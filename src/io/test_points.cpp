@@ -23,7 +23,7 @@ namespace tidalcrust {
 
 namespace {
 
-enum class Counted { step, write };
+enum class Counted { step, write, body_check };
 
 /// One point: the N-th step or write of this process.
 struct Point {
@@ -42,11 +42,11 @@ std::optional<Point> point_from_environment(const char* name, bool writes_allowe
   const char* first = colon == std::string_view::npos ? value + text.size() : value + colon + 1;
   const char* last = value + text.size();
   const auto [end, error] = std::from_chars(first, last, n);
-  const bool kind_ok = kind == "step" || (writes_allowed && kind == "write");
+  const bool kind_ok = kind == "step" || (writes_allowed ? kind == "write" : kind == "body-check");
   if (!kind_ok || colon == std::string_view::npos || error != std::errc() || end != last || n < 1)
-    throw InputError(fmt::format("environment variable {}='{}': expected step:N{} with N >= 1 (a testing aid)", name,
-                                 value, writes_allowed ? " or write:N" : ""));
-  return Point{kind == "step" ? Counted::step : Counted::write, n};
+    throw InputError(fmt::format("environment variable {}='{}': expected step:N or {}:N with N >= 1 (a testing aid)",
+                                 name, value, writes_allowed ? "write" : "body-check"));
+  return Point{kind == "step" ? Counted::step : kind == "write" ? Counted::write : Counted::body_check, n};
 }
 
 /// The failing reads "N:K" of TIDALCRUST_TEST_READ_EIO: attempts N to N+K-1; nothing when unset.
@@ -74,7 +74,7 @@ struct Points {
   std::optional<Point> kill = point_from_environment("TIDALCRUST_TEST_KILL_AT", true);
   std::optional<Point> hold = point_from_environment("TIDALCRUST_TEST_HOLD_AT", false);
   std::filesystem::path hold_file;
-  std::int64_t steps = 0, writes = 0;
+  std::int64_t steps = 0, writes = 0, body_checks = 0;
 
   Points() {
     if (!hold) return;
@@ -120,12 +120,43 @@ void test_point_after_step() {
   if (reached(p.hold, Counted::step, p.steps)) hold(p.hold_file);
 }
 
+void test_point_after_body_check() {
+  Points& p = points();
+  if (!p.hold) return;
+  ++p.body_checks;
+  if (reached(p.hold, Counted::body_check, p.body_checks)) hold(p.hold_file);
+}
+
 int test_point_read_attempt() {
   Points& p = points();
   if (!p.read_failures) return 0;
   ++p.reads;
   const auto [first, count] = *p.read_failures;
   return p.reads >= first && p.reads < first + count ? EIO : 0;
+}
+
+int test_point_flock_error() {
+  const char* value = std::getenv("TIDALCRUST_TEST_FLOCK_ERROR");
+  if (!value || !*value) return 0;
+  const std::string_view text(value);
+  if (text == "ENOLCK") return ENOLCK;
+  if (text == "EOPNOTSUPP") return EOPNOTSUPP;
+  throw InputError(fmt::format("environment variable TIDALCRUST_TEST_FLOCK_ERROR='{}': expected ENOLCK or EOPNOTSUPP "
+                               "(a testing aid)",
+                               value));
+}
+
+long test_point_clock_skew() {
+  const char* value = std::getenv("TIDALCRUST_TEST_CLOCK_SKEW");
+  if (!value || !*value) return 0;
+  long seconds = 0;
+  const char* last = value + std::string_view(value).size();
+  const auto [end, error] = std::from_chars(value, last, seconds);
+  if (error != std::errc() || end != last)
+    throw InputError(fmt::format("environment variable TIDALCRUST_TEST_CLOCK_SKEW='{}': expected whole seconds "
+                                 "(a testing aid)",
+                                 value));
+  return seconds;
 }
 
 void test_point_mid_write() {

@@ -156,7 +156,7 @@ void visit_keys(C& c, V&& visit) {
   key(c.cross.coupling, {"cross", "coupling", changes_no_result.and_when(welded_crust, build, stretch, relax), "-",
                          choice_doc<CrossCoupling>()});
 
-  key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", 1e-7, 1.0});
+  key(c.integrator.dt, {"integrator", "dt", reads(relax, encounter), "t_grav", "leapfrog time step", min_time_step, 1.0});
   key(c.integrator.softening_fraction,
       {"integrator", "softening_fraction", reads(build), "-",
        "Plummer softening as a fraction of the minimum initial spacing", 0, 1});
@@ -520,9 +520,20 @@ void check_encounter_name(const std::string& name, const std::string& origin) {
                                  origin, name));
 }
 
+/// InputError unless `listed` [[encounters]] tables and `swept` encounters of [sweep] are at most
+/// max_encounters together: the one limit and its one message.
+void check_encounter_count(std::size_t listed, std::size_t swept, const std::string& origin) {
+  if (listed <= max_encounters && swept <= max_encounters - listed) return;
+  const std::size_t total = swept > std::numeric_limits<std::size_t>::max() - listed ? std::numeric_limits<std::size_t>::max()
+                                                                                     : listed + swept;
+  throw InputError(fmt::format("{}: the workflow has {} encounters ({} [[encounters]] tables, {} from [sweep]); at most {}",
+                               origin, total, listed, swept, max_encounters));
+}
+
 std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
   auto* array = node.as_array();
   if (!array) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
+  check_encounter_count(array->size(), 0, origin);
   std::vector<Encounter> encounters;
   for (auto&& element : *array) {
     const std::string where = fmt::format("{}: encounters[{}]", origin, encounters.size());
@@ -579,42 +590,50 @@ std::string name_number(double v) {
   return text;
 }
 
-/// [sweep]: the product of its axes (perturber_mass and pericenter required; pericenter_speed
-/// omitted: the parabolic speed sqrt(2 G (M + M2) / q); failure_strain omitted: shell.failure_strain)
-/// as encounters named M<M2>_q<q>_V<V_q or "par">[_eps<eps_S>], M2 outermost.
-std::vector<Encounter> parse_sweep(const toml::node& node, const std::string& origin) {
-  auto* sweep = node.as_table();
-  if (!sweep) throw InputError(fmt::format("{}: 'sweep' must be a table", origin));
+/// [sweep] as a SweepConfig (perturber_mass and pericenter required), not yet expanded.
+SweepConfig parse_sweep(const toml::node& node, const std::string& origin) {
+  auto* table = node.as_table();
+  if (!table) throw InputError(fmt::format("{}: 'sweep' must be a table", origin));
   static constexpr std::string_view axes[] = {"perturber_mass", "pericenter", "pericenter_speed", "failure_strain"};
-  for (auto&& [k, unused] : *sweep)
+  for (auto&& [k, unused] : *table)
     if (std::find(std::begin(axes), std::end(axes), k.str()) == std::end(axes))
       throw InputError(fmt::format("{}: unknown key 'sweep.{}' (known: {})", origin, k.str(), fmt::join(axes, ", ")));
-  const auto masses = sweep_axis(*sweep, "perturber_mass", origin);
-  const auto pericenters = sweep_axis(*sweep, "pericenter", origin);
-  const auto speeds = sweep_axis(*sweep, "pericenter_speed", origin);
-  const auto strains = sweep_axis(*sweep, "failure_strain", origin);
-  if (masses.empty() || pericenters.empty())
+  SweepConfig sweep;
+  sweep.perturber_mass = sweep_axis(*table, "perturber_mass", origin);
+  sweep.pericenter = sweep_axis(*table, "pericenter", origin);
+  sweep.pericenter_speed = sweep_axis(*table, "pericenter_speed", origin);
+  sweep.failure_strain = sweep_axis(*table, "failure_strain", origin);
+  if (sweep.perturber_mass.empty() || sweep.pericenter.empty())
     throw InputError(fmt::format("{}: [sweep] needs perturber_mass and pericenter", origin));
-  const std::size_t total = masses.size() * pericenters.size() * std::max<std::size_t>(1, speeds.size()) *
-                            std::max<std::size_t>(1, strains.size());
-  if (total > 10'000)
-    throw InputError(fmt::format("{}: [sweep] expands into {} encounters (at most 10000)", origin, total));
-  std::vector<Encounter> out;
-  for (double m : masses)
-    for (double q : pericenters)
-      for (std::size_t v = 0; v < std::max<std::size_t>(1, speeds.size()); ++v)
-        for (std::size_t s = 0; s < std::max<std::size_t>(1, strains.size()); ++s) {
-          Encounter& e = out.emplace_back();
-          e.perturber_mass = m;
-          e.pericenter = q;
-          e.pericenter_speed = speeds.empty() ? std::sqrt(2.0 * (1.0 + m) / q) : speeds[v];
-          e.name = fmt::format("M{}_q{}_V{}", name_number(m), name_number(q),
-                               speeds.empty() ? std::string("par") : name_number(speeds[v]));
-          if (!strains.empty()) {
-            e.failure_strain = strains[s];
-            e.name += "_eps" + name_number(strains[s]);
-          }
-        }
+  return sweep;
+}
+
+/// How many of `config.encounters` to_toml writes as [[encounters]] tables: all of them, unless
+/// the last sweep_size(*config.sweep) are exactly the sweep's expansion (then [sweep] stands for them).
+std::size_t listed_encounter_count(const Config& config) {
+  if (!config.sweep) return config.encounters.size();
+  const std::size_t swept = sweep_size(*config.sweep);
+  if (swept > config.encounters.size()) return config.encounters.size();
+  const std::size_t listed = config.encounters.size() - swept;
+  const std::vector<Encounter> expanded = expand_sweep(*config.sweep);
+  return std::equal(expanded.begin(), expanded.end(), config.encounters.begin() + static_cast<std::ptrdiff_t>(listed))
+             ? listed
+             : config.encounters.size();
+}
+
+/// The [sweep] table of to_toml: each axis as the list of its values, read back bit for bit.
+std::string sweep_toml(const SweepConfig& sweep) {
+  std::string out = fmt::format("[sweep]  # {} encounters\n", sweep_size(sweep));
+  const auto axis = [&](std::string_view name, const std::vector<double>& values) {
+    if (values.empty()) return;
+    std::vector<std::string> texts;
+    for (double v : values) texts.push_back(toml_text(v));
+    out += fmt::format("{} = [{}]\n", name, fmt::join(texts, ", "));
+  };
+  axis("perturber_mass", sweep.perturber_mass);
+  axis("pericenter", sweep.pericenter);
+  axis("pericenter_speed", sweep.pericenter_speed);
+  axis("failure_strain", sweep.failure_strain);
   return out;
 }
 
@@ -741,11 +760,12 @@ void resolve_material(Config& c, const std::string& origin) {
 const Encounter& Config::find_encounter(const std::string& name) const {
   if (const std::string problem = path_name_problem(name); !problem.empty())
     throw InputError(fmt::format("encounter name {}", problem));
-  std::string known;
-  for (const auto& e : encounters) {
+  for (const auto& e : encounters)
     if (e.name == name) return e;
-    known += (known.empty() ? "" : ", ") + e.name;
-  }
+  std::string known;  // the first 20 names: a sweep's 10,000 would not make one line
+  for (std::size_t i = 0; i < std::min<std::size_t>(encounters.size(), 20); ++i)
+    known += (known.empty() ? "" : ", ") + encounters[i].name;
+  if (encounters.size() > 20) known += fmt::format(" and {} more", encounters.size() - 20);
   throw InputError(fmt::format("unknown encounter '{}' (this workflow has: {})", name,
                                known.empty() ? "none" : known));
 }
@@ -756,6 +776,45 @@ void scale_time_step(Config& config, double factor) {
     if constexpr (std::is_same_v<std::remove_cvref_t<decltype(steps)>, std::int64_t>)
       if (key.unit == "steps" && steps > 0)
         steps = std::max<std::int64_t>(1, std::llround(static_cast<double>(steps) / factor));
+  });
+}
+
+std::size_t sweep_size(const SweepConfig& sweep) {
+  std::size_t total = 1;
+  for (const auto* axis : {&sweep.perturber_mass, &sweep.pericenter, &sweep.pericenter_speed, &sweep.failure_strain}) {
+    const std::size_t n = std::max<std::size_t>(1, axis->size());
+    total = total > std::numeric_limits<std::size_t>::max() / n ? std::numeric_limits<std::size_t>::max() : total * n;
+  }
+  return total;
+}
+
+std::vector<Encounter> expand_sweep(const SweepConfig& sweep) {
+  const auto& speeds = sweep.pericenter_speed;
+  const auto& strains = sweep.failure_strain;
+  std::vector<Encounter> out;
+  out.reserve(sweep_size(sweep));
+  for (double m : sweep.perturber_mass)
+    for (double q : sweep.pericenter)
+      for (std::size_t v = 0; v < std::max<std::size_t>(1, speeds.size()); ++v)
+        for (std::size_t s = 0; s < std::max<std::size_t>(1, strains.size()); ++s) {
+          Encounter& e = out.emplace_back();
+          e.perturber_mass = m;
+          e.pericenter = q;
+          e.pericenter_speed = speeds.empty() ? std::sqrt(2.0 * (1.0 + m) / q) : speeds[v];
+          e.name = fmt::format("M{}_q{}_V{}", name_number(m), name_number(q),
+                               speeds.empty() ? std::string("par") : name_number(speeds[v]));
+          if (!strains.empty()) {
+            e.failure_strain = strains[s];
+            e.name += "_eps" + name_number(strains[s]);
+          }
+        }
+  return out;
+}
+
+void validate_encounter(const Encounter& e, const std::string& origin) {
+  check_encounter_name(e.name, origin);
+  visit_keys(e, [&](const auto& field, const auto& key) {
+    check_range(field, key, fmt::format("{}: encounter '{}': {}", origin, e.name, key.name));
   });
 }
 
@@ -807,12 +866,11 @@ void validate(const Config& config, const std::string& origin) {
     throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "
                                  "false): the welded springs continue the linear interior network",
                                  origin));
+  const std::size_t swept = config.sweep ? std::min(sweep_size(*config.sweep), config.encounters.size()) : 0;
+  check_encounter_count(config.encounters.size() - swept, swept, origin);
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
-    check_encounter_name(e.name, origin);
-    visit_keys(e, [&](const auto& field, const auto& key) {
-      check_range(field, key, fmt::format("{}: encounter '{}': {}", origin, e.name, key.name));
-    });
+    validate_encounter(e, origin);
     if (!names.insert(e.name).second)
       throw InputError(fmt::format("{}: encounter name '{}' appears twice", origin, e.name));
   }
@@ -836,9 +894,8 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
       config.encounters.insert(config.encounters.begin(), listed.begin(), listed.end());
       continue;
     }
-    if (section == "sweep") {  // expanded here; the stored configuration lists its encounters
-      auto swept = parse_sweep(snode, origin);
-      config.encounters.insert(config.encounters.end(), swept.begin(), swept.end());
+    if (section == "sweep") {  // expanded below, after the [[encounters]] tables
+      config.sweep = parse_sweep(snode, origin);
       continue;
     }
     if (std::find(section_names().begin(), section_names().end(), section) == section_names().end())
@@ -850,6 +907,11 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
       if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section), origin))
         throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
                                      known_keys<Config>(section)));
+  }
+  if (config.sweep) {
+    check_encounter_count(config.encounters.size(), sweep_size(*config.sweep), origin);
+    const std::vector<Encounter> swept = expand_sweep(*config.sweep);
+    config.encounters.insert(config.encounters.end(), swept.begin(), swept.end());
   }
   if (config.from_material())  // [material] derives these: giving them too is ambiguous
     for (auto&& [sk, snode] : root)
@@ -909,7 +971,7 @@ void apply_override(Config& config, const std::string& assignment) {
     resolve_material(config, where);
     return;
   }
-  const auto dot2 = key.find('.');  // encounters.NAME.key=value
+  const auto dot2 = key.rfind('.');  // encounters.NAME.key=value (a name may hold dots: M0.5_q1.6_V1.8)
   if (dot2 == std::string::npos) throw InputError(where + ": expected encounters.NAME.key=value");
   const std::string name = key.substr(0, dot2);
   key = key.substr(dot2 + 1);
@@ -999,7 +1061,9 @@ std::string encounter_toml(const Encounter& encounter) {
 std::string to_toml(const Config& config) {
   std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
   for (auto section : section_names()) out += "\n" + section_toml(config, section);
-  for (const auto& e : config.encounters) out += "\n" + encounter_toml(e);
+  const std::size_t listed = listed_encounter_count(config);
+  for (std::size_t i = 0; i < listed; ++i) out += "\n" + encounter_toml(config.encounters[i]);
+  if (listed < config.encounters.size()) out += "\n" + sweep_toml(*config.sweep);
   return out;
 }
 

@@ -61,6 +61,10 @@ struct CrossConfig {
   CrossCoupling coupling = CrossCoupling::paper;
 };
 
+/// The smallest integrator.dt a configuration may give (t_grav): the one home of that bound, also
+/// of the check that a built body's springs can be integrated at all (bodies/build_body.cpp).
+inline constexpr double min_time_step = 1e-7;
+
 struct IntegratorConfig {
   double dt = 0.002;                 ///< t_grav
   double softening_fraction = 0.01;  ///< Plummer softening / min initial spacing
@@ -157,6 +161,28 @@ struct CoreConfig {
 };
 // ---- end of issue 12 ---------------------------------------------------------------------------
 
+/// A [sweep] table (docs/cluster.md): the axes of a product of encounters, each as the list of
+/// its values (a range {from, to, count} of the file is kept as the values it gives). Stored
+/// as itself in every checkpoint's configuration (to_toml), so that a checkpoint's size does not
+/// grow with the number of encounters; Config::encounters holds its expansion.
+struct SweepConfig {
+  std::vector<double> perturber_mass;    ///< M2, M (required)
+  std::vector<double> pericenter;        ///< q, R (required)
+  std::vector<double> pericenter_speed;  ///< V_q; empty: the parabolic speed sqrt(2 (1 + M2) / q)
+  std::vector<double> failure_strain;    ///< eps_S; empty: shell.failure_strain
+  bool operator==(const SweepConfig&) const = default;
+};
+
+/// The most encounters one workflow may have: its [[encounters]] tables and the expansion of its
+/// [sweep] together (checked before a sweep is expanded).
+inline constexpr std::size_t max_encounters = 10'000;
+
+/// How many encounters `sweep` expands into (the product of its axes), without expanding it.
+std::size_t sweep_size(const SweepConfig& sweep);
+/// The one expansion of a [sweep]: the product of its axes, M2 outermost, then q, V_q, eps_S,
+/// each named M<M2>_q<q>_V<V_q, or "par">[_eps<eps_S>] (numbers in their shortest form, no '+').
+std::vector<Encounter> expand_sweep(const SweepConfig& sweep);
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -167,7 +193,12 @@ struct Config {
   RelaxConfig relax;
   EncounterDefaults encounter;
   GravityConfig gravity;
+  /// Every encounter: the [[encounters]] tables in file order, then the expansion of `sweep`.
   std::vector<Encounter> encounters;
+  /// The [sweep] table, when the workflow has one. to_toml writes it instead of its expansion
+  /// while the last sweep_size(*sweep) encounters are exactly expand_sweep(*sweep) (else, after
+  /// a --set of one of them, every encounter as a table).
+  std::optional<SweepConfig> sweep;
   MaterialConfig material;
   ResolutionConfig resolution;
   CoreConfig core;
@@ -242,6 +273,9 @@ inline constexpr std::size_t max_path_name_bytes = 200;
 std::string path_name_problem(std::string_view name);
 /// Checks every value's range and the relations between values; InputError naming the key.
 void validate(const Config& config, const std::string& origin);
+/// The checks validate makes of one encounter: its name and the range of each of its values
+/// (without copying the configuration: a sweep checks each of its 10,000 encounters).
+void validate_encounter(const Encounter& encounter, const std::string& origin);
 
 /// Keys that [material] and [resolution] derive ("interior.spring_constant", ...): given together
 /// with [material] they are an error; to_toml leaves them out of a material body's text.

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "base/errors.hpp"
 #include "bodies/body_type.hpp"
@@ -97,5 +102,89 @@ TEST(BuildBody, AMaterialBodyWithNoCrossSpringIsAnErrorNamingTheKey) {
     FAIL() << "built a shell without cross springs";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("resolution.cross_per_shell_node"), std::string::npos) << e.what();
+  }
+}
+
+// The key fuzz of issue 28 carried past validate (tests/model/test_config.cpp checks the ranges):
+// every numeric key that the build reads, at the ends of its range and, where the range reaches 0
+// or infinity, at 1e-320, 1e-300, 1e300 and 1e308. A value that validate accepts either builds a
+// body whose derived quantities are finite (node masses normal numbers, every spring's and
+// hinge's omega^2 one that a time step resolves) or is refused by an InputError of one line that
+// names a key: never a derived quantity that overflowed or underflowed (shell.mass = 1e-320 gave
+// shell nodes of 6e-323 M and a stretch error naming no key; spring constants of 1e308 an
+// infinite acceleration at the first step, exit 1).
+TEST(BuildBody, EveryValueThatValidatesBuildsFiniteScalesOrNamesTheKey) {
+  const Config base = test_support::small_body_config();
+  std::vector<std::pair<std::string, std::string>> cases;
+  for (const KeyInfo& key : describe_keys(base)) {
+    if ((key.type != "number" && key.type != "integer") || !key.read_by.contains(StageId::build)) continue;
+    if (key.section == "material" || key.section == "resolution") continue;  // need a [material] body
+    const std::string name = key.section + "." + key.name;
+    const auto comma = key.range.find(", ");
+    const std::string low = key.range.substr(1, comma - 1), high = key.range.substr(comma + 2, key.range.size() - comma - 3);
+    std::vector<std::string> values = {low, high == "inf" ? "1e308" : high};
+    if (std::stod(low) == 0) values.insert(values.end(), {"1e-320", "1e-300"});
+    if (high == "inf") values.push_back("1e300");
+    for (const std::string& v : values) {
+      // Bodies too large for a unit test (the range allows 1,000,000 nodes) are not fuzzed here.
+      if ((name == "interior.count" || name == "shell.level" || name == "interior.max_trials") && v == high) continue;
+      cases.emplace_back(name, v);
+    }
+  }
+  ASSERT_GT(cases.size(), 30u);
+  for (const auto& [name, value] : cases) {
+    Config config = base;
+    try {
+      apply_override(config, name + "=" + value);
+      validate(config, "--set");
+    } catch (const InputError&) {
+      continue;  // refused before building: tests/model/test_config.cpp checks that message
+    }
+    try {
+      const BuiltBody built = build_body(config);
+      for (double m : built.body.mass)
+        ASSERT_TRUE(std::isnormal(m)) << name << "=" << value << ": a node mass of " << m;
+      for (std::size_t s = 0; s < built.body.spring_count(); ++s) {
+        const auto [i, j] = built.body.springs[s];
+        const double omega2 = built.state.springs.stiffness[s] *
+                              (1 / built.body.mass[static_cast<std::size_t>(i)] + 1 / built.body.mass[static_cast<std::size_t>(j)]);
+        ASSERT_TRUE(std::isfinite(omega2) && omega2 <= 4 / (min_time_step * min_time_step))
+            << name << "=" << value << ": spring " << s << " has omega^2 = " << omega2;
+      }
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      bool names_a_key = false;
+      for (const KeyInfo& key : describe_keys(base))
+        names_a_key = names_a_key || message.find(key.section + "." + key.name) != std::string::npos;
+      EXPECT_TRUE(names_a_key) << name << "=" << value << ": " << message;
+    }
+  }
+}
+
+// The two examples of issue 28: each refused by the build, naming the key.
+TEST(BuildBody, UnintegrableScalesAreRefusedNamingTheKey) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"shell.mass=1e-320", "shell.mass = 9.99989e-321 and interior.count = 200 give shell nodes of"},
+      {"shell.mass=1e-300", "(shell.mass = 1e-300, interior.count = 200) give the shell springs omega^2"},
+      {"shell.spring_constant=1e308", "shell.spring_constant = 1e+308"},
+      {"interior.spring_constant=1e308", "interior.spring_constant = 1e+308"},
+      {"cross.spring_constant=1e308", "cross.spring_constant = 1e+308"},
+      {"shell.bending_constant=1e308", "shell.bending_constant = 1e+308"},
+  };
+  for (const auto& [assignment, expected] : cases) {
+    Config config = test_support::small_body_config();
+    apply_override(config, assignment);
+    validate(config, "--set");
+    try {
+      build_body(config);
+      ADD_FAILURE() << assignment << " was built";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << assignment << ": " << e.what();
+      const bool subnormal = std::string(assignment) == "shell.mass=1e-320";
+      EXPECT_NE(std::string(e.what()).find(subnormal ? "not a normal number" : "which no time step resolves"),
+                std::string::npos)
+          << e.what();
+    }
   }
 }

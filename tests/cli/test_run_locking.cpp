@@ -97,6 +97,52 @@ TEST(RunLocking, AnotherProcessCheckingTheFolderIsWaitedFor) {
 
 }  // namespace
 
+// Issue 28, item 6: two workflows with different bodies started on one empty folder. The first
+// stalls between its check of the folder's body and the lock of its first stage (as on a file
+// system that hangs for seconds); the second builds its body meanwhile. The first then finds the
+// other body under the lock and refuses (exit 2, one line naming the folder and both bodies);
+// the second's files are as it wrote them.
+TEST(RunLocking, TwoBodiesOnOneEmptyFolderCannotBothWin) {
+  const ScratchFolder scratch("lock_bodies");
+  const fs::path out = scratch.path / "out";
+  const fs::path hold = scratch.path / "held";
+  const std::string stall = "env TIDALCRUST_TEST_HOLD_AT=body-check:1 TIDALCRUST_TEST_HOLD_FILE=" + quoted(hold);
+  BackgroundCli first(quick_run(out) + " --quiet --body-only", stall);
+  ASSERT_TRUE(wait_while_running(first.pid(), [&] { return fs::exists(hold); }));
+  const CliResult second = run_cli(quick_run(out) + " --quiet --body-only --set workflow.seed=4");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  std::vector<std::string> written;
+  for (const char* name : {"build.h5", "stretch.h5", "relax.h5"}) written.push_back(read_file(out / "body" / name));
+  fs::remove(hold);
+  const CliResult loser = first.finish();
+  EXPECT_EQ(loser.exit_code, 2) << loser.err;
+  EXPECT_EQ(count_lines(loser.err), 1) << loser.err;
+  const std::string build_state = state_hash(read_checkpoint(out / "body" / "build.h5").state);
+  EXPECT_NE(loser.err.find((out / "body" / "build.h5").string() + ": the output folder holds checkpoints of a different "
+                           "body: the body of workflow 'quick' (build state " + build_state + "), not the body of "
+                           "workflow 'quick' this run builds (first difference 'workflow.seed = 4' -> 'workflow.seed = 7')"),
+            std::string::npos)
+      << loser.err;
+  int i = 0;
+  for (const char* name : {"build.h5", "stretch.h5", "relax.h5"})
+    EXPECT_TRUE(read_file(out / "body" / name) == written[i++]) << name << " was changed";
+}
+
+// Issue 28, item 7: on a file system without flock (NFS `nolock`; injected: flock fails with
+// ENOLCK) every stage used to wait 10 s for its own lock file and then "take over the stale lock
+// of a process that has not named itself". Now each stage holds the lock file it creates.
+TEST(RunLocking, WithoutFlockARunHoldsItsOwnLockFiles) {
+  const ScratchFolder scratch("lock_noflock_run");
+  const fs::path out = scratch.path / "out";
+  const CliResult result = run_cli(quick_run(out) + " --set relax.duration=0.5 --set relax.settle_duration=0.2",
+                                   "TIDALCRUST_TEST_FLOCK_ERROR=ENOLCK");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.err.find("took over"), std::string::npos) << result.err;
+  EXPECT_EQ(result.out.find("waiting for"), std::string::npos) << result.out;
+  for (const auto& entry : fs::recursive_directory_iterator(out))
+    EXPECT_EQ(entry.path().string().find(".lock"), std::string::npos) << entry.path();
+}
+
 TEST(RunLocking, ConcurrentRunsWithOtherValuesOfOneEncounterCannotBothWin) {
   const ScratchFolder scratch("lock_clash");
   const fs::path out = scratch.path / "out";
@@ -286,4 +332,41 @@ TEST(RunLocking, ChangedBodyChainRemovesEncountersOfTheOldBody) {
   expect_consistent_encounter(out / "strong");
   EXPECT_EQ(read_checkpoint(out / "strong" / "encounter.h5").stage.parent_hash,
             state_hash(read_checkpoint(out / "body" / "relax.h5").state));
+}
+
+// Issue 28, item 9: the encounter folders are checked for ones of another body once per relaxed
+// body (body/encounters-checked records it), not by every task of a sweep: a task reads no other
+// encounter's files, so a sweep of N encounters costs O(N), not O(N^2). Shown with a folder of
+// the old body planted after the check: a task on the same body does not look at it; once the
+// record is gone (or names another body), the next run finds and removes it.
+TEST(RunLocking, EncounterFoldersAreCheckedOncePerRelaxedBody) {
+  const ScratchFolder scratch("lock_checked_once");
+  const fs::path workflow = two_encounter_workflow(scratch.path);
+  const fs::path out = scratch.path / "out", saved = scratch.path / "weak-of-the-old-body";
+  ASSERT_EQ(run_cli(quick_run(out, workflow) + " --quiet").exit_code, 0);
+  const fs::path record = out / "body" / "encounters-checked";
+  EXPECT_EQ(read_file(record), state_hash(read_checkpoint(out / "body" / "relax.h5").state) + "\n");
+  fs::copy(out / "weak", saved, fs::copy_options::recursive);
+
+  const std::string changed = quick_run(out, workflow) + " --only strong --set relax.damping=40";
+  ASSERT_EQ(run_cli(changed).exit_code, 0);
+  EXPECT_FALSE(fs::exists(out / "weak" / "encounter.h5"));
+  const std::string new_body = state_hash(read_checkpoint(out / "body" / "relax.h5").state);
+  EXPECT_EQ(read_file(record), new_body + "\n");
+
+  fs::remove_all(out / "weak");
+  fs::copy(saved, out / "weak", fs::copy_options::recursive);
+  const CliResult task = run_cli(changed);
+  ASSERT_EQ(task.exit_code, 0) << task.err;
+  EXPECT_EQ(task.out.find("removed the encounter"), std::string::npos) << task.out;
+  EXPECT_TRUE(fs::exists(out / "weak" / "encounter.h5"));
+
+  fs::remove(record);
+  const CliResult checking = run_cli(changed);
+  ASSERT_EQ(checking.exit_code, 0) << checking.err;
+  EXPECT_NE(checking.out.find("weak: removed the encounter, which branched from another relaxed body"),
+            std::string::npos)
+      << checking.out;
+  EXPECT_FALSE(fs::exists(out / "weak" / "encounter.h5"));
+  EXPECT_EQ(read_file(record), new_body + "\n");
 }

@@ -3,6 +3,8 @@
 // O_CREAT|O_EXCL fallback for file systems without locks (ENOLCK), which can tell a dead holder
 // only on its own host.
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -130,6 +132,78 @@ TEST(StageLock, ExclusiveCreateRespectsLivingAndRemoteHolders) {
   attempt = try_lock_stage(stage, "abc", LockMethod::exclusive_create);
   ASSERT_TRUE(attempt.holder);
   EXPECT_EQ(attempt.holder->host, "another-host.example");
+}
+
+namespace {
+
+/// Sets the environment variable `name` for one scope (the testing aids of io/test_points.hpp).
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) { ::setenv(name, value.c_str(), 1); }
+  ~ScopedEnv() { ::unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+};
+
+/// Sets the mtime of `file` to `seconds` before now.
+void age_file(const fs::path& file, long seconds) {
+  struct timespec times[2] = {{0, UTIME_OMIT}, {0, 0}};
+  times[1].tv_sec = ::time(nullptr) - seconds;
+  ASSERT_EQ(::utimensat(AT_FDCWD, file.c_str(), times, 0), 0);
+}
+
+}  // namespace
+
+// Issue 28, item 7: where flock is not supported (ENOLCK, EOPNOTSUPP: NFS mounted with
+// `nolock`) the lock file that try_lock_stage has just created is its own lock, held at once: it
+// is not taken for one "of a process that has not named itself" and waited for (10 s per stage).
+TEST(StageLock, WithoutFlockTheLockFileJustCreatedIsItsOwn) {
+  for (const char* error : {"ENOLCK", "EOPNOTSUPP"}) {
+    const ScopedEnv no_flock("TIDALCRUST_TEST_FLOCK_ERROR", error);
+    const ScratchFolder scratch("lock_noflock");
+    const fs::path stage = scratch.path / "relax.h5";
+    LockAttempt first = try_lock_stage(stage, "abc");
+    ASSERT_TRUE(first.lock) << error;
+    EXPECT_EQ(first.lock->method(), LockMethod::exclusive_create) << error;
+    EXPECT_FALSE(first.lock->taken_over_from()) << error;
+    EXPECT_EQ(first.lock->takeover_note(), "") << error;
+    const LockAttempt second = try_lock_stage(stage, "abc");
+    ASSERT_TRUE(second.holder) << error;
+    EXPECT_EQ(second.holder->pid, static_cast<long>(getpid())) << error;
+    EXPECT_EQ(second.holder->identity, "abc") << error;
+    first.lock->release();
+    EXPECT_FALSE(fs::exists(lock_path(stage))) << error;
+    // A file that was there before (of another process) is not taken for our own.
+    write_file(lock_path(stage), lock_text(getppid(), this_host(), "abc"));
+    const LockAttempt third = try_lock_stage(stage, "abc");
+    ASSERT_TRUE(third.holder) << error;
+    EXPECT_EQ(third.holder->pid, static_cast<long>(getppid())) << error;
+  }
+}
+
+// Issue 28, item 7: a lock file that names nobody (its creator died before writing it) is
+// abandoned after 10 s by the file system's clock, whatever this process's clock says (a client's
+// clock may be off its NFS server's by hours): judged against a file created there now.
+TEST(StageLock, TheAgeOfAnUnnamedLockIsMeasuredByTheFileSystemsClock) {
+  const ScratchFolder scratch("lock_skew");
+  const fs::path stage = scratch.path / "encounter.h5";
+  for (const long skew : {3600L, -3600L, 0L}) {
+    const ScopedEnv skewed("TIDALCRUST_TEST_CLOCK_SKEW", std::to_string(skew));
+    write_file(lock_path(stage), "");  // just created: young, whatever our clock says
+    const LockAttempt young = try_lock_stage(stage, "abc", LockMethod::exclusive_create);
+    ASSERT_TRUE(young.holder) << "skew " << skew << ": a lock file created just now was taken over";
+    EXPECT_EQ(young.holder->pid, 0);
+    age_file(lock_path(stage), 30);  // 30 s old on the file system: abandoned
+    const LockAttempt old = try_lock_stage(stage, "abc", LockMethod::exclusive_create);
+    ASSERT_TRUE(old.lock) << "skew " << skew << ": a lock file 30 s old was not taken over";
+    ASSERT_TRUE(old.lock->taken_over_from());
+    EXPECT_EQ(old.lock->taken_over_from()->pid, 0);
+  }
+  for (const auto& entry : fs::directory_iterator(scratch.path))
+    EXPECT_EQ(entry.path().filename().string().find(".clock-"), std::string::npos) << entry.path();
 }
 
 TEST(StageLock, IdentityDependsOnFingerprintAndParent) {

@@ -196,14 +196,90 @@ failure_strain = [0.001, 0.002]
   EXPECT_EQ(first.failure_strain, 0.001);
   EXPECT_EQ(config.encounters[4].name, "M0.1_q2_Vpar_eps0.002");
   EXPECT_EQ(config.encounters.back().name, "M0.5_q2.5_Vpar_eps0.002");
-  // The stored configuration lists the expanded encounters; reading it back gives them again.
-  const Config again = parse_config(to_toml(config), "stored");
+  // The stored configuration keeps the [sweep] table, not its expansion; reading it back gives
+  // the encounters again.
+  const std::string stored = to_toml(config);
+  EXPECT_NE(stored.find("[sweep]"), std::string::npos) << stored;
+  EXPECT_EQ(stored.find("M0.1_q1.5_Vpar_eps0.001"), std::string::npos) << stored;
+  const Config again = parse_config(stored, "stored");
   EXPECT_EQ(again.encounters, config.encounters);
+  EXPECT_EQ(again.sweep, config.sweep);
+  EXPECT_EQ(to_toml(again), stored);
   const Config speeds = parse_config("[sweep]\nperturber_mass = [1.0]\npericenter = [2.0]\npericenter_speed = [1.6, 1.94]\n", "s.toml");
   ASSERT_EQ(speeds.encounters.size(), 2u);
   EXPECT_EQ(speeds.encounters[1].name, "M1_q2_V1.94");
   EXPECT_EQ(speeds.encounters[1].pericenter_speed, 1.94);
   EXPECT_FALSE(speeds.encounters[1].failure_strain);
+}
+
+namespace {
+
+/// A workflow of `masses` x `pericenters` swept encounters (and one listed, "T5").
+std::string sweep_of(int masses, int pericenters, bool listed = true) {
+  return fmt::format("[workflow]\nname = \"n\"\n{}[sweep]\n"
+                     "perturber_mass = {{from = 0.1, to = 1.0, count = {}}}\n"
+                     "pericenter = {{from = 1.5, to = 3.0, count = {}}}\npericenter_speed = [1.7]\n",
+                     listed ? "[[encounters]]\nname = \"T5\"\n" : "", masses, pericenters);
+}
+
+}  // namespace
+
+// Issue 28, item 9: every checkpoint stores the resolved configuration (to_toml); of a sweep it
+// holds the [sweep] table, so its size does not grow with the number of encounters (it grew by
+// ~250 bytes per encounter: 2.5 MB at 10,000).
+TEST(Config, StoredConfigurationOfASweepDoesNotGrowWithItsSize) {
+  std::vector<std::size_t> sizes;
+  for (const auto& [masses, pericenters] : {std::pair{1, 10}, std::pair{10, 100}, std::pair{100, 100}}) {
+    const Config config = parse_config(sweep_of(masses, pericenters, false), "w.toml");
+    ASSERT_EQ(config.encounters.size(), static_cast<std::size_t>(masses * pericenters));
+    const std::string stored = to_toml(config);
+    const Config again = parse_config(stored, "stored");
+    EXPECT_EQ(again.encounters, config.encounters);
+    sizes.push_back(stored.size());
+  }
+  // 10, 1000 and 10000 encounters: only the axes' values (110 and 200 numbers) are added.
+  EXPECT_LT(sizes[1], sizes[0] + 5000);  // at most 20 characters a value
+  EXPECT_LT(sizes[2], sizes[0] + 5000);
+  EXPECT_LT(sizes[2], 20000u);
+}
+
+// A --set of one swept encounter makes the expansion differ from the table: then every
+// encounter is stored as a table, and reading it back gives the changed encounter.
+TEST(Config, AChangedSweptEncounterIsStoredAsATable) {
+  Config config = parse_config(sweep_of(2, 2), "w.toml");
+  apply_override(config, "encounters.M1_q3_V1.7.pericenter_speed=1.9");
+  const std::string stored = to_toml(config);
+  EXPECT_EQ(stored.find("[sweep]"), std::string::npos) << stored;
+  const Config again = parse_config(stored, "stored");
+  EXPECT_EQ(again.encounters, config.encounters);
+  EXPECT_EQ(again.find_encounter("M1_q3_V1.7").pericenter_speed, 1.9);
+}
+
+// One limit for [[encounters]] and [sweep], alone or together, with one message.
+TEST(Config, OneLimitOnTheEncountersOfAWorkflow) {
+  std::string listed;
+  for (std::size_t i = 0; i <= max_encounters; ++i) listed += fmt::format("[[encounters]]\nname = \"e{}\"\n", i);
+  // e0 ... e5000: 5001 tables, and 5000 swept.
+  const std::string half_listed = listed.substr(0, listed.find("[[encounters]]\nname = \"e5001\""));
+  const std::pair<std::string, std::string> cases[] = {
+      {listed, "w.toml: the workflow has 10001 encounters (10001 [[encounters]] tables, 0 from [sweep]); at most 10000"},
+      {half_listed + "[sweep]\nperturber_mass = {from = 0.1, to = 1, count = 5}\npericenter = {from = 1.5, to = 3, count = 1000}\n",
+       "w.toml: the workflow has 10001 encounters (5001 [[encounters]] tables, 5000 from [sweep]); at most 10000"},
+      {"[sweep]\nperturber_mass = {from = 0.1, to = 1, count = 1000}\npericenter = {from = 1.5, to = 3, count = 1000}\n"
+       "pericenter_speed = {from = 1.5, to = 3, count = 1000}\nfailure_strain = {from = 0.001, to = 0.01, count = 1000}\n",
+       "w.toml: the workflow has 1000000000000 encounters (0 [[encounters]] tables, 1000000000000 from [sweep]); at most 10000"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parse_config(text, "w.toml");
+      ADD_FAILURE() << "accepted: " << expected;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), expected);
+    }
+  }
+  // At the limit: accepted.
+  EXPECT_EQ(parse_config(listed.substr(0, listed.find("[[encounters]]\nname = \"e10000\"")), "w.toml").encounters.size(),
+            max_encounters);
 }
 
 TEST(Config, BadSweepsAreOneLineErrorsNamingTheFileAndKey) {
@@ -218,7 +294,7 @@ TEST(Config, BadSweepsAreOneLineErrorsNamingTheFileAndKey) {
       {"[sweep]\nperturber_mass = [0.5]\npericenter = [0.5]\n", "pericenter = 0.5 is out of range"},
       {"[sweep]\nperturber_mass = [0.5, 0.5]\npericenter = [2.0]\n", "appears twice"},
       {"[sweep]\nperturber_mass = {from = 0.1, to = 1, count = 1000}\npericenter = {from = 1.5, to = 3, count = 100}\n",
-       "at most 10000"},
+       "the workflow has 100000 encounters"},
   };
   for (const auto& [text, expected] : cases) {
     try {
