@@ -116,8 +116,11 @@ double lithostatic_crust_strain(const Body& body, const State& state, const std:
     stiffness_length2 += state.springs.stiffness[n] * rest * rest;
   }
   const double deep = interior_radius - interior_spring_distance;
-  TIDALCRUST_ASSERT(shell_radius > 0 && stiffness_length2 > 0 && deep > 0 && deep < shell_radius,
-                    "lithostatic crust strain needs a shell and deep interior springs");
+  TIDALCRUST_ASSERT(shell_radius > 0 && stiffness_length2 > 0, "lithostatic crust strain needs a shell");
+  if (!(deep > 0 && deep < shell_radius))
+    throw InputError(fmt::format("relax.crust_support = \"lithostatic\": interior.radius - interior.spring_distance = {} "
+                                 "leaves no interior springs deeper than d_I to take the interior's modulus from",
+                                 deep));
   // Shells of about d_I / 2 (the springs' own reach) out to r_I - d_I, below which eq. 15 counts every
   // spring; the outermost continued to the shell.
   const auto shells = static_cast<std::size_t>(std::max(1.0, std::round(deep / (0.5 * interior_spring_distance))));
@@ -125,10 +128,13 @@ double lithostatic_crust_strain(const Body& body, const State& state, const std:
   for (std::size_t b = 0; b < shells; ++b) radii[b] = deep * static_cast<double>(b + 1) / static_cast<double>(shells);
   const std::vector<double> modulus = interior_modulus_profile(body, state, radii);
   std::vector<ElasticLayer> layers;
-  for (std::size_t b = 0; b < shells; ++b) {
-    TIDALCRUST_ASSERT(modulus[b] > 0, "lithostatic crust strain: a shell of the interior without springs");
-    layers.push_back({b + 1 < shells ? radii[b] : shell_radius, modulus[b], 0.25, 0});
-  }
+  // A shell without spring midpoints (a small body's centre) is left out: the next one reaches down.
+  for (std::size_t b = 0; b < shells; ++b)
+    if (modulus[b] > 0) layers.push_back({b + 1 < shells ? radii[b] : shell_radius, modulus[b], 0.25, 0});
+  if (layers.empty() || !(modulus.back() > 0))
+    throw InputError(fmt::format("relax.crust_support = \"lithostatic\": no interior springs within {} of the "
+                                 "centre, below the welded layer, to take the interior's modulus from", deep));
+  layers.back().outer_radius = shell_radius;
   const double compliance = layered_sphere_compression(layers);
   const double area = 4 * std::numbers::pi * shell_radius * shell_radius;
   const double membrane = stiffness_length2 / (2 * area);

@@ -55,7 +55,8 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
 /// C = sum k L0^2 / (2 * 4 pi R_S^2) the membrane's stiffness in equal two-way stretch (e_g R;
 /// sqrt(3) k for an equilateral triangular lattice); R_S the mean shell radius. Degree-0 load; the
 /// change of the interior's own gravity as it compresses is neglected (relative size rho g R / K).
-/// Internal error (TIDALCRUST_ASSERT) without shell springs or deep interior springs.
+/// InputError when r_I - d_I leaves no interior springs to measure (it names the keys); internal
+/// error (TIDALCRUST_ASSERT) without shell springs.
 /// gravity: self-gravity accelerations [N*3] (G M/R^2) at the current positions.
 double lithostatic_crust_strain(const Body& body, const State& state, const std::vector<double>& gravity,
                                 double interior_radius, double interior_spring_distance);

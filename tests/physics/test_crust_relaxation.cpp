@@ -85,3 +85,29 @@ TEST(BalancedCrustSupport, SpringsTooWeakForTheWeightAreAnError) {
   for (double& k : t.state.springs.stiffness) k = 1e-6;
   EXPECT_THROW(balance_cross_springs(t.body, t.state, t.gravity), InputError);
 }
+
+// The lithostatic strain takes the interior's modulus from its springs deeper than d_I below r_I:
+// a body whose r_I - d_I leaves none is bad input (exit 2 naming the keys), not an internal error.
+TEST(LithostaticCrust, NoInteriorDeeperThanTheSpringReachIsAClearError) {
+  Body body;
+  State state;
+  for (int k = 0; k < 2; ++k) {
+    body.mass.push_back(0.01);
+    body.species.push_back(static_cast<std::uint8_t>(Species::shell));
+  }
+  state.position = {1, 0, 0, 0, 1, 0};
+  state.velocity.assign(6, 0.0);
+  body.springs.push_back({0, 1});
+  body.spring_kind.push_back(static_cast<std::uint8_t>(SpringKind::shell));
+  state.springs.rest_length.push_back(std::sqrt(2.0));
+  state.springs.stiffness.push_back(0.1);
+  state.springs.failed.push_back(0);
+  const std::vector<double> gravity = {-1, 0, 0, 0, -1, 0};
+  try {
+    lithostatic_crust_strain(body, state, gravity, 0.3, 0.4);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("interior.radius - interior.spring_distance = -0.1"), std::string::npos)
+        << e.what();
+  }
+}
