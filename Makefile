@@ -6,7 +6,7 @@
 BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
-            libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev \
+            libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev libboost-dev \
             slurm-wlm munge python3
 EXE      := $(BUILD)/tidalcrust
 # Only for check-viewers: the outside readers the files are checked with.

@@ -43,6 +43,8 @@ void fill_results(SweepRow& row, const Checkpoint& c) {
   row.fitted_arcs = fractures.geometry.arcs.size();
   row.median_arc_radius_deg = fractures.geometry.median_arc_radius_deg;
   row.median_arc_pole_axis_deg = fractures.geometry.median_pole_axis_from_subsatellite_deg;
+  row.total_crack_length = fractures.total_crack_length;
+  row.cracks = fractures.clusters.size();
 }
 
 /// The row of one encounter: its status from encounter.h5 or its mid-stage checkpoint in `dir`.
@@ -53,7 +55,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   row.failure_strain = spec.failure_strain.value_or(encounter_config.shell.failure_strain);
   row.strain_estimate = eq5_strain(spec, youngs);
   row.failed_fraction = row.hemisphere_fraction = row.median_angle_deg = row.longest_crack = row.energy_deposited =
-      row.energy_dissipated = row.concentricity = row.median_arc_radius_deg = row.median_arc_pole_axis_deg = nan;
+      row.energy_dissipated = row.concentricity = row.median_arc_radius_deg = row.median_arc_pole_axis_deg = row.total_crack_length = nan;
   const fs::path file = dir / "encounter.h5";
   const fs::path mid = sibling_checkpoint(file, "mid");
   try {
@@ -84,6 +86,81 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   return row;
 }
 
+/// The lines of an [ensemble] workflow: each point an encounter before the expansion, with the
+/// share of its finished members that cracked.
+std::vector<CrackBoundary> ensemble_boundaries(const std::vector<EnsembleRow>& rows, double youngs) {
+  std::map<std::tuple<double, double, double>, std::vector<const EnsembleRow*>> lines;
+  for (const auto& r : rows)
+    if (r.finished > 0) lines[{r.encounter.perturber_mass, r.failure_strain, r.encounter.pericenter_speed}].push_back(&r);
+  std::vector<CrackBoundary> out;
+  for (auto& [key, line] : lines) {
+    std::sort(line.begin(), line.end(), [](const EnsembleRow* a, const EnsembleRow* b) {
+      return a->encounter.pericenter < b->encounter.pericenter;
+    });
+    CrackBoundary b;
+    std::tie(b.perturber_mass, b.failure_strain, b.pericenter_speed) = key;
+    b.largest_cracked_q = b.smallest_intact_q = b.half_probability_q = b.half_probability_q_low =
+        b.half_probability_q_high = nan;
+    for (const EnsembleRow* r : line)
+      if (r->cracked.successes > 0) b.largest_cracked_q = r->encounter.pericenter;
+    for (const EnsembleRow* r : line)
+      if (r->cracked.successes == 0 && !(r->encounter.pericenter < b.largest_cracked_q)) {
+        b.smallest_intact_q = r->encounter.pericenter;
+        break;
+      }
+    // The first fall of the cracked share through 1/2 along q.
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const double p0 = line[i]->cracked.fraction, p1 = line[i + 1]->cracked.fraction;
+      if (p0 >= 0.5 && p1 < 0.5) {
+        const double q0 = line[i]->encounter.pericenter, q1 = line[i + 1]->encounter.pericenter;
+        b.half_probability_q = q0 + (q1 - q0) * (p0 - 0.5) / (p0 - p1);
+        break;
+      }
+    }
+    for (const EnsembleRow* r : line)
+      if (r->cracked.low > 0.5 && !(r->encounter.pericenter > b.half_probability_q))
+        b.half_probability_q_low = r->encounter.pericenter;
+    for (const EnsembleRow* r : line)
+      if (r->cracked.high < 0.5 && !(r->encounter.pericenter < b.half_probability_q_low) &&
+          !(r->encounter.pericenter < b.half_probability_q)) {
+        b.half_probability_q_high = r->encounter.pericenter;
+        break;
+      }
+    b.eq5_q = std::sqrt(b.perturber_mass / (std::sqrt(youngs) * b.pericenter_speed * b.failure_strain));
+    out.push_back(b);
+  }
+  return out;
+}
+
+/// The ensemble rows of `rows`, whose encounters are the members of `config.ensemble_bases` in
+/// order (expand_ensemble); none when they are not (a workflow without [ensemble]).
+std::vector<EnsembleRow> ensemble_rows(const Config& config, const std::vector<SweepRow>& rows, double youngs) {
+  if (!config.ensemble) return {};
+  const std::size_t n = static_cast<std::size_t>(config.ensemble->members);
+  if (rows.size() != config.ensemble_bases.size() * n) return {};
+  std::vector<EnsembleRow> out;
+  for (std::size_t b = 0; b < config.ensemble_bases.size(); ++b) {
+    EnsembleRow e;
+    e.encounter = config.ensemble_bases[b];
+    e.failure_strain = rows[b * n].failure_strain;
+    e.strain_estimate = eq5_strain(e.encounter, youngs);
+    e.members = n;
+    std::size_t cracked = 0;
+    std::vector<std::vector<double>> values(ensemble_statistics().size());
+    for (std::size_t k = 0; k < n; ++k) {
+      const SweepRow& r = rows[b * n + k];
+      if (r.status != SweepStatus::finished) continue;
+      ++e.finished;
+      cracked += r.failures > 0 ? 1 : 0;
+      for (std::size_t s = 0; s < values.size(); ++s) values[s].push_back(ensemble_statistics()[s].value(r));
+    }
+    e.cracked = wilson_interval(cracked, e.finished);
+    for (const auto& v : values) e.statistics.push_back(summarize_sample(v));
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
 std::vector<CrackBoundary> crack_boundaries(const std::vector<SweepRow>& rows, double youngs) {
   // Finished rows of each (M2, eps_S, V_q) line, ordered by q.
   std::map<std::tuple<double, double, double>, std::vector<const SweepRow*>> lines;
@@ -105,12 +182,31 @@ std::vector<CrackBoundary> crack_boundaries(const std::vector<SweepRow>& rows, d
         break;
       }
     b.eq5_q = std::sqrt(b.perturber_mass / (std::sqrt(youngs) * b.pericenter_speed * b.failure_strain));
+    b.half_probability_q = b.half_probability_q_low = b.half_probability_q_high = nan;
     out.push_back(b);
   }
   return out;
 }
 
 }  // namespace
+
+std::span<const EnsembleStatistic> ensemble_statistics() {
+  static constexpr EnsembleStatistic list[] = {
+      {"failures", "1", [](const SweepRow& r) { return static_cast<double>(r.failures); }},
+      {"failed_fraction", "1", [](const SweepRow& r) { return r.failed_fraction; }},
+      {"total_crack_length", "R", [](const SweepRow& r) { return r.total_crack_length; }},
+      {"longest_crack", "R", [](const SweepRow& r) { return r.longest_crack; }},
+      {"cracks", "1", [](const SweepRow& r) { return static_cast<double>(r.cracks); }},
+      {"hemisphere_fraction", "1", [](const SweepRow& r) { return r.hemisphere_fraction; }},
+      {"median_angle", "deg", [](const SweepRow& r) { return r.median_angle_deg; }},
+      {"concentricity", "1", [](const SweepRow& r) { return r.concentricity; }},
+      {"median_arc_radius", "deg", [](const SweepRow& r) { return r.median_arc_radius_deg; }},
+      {"median_arc_pole_axis", "deg", [](const SweepRow& r) { return r.median_arc_pole_axis_deg; }},
+      {"energy_deposited", "GM^2/R", [](const SweepRow& r) { return r.energy_deposited; }},
+      {"energy_dissipated", "GM^2/R", [](const SweepRow& r) { return r.energy_dissipated; }},
+  };
+  return list;
+}
 
 const char* status_name(SweepStatus status) {
   switch (status) {
@@ -125,6 +221,21 @@ const char* status_name(SweepStatus status) {
 
 std::size_t SweepReport::count(SweepStatus status) const {
   return static_cast<std::size_t>(std::count_if(rows.begin(), rows.end(), [&](const SweepRow& r) { return r.status == status; }));
+}
+
+SweepReport crack_probability_report(const SweepReport& report) {
+  SweepReport out = report;
+  out.rows.clear();
+  for (const auto& e : report.ensembles) {
+    SweepRow& row = out.rows.emplace_back();
+    row.encounter = e.encounter;
+    row.failure_strain = e.failure_strain;
+    row.strain_estimate = e.strain_estimate;
+    row.status = e.finished > 0 ? SweepStatus::finished : SweepStatus::missing;
+    row.failures = e.cracked.successes;
+    row.failed_fraction = e.cracked.fraction;
+  }
+  return out;
 }
 
 double eq5_strain(const Encounter& encounter, double youngs_in_e_g) {
@@ -153,7 +264,9 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
   for (const auto& spec : config.encounters)
     report.rows.push_back(
         encounter_row(encounter_config, spec, relaxed_hash, report.youngs_modulus, report.folder / spec.name));
-  report.boundaries = crack_boundaries(report.rows, report.youngs_modulus);
+  report.ensembles = ensemble_rows(config, report.rows, report.youngs_modulus);
+  report.boundaries = config.ensemble ? ensemble_boundaries(report.ensembles, report.youngs_modulus)
+                                      : crack_boundaries(report.rows, report.youngs_modulus);
   return report;
 }
 
@@ -162,17 +275,18 @@ std::string sweep_report_csv(const SweepReport& report) {
       "name,status,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],failures [1],failed_fraction [1],"
       "hemisphere_fraction [1],median_angle [deg],longest_crack [R],energy_deposited [GM^2/R],"
       "energy_dissipated [GM^2/R],state_hash,note,concentricity [1],fitted_arcs [1],median_arc_radius [deg],"
-      "median_arc_pole_axis [deg]\n";
+      "median_arc_pole_axis [deg],total_crack_length [R],cracks [1]\n";
   for (const auto& r : report.rows) {
     const bool done = r.status == SweepStatus::finished;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.encounter.name),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.encounter.name),
                        status_name(r.status), r.encounter.perturber_mass, r.encounter.pericenter,
                        r.encounter.pericenter_speed, r.failure_strain, r.strain_estimate,
                        done ? std::to_string(r.failures) : "", csv_number(r.failed_fraction),
                        csv_number(r.hemisphere_fraction), csv_number(r.median_angle_deg), csv_number(r.longest_crack),
                        csv_number(r.energy_deposited), csv_number(r.energy_dissipated), r.state_hash, csv_text(r.note),
                        csv_number(r.concentricity), done ? std::to_string(r.fitted_arcs) : "",
-                       csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg));
+                       csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg),
+                       csv_number(r.total_crack_length), done ? std::to_string(r.cracks) : "");
   }
   return csv;
 }
@@ -205,7 +319,9 @@ Json sweep_report_json(const SweepReport& report) {
                           {"concentricity", number(r.concentricity)},
                           {"fitted_arcs", done ? Json(r.fitted_arcs) : Json(nullptr)},
                           {"median_arc_radius_deg", number(r.median_arc_radius_deg)},
-                          {"median_arc_pole_axis_deg", number(r.median_arc_pole_axis_deg)}});
+                          {"median_arc_pole_axis_deg", number(r.median_arc_pole_axis_deg)},
+                          {"total_crack_length", number(r.total_crack_length)},
+                          {"cracks", done ? Json(r.cracks) : Json(nullptr)}});
   }
   Json boundaries = Json::array();
   for (const auto& b : report.boundaries)
@@ -214,7 +330,10 @@ Json sweep_report_json(const SweepReport& report) {
                           {"pericenter_speed", b.pericenter_speed},
                           {"largest_cracked_q", number(b.largest_cracked_q)},
                           {"smallest_intact_q", number(b.smallest_intact_q)},
-                          {"eq5_q", number(b.eq5_q)}});
+                          {"eq5_q", number(b.eq5_q)},
+                          {"half_probability_q", number(b.half_probability_q)},
+                          {"half_probability_q_low", number(b.half_probability_q_low)},
+                          {"half_probability_q_high", number(b.half_probability_q_high)}});
   return {{"workflow", report.workflow},
           {"folder", report.folder.string()},
           {"dt_factor", report.dt_factor},
@@ -224,6 +343,64 @@ Json sweep_report_json(const SweepReport& report) {
           {"counts", counts},
           {"encounters", encounters},
           {"crack_boundaries", boundaries}};
+}
+
+std::string ensemble_report_csv(const SweepReport& report) {
+  std::string csv = "name,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],members [1],finished [1],"
+                    "cracked [1],cracked_fraction [1],cracked_low [1],cracked_high [1]";
+  for (const auto& s : ensemble_statistics())
+    csv += fmt::format(",{0}_mean [{1}],{0}_sd [{1}],{0}_low [{1}],{0}_high [{1}]", s.name, s.unit);
+  csv += "\n";
+  for (const auto& e : report.ensembles) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", csv_text(e.encounter.name), e.encounter.perturber_mass,
+                       e.encounter.pericenter, e.encounter.pericenter_speed, e.failure_strain, e.strain_estimate,
+                       e.members, e.finished, e.cracked.successes, csv_number(e.cracked.fraction),
+                       csv_number(e.cracked.low), csv_number(e.cracked.high));
+    for (const auto& s : e.statistics)
+      csv += fmt::format(",{},{},{},{}", csv_number(s.mean), csv_number(s.standard_deviation), csv_number(s.low),
+                         csv_number(s.high));
+    csv += "\n";
+  }
+  return csv;
+}
+
+Json ensemble_report_json(const SweepReport& report) {
+  const auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  Json units = Json::object();
+  for (const auto& s : ensemble_statistics()) units[s.name] = s.unit;
+  Json rows = Json::array();
+  for (const auto& e : report.ensembles) {
+    Json stats = Json::object();
+    for (std::size_t i = 0; i < e.statistics.size(); ++i) {
+      const SampleSummary& s = e.statistics[i];
+      stats[ensemble_statistics()[i].name] = {{"count", s.count},
+                                              {"mean", number(s.mean)},
+                                              {"sd", number(s.standard_deviation)},
+                                              {"standard_error", number(s.standard_error)},
+                                              {"low", number(s.low)},
+                                              {"high", number(s.high)}};
+    }
+    rows.push_back({{"name", e.encounter.name},
+                    {"perturber_mass", e.encounter.perturber_mass},
+                    {"pericenter", e.encounter.pericenter},
+                    {"pericenter_speed", e.encounter.pericenter_speed},
+                    {"failure_strain", e.failure_strain},
+                    {"strain_eq5", number(e.strain_estimate)},
+                    {"members", e.members},
+                    {"finished", e.finished},
+                    {"cracked", {{"members", e.cracked.successes},
+                                 {"fraction", number(e.cracked.fraction)},
+                                 {"low", number(e.cracked.low)},
+                                 {"high", number(e.cracked.high)}}},
+                    {"statistics", stats}});
+  }
+  return {{"workflow", report.workflow},
+          {"folder", report.folder.string()},
+          {"confidence", ensemble_confidence},
+          {"method", "mean and sample standard deviation (n - 1) over the finished members; interval of the mean: "
+                     "Student t with n - 1 degrees of freedom; cracked share: Wilson score interval"},
+          {"units", units},
+          {"ensembles", rows}};
 }
 
 }  // namespace tidalcrust

@@ -7,9 +7,11 @@
 // G = M = R = 1 (masses in M, distances in R, speeds in sqrt(GM/R), energies in G M^2/R).
 #include <cstddef>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "analysis/ensemble_statistics.hpp"
 #include "io/json.hpp"
 #include "model/config.hpp"
 
@@ -45,6 +47,8 @@ struct SweepRow {
   std::size_t fitted_arcs = 0;                  ///< long cracks with a fitted small circle
   double median_arc_radius_deg = 0;             ///< median angular radius of those circles; NaN if none
   double median_arc_pole_axis_deg = 0;          ///< median angle of their poles' axes from the subsatellite axis; NaN if none
+  double total_crack_length = 0;                ///< dual-lattice length of every crack, R
+  std::size_t cracks = 0;                       ///< connected crack networks (clusters)
   bool cracked() const { return status == SweepStatus::finished && failures > 0; }
 };
 
@@ -57,6 +61,34 @@ struct CrackBoundary {
   double largest_cracked_q = 0;   ///< largest q with a crack; NaN if none cracked
   double smallest_intact_q = 0;   ///< smallest q above it without a crack; NaN if none
   double eq5_q = 0;               ///< q where eq. 5 gives strain = eps_S: sqrt(M2 / (E^(1/2) V_q eps_S))
+  // An [ensemble] workflow's lines are its encounters before the expansion (unperturbed q), a
+  // point "cracked" when any member cracked; and the probability of cracking gives (NaN otherwise):
+  double half_probability_q = 0;  ///< q where the share of cracked members falls through 1/2 (linear between points)
+  /// The boundary's 95% range: the largest q below it whose Wilson interval lies above 1/2 (a crack
+  /// more likely than not beyond the noise) and the smallest q above that whose interval lies below 1/2.
+  double half_probability_q_low = 0;
+  double half_probability_q_high = 0;
+};
+
+/// One statistic of the ensemble table: its name (as in the CSV and JSON), unit and value of a
+/// finished row. The list (ensemble_statistic_names) is the one home of what an ensemble reports.
+struct EnsembleStatistic {
+  const char* name;
+  const char* unit;
+  double (*value)(const SweepRow& row);
+};
+/// The statistics summarised over an ensemble's members, in table order.
+std::span<const EnsembleStatistic> ensemble_statistics();
+
+/// One encounter of an [ensemble] workflow over its members (docs/ensembles.md).
+struct EnsembleRow {
+  Encounter encounter;            ///< before the expansion: its name and unperturbed q
+  double failure_strain = 0;      ///< eps_S its members run with
+  double strain_estimate = 0;     ///< eq. 5 at the unperturbed q
+  std::size_t members = 0;
+  std::size_t finished = 0;       ///< members finished; the statistics are over these
+  ProportionInterval cracked;     ///< finished members with at least one failure (Wilson interval)
+  std::vector<SampleSummary> statistics;  ///< one per ensemble_statistics(), in order
 };
 
 struct SweepReport {
@@ -66,6 +98,7 @@ struct SweepReport {
   double youngs_modulus = 0;             ///< E_I of the relaxed body (eq. 15), e_g: the E of eq. 5
   std::vector<SweepRow> rows;            ///< the workflow's encounters, in its order
   std::vector<CrackBoundary> boundaries; ///< by M2, eps_S, V_q (ascending)
+  std::vector<EnsembleRow> ensembles;    ///< per encounter before the expansion; empty without [ensemble]
   std::size_t count(SweepStatus status) const;
 };
 
@@ -76,8 +109,19 @@ struct SweepReport {
 /// unreadable.
 SweepReport build_sweep_report(const Config& config, const std::filesystem::path& root, double dt_factor);
 
+/// The report of `report`'s ensemble rows as rows of their own, for the phase diagram of crack
+/// probability: a row per encounter before the expansion (unperturbed q), finished when a member
+/// finished, with failures = the members that cracked and failed_fraction = their share.
+SweepReport crack_probability_report(const SweepReport& report);
+
 /// The strain of eq. 5, (e_g/E)^(1/2) (R/q)^2 (M2/M) (v_c/V_q), for E in e_g.
 double eq5_strain(const Encounter& encounter, double youngs_in_e_g);
+
+/// The ensemble table as CSV: per encounter (before the expansion) its inputs, members finished,
+/// the cracked share with its interval, then per statistic mean, sd, low, high (95%, Student t).
+std::string ensemble_report_csv(const SweepReport& report);
+/// The same as JSON, with the method of each interval stated.
+Json ensemble_report_json(const SweepReport& report);
 
 /// CSV, one header row with the unit of each column in brackets, then one row per encounter;
 /// cells of values an encounter does not have (not finished, NaN) are empty. The crack-geometry

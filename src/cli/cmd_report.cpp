@@ -58,14 +58,21 @@ int command_report(int argc, char** argv) {
     throw InputError(fmt::format("{}: cannot create the report folder: {}", dir.string(), ec.message()));
   write_file_atomically(dir / "sweep.csv", sweep_report_csv(report));
   write_file_atomically(dir / "sweep.json", json_text(sweep_report_json(report)));
-  // One phase diagram per (M2, eps_S) of the workflow.
+  if (!report.ensembles.empty()) {
+    write_file_atomically(dir / "ensembles.csv", ensemble_report_csv(report));
+    write_file_atomically(dir / "ensembles.json", json_text(ensemble_report_json(report)));
+  }
+  // One phase diagram per (M2, eps_S) of the workflow; of an ensemble, its encounters before the
+  // expansion coloured by the share of members that cracked.
+  const SweepReport drawn = report.ensembles.empty() ? report : crack_probability_report(report);
   std::map<std::pair<double, double>, bool> groups;
-  for (const auto& r : report.rows) groups[{r.encounter.perturber_mass, r.failure_strain}] = true;
+  for (const auto& r : drawn.rows) groups[{r.encounter.perturber_mass, r.failure_strain}] = true;
   std::vector<std::string> figures;
   for (const auto& [key, unused] : groups)
-    for (const auto& file : write_phase_diagram(report, key.first, key.second,
+    for (const auto& file : write_phase_diagram(drawn, key.first, key.second,
                                                 dir / fmt::format("phase_M{}_eps{}", file_number(key.first),
-                                                                  file_number(key.second))))
+                                                                  file_number(key.second)),
+                                                !report.ensembles.empty()))
       figures.push_back(file.filename().string());
 
   fmt::print("report of workflow {} ({} encounters in {}):\n", report.workflow, report.rows.size(),
@@ -81,11 +88,30 @@ int command_report(int argc, char** argv) {
     else
       fmt::print("  {}: {}: {}\n", status_name(status), names.size(), fmt::join(names, ", "));
   }
+  for (const auto& e : report.ensembles) {
+    const auto stat = [&](std::string_view name) {
+      for (std::size_t i = 0; i < e.statistics.size(); ++i)
+        if (ensemble_statistics()[i].name == name) return e.statistics[i];
+      return SampleSummary{};
+    };
+    const SampleSummary failures = stat("failures"), length = stat("total_crack_length");
+    fmt::print("  ensemble {}: {} of {} members finished, {} cracked; failed springs {:.1f} +- {:.1f} [{:.1f}, {:.1f}], "
+               "total crack length {:.3g} +- {:.2g} R [{:.3g}, {:.3g}] (mean +- sd [95% interval of the mean])\n",
+               e.encounter.name, e.finished, e.members, e.cracked.successes, failures.mean, failures.standard_deviation,
+               failures.low, failures.high, length.mean, length.standard_deviation, length.low, length.high);
+  }
   for (const auto& b : report.boundaries)
     fmt::print("  M2 = {:g}, eps_S = {:g}, V_q = {:g}: cracked up to q = {}, intact from q = {}; eq. 5 strain = eps_S "
                "at q = {:.3g}\n",
                b.perturber_mass, b.failure_strain, b.pericenter_speed, q_text(b.largest_cracked_q),
                q_text(b.smallest_intact_q), b.eq5_q);
+  for (const auto& b : report.boundaries)
+    if (std::isfinite(b.half_probability_q))
+      fmt::print("  M2 = {:g}, eps_S = {:g}, V_q = {:g}: half the members crack at q = {:.4g} (95% range {} to {})\n",
+                 b.perturber_mass, b.failure_strain, b.pericenter_speed, b.half_probability_q,
+                 q_text(b.half_probability_q_low), q_text(b.half_probability_q_high));
+  if (!report.ensembles.empty())
+    fmt::print("ensemble table: {}, {}\n", (dir / "ensembles.csv").string(), (dir / "ensembles.json").string());
   fmt::print("table: {}, {}\nphase diagrams: {} in {}\n", (dir / "sweep.csv").string(), (dir / "sweep.json").string(),
              fmt::join(figures, ", "), dir.string());
   return exit_ok;

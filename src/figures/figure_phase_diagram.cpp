@@ -76,7 +76,7 @@ PlotAxes phase_diagram_axes(const std::vector<const SweepRow*>& rows, double you
 }
 
 FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass, double failure_strain,
-                                const std::filesystem::path& stem) {
+                                const std::filesystem::path& stem, bool crack_probability) {
   std::vector<const SweepRow*> rows;
   for (const auto& r : report.rows)
     if (r.encounter.perturber_mass == perturber_mass && r.failure_strain == failure_strain) rows.push_back(&r);
@@ -85,13 +85,17 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
                                  failure_strain));
   const PlotAxes axes = phase_diagram_axes(rows, report.youngs_modulus);
   const PageRect& area = axes.area();
-  const double top = colour_scale_top(rows);
+  const double top = crack_probability ? 1.0 : colour_scale_top(rows);
+  // Cracked: in a probability diagram, more often than not.
+  const auto cracked = [&](const SweepRow* r) {
+    return crack_probability ? r->status == SweepStatus::finished && r->failed_fraction >= 0.5 : r->cracked();
+  };
   std::size_t finished = 0;
   for (const SweepRow* r : rows) finished += r->status == SweepStatus::finished;
   const std::string title = fmt::format(
-      "{}: failed fraction of the shell springs, M\u2082 = {} M, \u03b5_S = {}\n{} of {} encounters finished; "
+      "{}: {}, M\u2082 = {} M, \u03b5_S = {}\n{} of {} encounters finished; "
       "eq. 5 with E = E_I = {} e_g",
-      report.workflow, general_text(perturber_mass), general_text(failure_strain), finished, rows.size(),
+      report.workflow, crack_probability ? "share of ensemble members cracked" : "failed fraction of the shell springs", general_text(perturber_mass), general_text(failure_strain), finished, rows.size(),
       general_text(report.youngs_modulus, 3));
 
   return write_figure(stem, page_width, page_height, [&](cairo_t* cr) {
@@ -111,7 +115,7 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
                                        vs.begin())}] = r;
     const auto differ = [&](std::pair<std::size_t, std::size_t> a, std::pair<std::size_t, std::size_t> b) {
       const auto ia = grid.find(a), ib = grid.find(b);
-      return ia != grid.end() && ib != grid.end() && ia->second->cracked() != ib->second->cracked();
+      return ia != grid.end() && ib != grid.end() && cracked(ia->second) != cracked(ib->second);
     };
     for (std::size_t i = 0; i < qs.size(); ++i)
       for (std::size_t j = 0; j < vs.size(); ++j) {
@@ -156,7 +160,7 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
       }
       cairo_new_sub_path(cr);
       cairo_arc(cr, x, y, marker_radius, 0, 2 * pi);
-      if (r->cracked()) {
+      if (crack_probability || r->cracked()) {
         set_color(cr, viridis(r->failed_fraction / top));
         cairo_fill_preserve(cr);
         cairo_set_source_rgb(cr, 0, 0, 0);
@@ -197,7 +201,7 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
       draw_text(cr, tick_label(t, step), bar.right() + 5, y, 0, 0.5, tick_font_size);
     }
     cairo_set_source_rgb(cr, 0, 0, 0);
-    draw_text(cr, "failed fraction", bar.left + bar.width / 2, bar.top - 6, 0.5, 1, tick_font_size);
+    draw_text(cr, crack_probability ? "crack probability" : "failed fraction", bar.left + bar.width / 2, bar.top - 6, 0.5, 1, tick_font_size);
 
     // Legend below the plot.
     const double y = page_height - 16;
@@ -227,12 +231,14 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
       cairo_restore(cr);
       x += 26;
     };
-    legend_marker(true);
-    legend_text("cracked");
-    legend_marker(false);
-    legend_text("no crack");
+    if (!crack_probability) {
+      legend_marker(true);
+      legend_text("cracked");
+      legend_marker(false);
+      legend_text("no crack");
+    }
     legend_line(boundary_color, true);
-    legend_text("crack/no-crack boundary");
+    legend_text(crack_probability ? "crack probability 1/2" : "crack/no-crack boundary");
     legend_line(eq5_line_color, false);
     legend_text("eq. 5: strain = \u03b5_S");
   });

@@ -117,8 +117,11 @@ FigureFiles write_conservation_plot(const Checkpoint& checkpoint, double pericen
 /// eq. 5 strain = eps_S line (V_q = M2 / (E^(1/2) q^2 eps_S), E = report.youngs_modulus) in
 /// eq5_line_color, and the crack/no-crack boundary (grid-cell edges between a cracked and an
 /// intact finished neighbour) dashed in boundary_color. InputError if no encounter matches.
+/// With `crack_probability` (rows of crack_probability_report) every point is filled in the
+/// colour of its share of cracked members on [0, 1], and the boundary runs where it falls
+/// through 1/2.
 FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass, double failure_strain,
-                                const std::filesystem::path& stem);
+                                const std::filesystem::path& stem, bool crack_probability = false);
 /// Where write_phase_diagram puts q (x) and V_q (y) for these encounters (one M2 and eps_S) and
 /// E = youngs_modulus (e_g), in points: their range, widened to where eq. 5 crosses strain =
 /// eps_S over their speeds (at most to 4x their largest q).

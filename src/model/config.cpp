@@ -608,17 +608,61 @@ SweepConfig parse_sweep(const toml::node& node, const std::string& origin) {
   return sweep;
 }
 
+/// [ensemble] as an EnsembleConfig (members required; ranges checked by validate).
+EnsembleConfig parse_ensemble(const toml::node& node, const std::string& origin) {
+  auto* table = node.as_table();
+  if (!table) throw InputError(fmt::format("{}: 'ensemble' must be a table", origin));
+  EnsembleConfig ensemble;
+  for (auto&& [k, value] : *table) {
+    const std::string where = fmt::format("{}: ensemble.{}", origin, k.str());
+    if (k.str() == "members") {
+      if (!value.is_integer()) throw InputError(where + ": must be an integer");
+      ensemble.members = value.value<std::int64_t>().value_or(0);
+    } else if (k.str() == "pericenter_perturbation") {
+      const auto v = value.value<double>();
+      if (!v || !value.is_number()) throw InputError(where + ": must be a number");
+      ensemble.pericenter_perturbation = *v;
+    } else {
+      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: members, pericenter_perturbation)", origin,
+                                   k.str()));
+    }
+  }
+  if (!table->get("members")) throw InputError(fmt::format("{}: [ensemble] needs members", origin));
+  return ensemble;
+}
+
+/// The [ensemble] table of to_toml.
+std::string ensemble_toml(const EnsembleConfig& ensemble) {
+  return fmt::format("[ensemble]\nmembers = {}\npericenter_perturbation = {}  # relative change of q, -\n",
+                     ensemble.members, toml_text(ensemble.pericenter_perturbation));
+}
+
+/// Refuses an [ensemble] whose values are out of range or whose members would be too many
+/// encounters (`count` encounters before the expansion).
+void check_ensemble(const EnsembleConfig& ensemble, std::size_t count, const std::string& origin) {
+  if (ensemble.members < 2 || ensemble.members > max_ensemble_members)
+    throw InputError(fmt::format("{}: ensemble.members = {} is out of range [2, {}]", origin, ensemble.members,
+                                 max_ensemble_members));
+  if (!(ensemble.pericenter_perturbation > 0 && ensemble.pericenter_perturbation <= 0.01))
+    throw InputError(fmt::format("{}: ensemble.pericenter_perturbation = {} is out of range (0, 0.01]", origin,
+                                 ensemble.pericenter_perturbation));
+  if (count > max_encounters / static_cast<std::size_t>(ensemble.members))
+    throw InputError(fmt::format("{}: the workflow has {} encounters of {} members each ({} in all); at most {}", origin,
+                                 count, ensemble.members, count * static_cast<std::size_t>(ensemble.members),
+                                 max_encounters));
+}
+
 /// How many of `config.encounters` to_toml writes as [[encounters]] tables: all of them, unless
 /// the last sweep_size(*config.sweep) are exactly the sweep's expansion (then [sweep] stands for them).
-std::size_t listed_encounter_count(const Config& config) {
-  if (!config.sweep) return config.encounters.size();
-  const std::size_t swept = sweep_size(*config.sweep);
-  if (swept > config.encounters.size()) return config.encounters.size();
-  const std::size_t listed = config.encounters.size() - swept;
-  const std::vector<Encounter> expanded = expand_sweep(*config.sweep);
-  return std::equal(expanded.begin(), expanded.end(), config.encounters.begin() + static_cast<std::ptrdiff_t>(listed))
+std::size_t listed_encounter_count(const std::vector<Encounter>& encounters, const std::optional<SweepConfig>& sweep) {
+  if (!sweep) return encounters.size();
+  const std::size_t swept = sweep_size(*sweep);
+  if (swept > encounters.size()) return encounters.size();
+  const std::size_t listed = encounters.size() - swept;
+  const std::vector<Encounter> expanded = expand_sweep(*sweep);
+  return std::equal(expanded.begin(), expanded.end(), encounters.begin() + static_cast<std::ptrdiff_t>(listed))
              ? listed
-             : config.encounters.size();
+             : encounters.size();
 }
 
 /// The [sweep] table of to_toml: each axis as the list of its values, read back bit for bit.
@@ -811,6 +855,23 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep) {
   return out;
 }
 
+double ensemble_pericenter_offset(const EnsembleConfig& ensemble, std::int64_t member) {
+  const double n = static_cast<double>(ensemble.members);
+  return ensemble.pericenter_perturbation * ((2.0 * static_cast<double>(member) + 1.0) / n - 1.0);
+}
+
+std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble) {
+  std::vector<Encounter> out;
+  out.reserve(encounters.size() * static_cast<std::size_t>(std::max<std::int64_t>(0, ensemble.members)));
+  for (const Encounter& base : encounters)
+    for (std::int64_t k = 0; k < ensemble.members; ++k) {
+      Encounter& member = out.emplace_back(base);
+      member.name = fmt::format("{}_m{}", base.name, k);
+      member.pericenter = base.pericenter * (1.0 + ensemble_pericenter_offset(ensemble, k));
+    }
+  return out;
+}
+
 void validate_encounter(const Encounter& e, const std::string& origin) {
   check_encounter_name(e.name, origin);
   visit_keys(e, [&](const auto& field, const auto& key) {
@@ -866,8 +927,10 @@ void validate(const Config& config, const std::string& origin) {
     throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs linear cross springs (cross.nonlinear = "
                                  "false): the welded springs continue the linear interior network",
                                  origin));
-  const std::size_t swept = config.sweep ? std::min(sweep_size(*config.sweep), config.encounters.size()) : 0;
-  check_encounter_count(config.encounters.size() - swept, swept, origin);
+  const std::vector<Encounter>& unexpanded = config.ensemble ? config.ensemble_bases : config.encounters;
+  const std::size_t swept = config.sweep ? std::min(sweep_size(*config.sweep), unexpanded.size()) : 0;
+  check_encounter_count(unexpanded.size() - swept, swept, origin);
+  if (config.ensemble) check_ensemble(*config.ensemble, unexpanded.size(), origin);
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
     validate_encounter(e, origin);
@@ -898,8 +961,12 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
       config.sweep = parse_sweep(snode, origin);
       continue;
     }
+    if (section == "ensemble") {  // expanded below, after the sweep
+      config.ensemble = parse_ensemble(snode, origin);
+      continue;
+    }
     if (std::find(section_names().begin(), section_names().end(), section) == section_names().end())
-      throw InputError(fmt::format("{}: unknown section '{}' (known: {}, encounters, sweep)", origin, section,
+      throw InputError(fmt::format("{}: unknown section '{}' (known: {}, encounters, sweep, ensemble)", origin, section,
                                    fmt::join(section_names(), ", ")));
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));
@@ -912,6 +979,11 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
     check_encounter_count(config.encounters.size(), sweep_size(*config.sweep), origin);
     const std::vector<Encounter> swept = expand_sweep(*config.sweep);
     config.encounters.insert(config.encounters.end(), swept.begin(), swept.end());
+  }
+  if (config.ensemble) {
+    check_ensemble(*config.ensemble, config.encounters.size(), origin);
+    config.ensemble_bases = std::move(config.encounters);
+    config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
   }
   if (config.from_material())  // [material] derives these: giving them too is ambiguous
     for (auto&& [sk, snode] : root)
@@ -963,6 +1035,21 @@ void apply_override(Config& config, const std::string& assignment) {
     throw InputError(fmt::format("{}: value is not valid TOML: {}", where, err.description()));
   }
   const toml::node& node = *parsed.get("v");
+  if (section == "ensemble") {
+    // Members of the encounters as they are now (an ensemble given here branches every one).
+    if (!config.ensemble) config.ensemble_bases = config.encounters, config.ensemble = EnsembleConfig{};
+    if (key == "members" && node.is_integer())
+      config.ensemble->members = node.value<std::int64_t>().value_or(0);
+    else if (key == "pericenter_perturbation" && node.is_number())
+      config.ensemble->pericenter_perturbation = node.value<double>().value_or(0);
+    else if (key == "members" || key == "pericenter_perturbation")
+      throw InputError(fmt::format("{}: ensemble.{} must be {}", where, key, key == "members" ? "an integer" : "a number"));
+    else
+      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: members, pericenter_perturbation)", where, key));
+    check_ensemble(*config.ensemble, config.ensemble_bases.size(), where);
+    config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
+    return;
+  }
   if (section != "encounters") {
     if (!set_key(config, section, key, node, "--set", "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
@@ -975,8 +1062,17 @@ void apply_override(Config& config, const std::string& assignment) {
   if (dot2 == std::string::npos) throw InputError(where + ": expected encounters.NAME.key=value");
   const std::string name = key.substr(0, dot2);
   key = key.substr(dot2 + 1);
-  const auto e = std::find_if(config.encounters.begin(), config.encounters.end(),
-                              [&](const Encounter& spec) { return spec.name == name; });
+  const auto named = [&](const Encounter& spec) { return spec.name == name; };
+  if (config.ensemble) {  // an encounter before the expansion: all its members change
+    const auto base = std::find_if(config.ensemble_bases.begin(), config.ensemble_bases.end(), named);
+    if (base != config.ensemble_bases.end()) {
+      if (!set_key(*base, "encounters", key, node, where, where))
+        throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
+      config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
+      return;
+    }
+  }
+  const auto e = std::find_if(config.encounters.begin(), config.encounters.end(), named);
   if (e == config.encounters.end()) throw InputError(fmt::format("{}: no encounter named '{}'", where, name));
   if (!set_key(*e, "encounters", key, node, where, where))
     throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
@@ -1061,9 +1157,15 @@ std::string encounter_toml(const Encounter& encounter) {
 std::string to_toml(const Config& config) {
   std::string out = "# tidalcrust resolved configuration (every key, defaults included)\n";
   for (auto section : section_names()) out += "\n" + section_toml(config, section);
-  const std::size_t listed = listed_encounter_count(config);
-  for (std::size_t i = 0; i < listed; ++i) out += "\n" + encounter_toml(config.encounters[i]);
-  if (listed < config.encounters.size()) out += "\n" + sweep_toml(*config.sweep);
+  // The bases and [ensemble] while the encounters are exactly their members (else, after a --set
+  // of one member, every member as a table), each list with [sweep] standing for its expansion.
+  const bool as_ensemble =
+      config.ensemble && config.encounters == expand_ensemble(config.ensemble_bases, *config.ensemble);
+  const std::vector<Encounter>& encounters = as_ensemble ? config.ensemble_bases : config.encounters;
+  const std::size_t listed = listed_encounter_count(encounters, config.sweep);
+  for (std::size_t i = 0; i < listed; ++i) out += "\n" + encounter_toml(encounters[i]);
+  if (listed < encounters.size()) out += "\n" + sweep_toml(*config.sweep);
+  if (as_ensemble) out += "\n" + ensemble_toml(*config.ensemble);
   return out;
 }
 

@@ -183,6 +183,24 @@ std::size_t sweep_size(const SweepConfig& sweep);
 /// each named M<M2>_q<q>_V<V_q, or "par">[_eps<eps_S>] (numbers in their shortest form, no '+').
 std::vector<Encounter> expand_sweep(const SweepConfig& sweep);
 
+/// An [ensemble] table (docs/ensembles.md): every encounter of the workflow (its [[encounters]]
+/// tables and its [sweep]) run as `members` encounters whose trajectories differ by a stated
+/// perturbation, so that each statistic comes with its spread. Member k of n (k = 0 .. n-1) is
+/// named <encounter>_m<k> and has pericenter q (1 + delta u_k), u_k = (2k + 1)/n - 1 in (-1, 1):
+/// stratified offsets, symmetric about q, so the members' mean q is q to first order.
+struct EnsembleConfig {
+  std::int64_t members = 0;                 ///< n, 2 .. max_ensemble_members
+  double pericenter_perturbation = 1e-3;    ///< delta, relative, (0, 0.01]
+  bool operator==(const EnsembleConfig&) const = default;
+};
+inline constexpr std::int64_t max_ensemble_members = 1000;
+
+/// The one expansion of [ensemble]: each of `encounters` in order becomes its n members in
+/// member order (A_m0, A_m1, ..., B_m0, ...).
+std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble);
+/// The relative pericenter offset delta u_k of member k of `ensemble` (k in [0, members)).
+double ensemble_pericenter_offset(const EnsembleConfig& ensemble, std::int64_t member);
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -199,6 +217,11 @@ struct Config {
   /// while the last sweep_size(*sweep) encounters are exactly expand_sweep(*sweep) (else, after
   /// a --set of one of them, every encounter as a table).
   std::optional<SweepConfig> sweep;
+  /// The [ensemble] table, when the workflow has one; `ensemble_bases` then holds the encounters
+  /// before the expansion ([[encounters]] tables, then [sweep]) and `encounters` their members.
+  /// to_toml writes the bases and [ensemble] while `encounters` is exactly their expansion.
+  std::optional<EnsembleConfig> ensemble;
+  std::vector<Encounter> ensemble_bases;
   MaterialConfig material;
   ResolutionConfig resolution;
   CoreConfig core;

@@ -83,11 +83,13 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
   ASSERT_EQ(rows.size(), 5u) << "a header and one row per encounter";
   const auto& header = rows[0];
-  ASSERT_EQ(header.size(), 20u);
+  ASSERT_EQ(header.size(), 22u);
   EXPECT_EQ(header[3], "q [R]");
   EXPECT_EQ(header[11], "longest_crack [R]");
   EXPECT_EQ(header[15], "note");
   EXPECT_EQ(header[16], "concentricity [1]");  // the crack geometry after the others
+  EXPECT_EQ(header[20], "total_crack_length [R]");  // then the crack sizes
+  EXPECT_EQ(header[21], "cracks [1]");
   const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
   EXPECT_EQ(json["counts"]["finished"], 2);
   EXPECT_EQ(json["counts"]["unfinished"], 1);

@@ -409,3 +409,93 @@ TEST(Config, EveryRangeErrorOfANumericKeyNamesTheKey) {
       }
     }
 }
+
+// Issue 24, item 1: [ensemble] expands every encounter (listed and swept) into its members, with
+// stratified pericenter offsets symmetric about q; the stored configuration keeps the table.
+TEST(Config, EnsembleExpandsEveryEncounterIntoMembersThatTheStoredConfigurationKeeps) {
+  const Config config = parse_config(R"(
+[workflow]
+name = "ens"
+[[encounters]]
+name = "T5"
+pericenter = 2.0
+[sweep]
+perturber_mass = [0.5]
+pericenter = [1.5, 2.5]
+[ensemble]
+members = 4
+pericenter_perturbation = 0.002
+)",
+                                     "ens.toml");
+  ASSERT_EQ(config.ensemble_bases.size(), 3u);
+  ASSERT_EQ(config.encounters.size(), 12u);
+  EXPECT_EQ(config.encounters[0].name, "T5_m0");
+  EXPECT_EQ(config.encounters[3].name, "T5_m3");
+  EXPECT_EQ(config.encounters[4].name, "M0.5_q1.5_Vpar_m0");
+  // u_k = (2k + 1)/n - 1: -3/4, -1/4, 1/4, 3/4 of delta.
+  const double expected[] = {2.0 * (1 - 0.0015), 2.0 * (1 - 0.0005), 2.0 * (1 + 0.0005), 2.0 * (1 + 0.0015)};
+  double sum = 0;
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_DOUBLE_EQ(config.encounters[k].pericenter, expected[k]) << k;
+    sum += config.encounters[k].pericenter;
+    EXPECT_EQ(config.encounters[k].pericenter_speed, config.ensemble_bases[0].pericenter_speed);
+  }
+  EXPECT_NEAR(sum / 4, 2.0, 1e-15);
+  const std::string stored = to_toml(config);
+  EXPECT_NE(stored.find("[ensemble]"), std::string::npos) << stored;
+  EXPECT_NE(stored.find("[sweep]"), std::string::npos) << stored;
+  EXPECT_EQ(stored.find("T5_m0"), std::string::npos) << stored;
+  const Config again = parse_config(stored, "stored");
+  EXPECT_EQ(again.encounters, config.encounters);
+  EXPECT_EQ(again.ensemble, config.ensemble);
+  EXPECT_EQ(to_toml(again), stored);
+}
+
+TEST(Config, EnsembleOverridesReexpandTheMembers) {
+  Config config = parse_config("[workflow]\nname = \"e\"\n[[encounters]]\nname = \"T5\"\n", "e.toml");
+  apply_override(config, "ensemble.members=3");
+  ASSERT_EQ(config.encounters.size(), 3u);
+  EXPECT_EQ(config.encounters[2].name, "T5_m2");
+  apply_override(config, "ensemble.members=5");
+  EXPECT_EQ(config.encounters.size(), 5u);
+  // An encounter before the expansion: every member follows.
+  apply_override(config, "encounters.T5.perturber_mass=0.25");
+  for (const auto& e : config.encounters) EXPECT_EQ(e.perturber_mass, 0.25) << e.name;
+  // One member: stored as tables, read back the same.
+  apply_override(config, "encounters.T5_m1.failure_strain=0.004");
+  const std::string stored = to_toml(config);
+  EXPECT_EQ(stored.find("[ensemble]"), std::string::npos) << stored;
+  EXPECT_EQ(parse_config(stored, "stored").encounters, config.encounters);
+  validate(config, "e.toml");
+}
+
+TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"[ensemble]\npericenter_perturbation = 0.001\n", "[ensemble] needs members"},
+      {"[ensemble]\nmembers = 1\n", "ensemble.members = 1 is out of range [2, 1000]"},
+      {"[ensemble]\nmembers = 1001\n", "ensemble.members = 1001 is out of range"},
+      {"[ensemble]\nmembers = 2.5\n", "ensemble.members: must be an integer"},
+      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0\n", "pericenter_perturbation = 0 is out of range (0, 0.01]"},
+      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0.5\n", "pericenter_perturbation = 0.5 is out of range"},
+      {"[ensemble]\nmembers = 3\npericenter_perturbation = \"1e-3\"\n", "must be a number"},
+      {"[ensemble]\nmembers = 3\nseed = 2\n", "unknown key 'ensemble.seed'"},
+      {"ensemble = 3\n", "'ensemble' must be a table"},
+      {"[sweep]\nperturber_mass = {from = 0.1, to = 1, count = 100}\npericenter = {from = 1.5, to = 3, count = 20}\n"
+       "[ensemble]\nmembers = 10\n",
+       "the workflow has 2000 encounters of 10 members each (20000 in all); at most 10000"},
+  };
+  for (const auto& [text, expected] : cases) {
+    try {
+      parse_config(text, "w.toml");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind("w.toml: ", 0), 0u) << message;
+      EXPECT_NE(message.find(expected), std::string::npos) << message;
+      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+  }
+  Config config = parse_config("[[encounters]]\nname = \"T5\"\n", "e.toml");
+  EXPECT_THROW(apply_override(config, "ensemble.members=1"), InputError);
+  EXPECT_THROW(apply_override(config, "ensemble.size=4"), InputError);
+}

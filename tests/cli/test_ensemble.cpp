@@ -1,0 +1,109 @@
+// Issue 24, item 1 and its tests: an [ensemble] runs its members as encounters do (--jobs,
+// resume), each member bitwise reproducible across kills; `report` summarises them with the
+// interval code (ensembles.csv / .json) from exactly the members' rows.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "analysis/ensemble_statistics.hpp"
+#include "io/checkpoint_file.hpp"
+#include "io/json.hpp"
+#include "io/state_hash.hpp"
+#include "support/cli_runner.hpp"
+#include "support/files.hpp"
+#include "support/quick_workflow.hpp"
+
+using namespace tidalcrust;
+using namespace tidalcrust::test_support;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The small body and one encounter strong enough to crack it, as a 3-member ensemble.
+fs::path ensemble_workflow(const fs::path& dir) {
+  const auto file = dir / "ensemble.toml";
+  std::ofstream(file) << small_body_toml("ens", "failure_strain = 0.002\n") << R"([encounter]
+start_distance = 2.5
+end_distance = 2.5
+[[encounters]]
+name = "T"
+perturber_mass = 1.0
+pericenter = 1.6
+pericenter_speed = 1.8
+[ensemble]
+members = 3
+pericenter_perturbation = 0.005
+)";
+  return file;
+}
+
+std::string member_hash(const fs::path& out, int k) {
+  return state_hash(read_checkpoint(out / fmt::format("T_m{}", k) / "encounter.h5").state);
+}
+
+}  // namespace
+
+TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
+  const ScratchFolder scratch("ensemble");
+  const auto workflow = ensemble_workflow(scratch.path);
+  const auto straight = scratch.path / "straight";
+  const auto ran = run_cli("run " + quoted(workflow) + " --out " + quoted(straight) + " --quiet --jobs 2");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  std::vector<std::string> hashes;
+  for (int k = 0; k < 3; ++k) hashes.push_back(member_hash(straight, k));
+  // The members are different trajectories: their final states differ.
+  EXPECT_NE(hashes[0], hashes[1]);
+  EXPECT_NE(hashes[1], hashes[2]);
+  // Each member's q is the stratified offset of the table (u = -2/3, 0, 2/3 of 0.005).
+  const Checkpoint m0 = read_checkpoint(straight / "T_m0" / "encounter.h5");
+  EXPECT_DOUBLE_EQ(m0.stage.as<EncounterRecord>().encounter.pericenter, 1.6 * (1 - 0.005 * 2.0 / 3.0));
+
+  // Killed at steps counted from the start of each process, and resumed: the same bits per member.
+  const auto killed = scratch.path / "killed";
+  int kills = 0;
+  for (int attempt = 0; attempt < 30; ++attempt) {
+    const auto r = run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet",
+                           fmt::format("TIDALCRUST_TEST_KILL_AT=step:{}", 150 + 90 * attempt));
+    if (r.exit_code == 0) break;
+    ++kills;
+  }
+  EXPECT_GE(kills, 3);
+  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet").exit_code, 0);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(member_hash(killed, k), hashes[static_cast<std::size_t>(k)]) << k;
+
+  // The report: one ensemble row whose statistics are those of the members' rows.
+  const auto report = run_cli("report " + quoted(workflow) + " --out " + quoted(straight));
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_NE(report.out.find("ensemble T: 3 of 3 members finished"), std::string::npos) << report.out;
+  const Json sweep = Json::parse(read_file(straight / "report" / "sweep.json"));
+  const Json ensembles = Json::parse(read_file(straight / "report" / "ensembles.json"));
+  ASSERT_EQ(ensembles["ensembles"].size(), 1u);
+  const Json& row = ensembles["ensembles"][0];
+  EXPECT_EQ(row["name"], "T");
+  EXPECT_EQ(row["pericenter"].get<double>(), 1.6);
+  EXPECT_EQ(row["finished"], 3);
+  std::vector<double> failures, lengths;
+  std::size_t cracked = 0;
+  for (const auto& e : sweep["encounters"]) {
+    failures.push_back(e["failures"].get<double>());
+    lengths.push_back(e["total_crack_length"].get<double>());
+    cracked += e["failures"].get<int>() > 0;
+  }
+  ASSERT_EQ(failures.size(), 3u);
+  EXPECT_GT(failures[0] + failures[1] + failures[2], 0) << "the encounter must crack the crust to test anything";
+  const SampleSummary expected = summarize_sample(failures);
+  EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["mean"].get<double>(), expected.mean);
+  EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["sd"].get<double>(), expected.standard_deviation);
+  EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["low"].get<double>(), expected.low);
+  EXPECT_DOUBLE_EQ(row["statistics"]["total_crack_length"]["mean"].get<double>(), summarize_sample(lengths).mean);
+  EXPECT_EQ(row["cracked"]["members"], cracked);
+  EXPECT_NE(ensembles["method"].get<std::string>().find("Student t"), std::string::npos);
+  const std::string csv = read_file(straight / "report" / "ensembles.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;
+  EXPECT_NE(csv.find("failures_mean [1],failures_sd [1],failures_low [1],failures_high [1]"), std::string::npos);
+}
