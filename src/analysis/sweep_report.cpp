@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <fstream>
 #include <map>
 #include <tuple>
 
@@ -401,6 +404,39 @@ Json ensemble_report_json(const SweepReport& report) {
                      "Student t with n - 1 degrees of freedom; cracked share: Wilson score interval"},
           {"units", units},
           {"ensembles", rows}};
+}
+
+std::vector<StoredEnsemble> read_ensemble_report(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot read the ensemble table: {}", file.string(), std::strerror(errno)));
+  const Json json = Json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (json.is_discarded() || !json.is_object() || !json.contains("ensembles") || !json["ensembles"].is_array())
+    throw InputError(fmt::format("{}: not an ensemble table (`tidalcrust report` writes report/ensembles.json)",
+                                 file.string()));
+  const auto number = [](const Json& v) {
+    return v.is_number() ? v.get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  std::vector<StoredEnsemble> out;
+  try {
+    for (const Json& row : json["ensembles"]) {
+      StoredEnsemble e;
+      e.name = row.at("name").get<std::string>();
+      e.finished = row.at("finished").get<std::size_t>();
+      for (const auto& statistic : ensemble_statistics()) {
+        SampleSummary s{0, nan, nan, nan, nan, nan};
+        if (row.at("statistics").contains(statistic.name)) {
+          const Json& v = row["statistics"][statistic.name];
+          s = {v.at("count").get<std::size_t>(), number(v.at("mean")), number(v.at("sd")),
+               number(v.at("standard_error")), number(v.at("low")), number(v.at("high"))};
+        }
+        e.statistics.push_back(s);
+      }
+      out.push_back(std::move(e));
+    }
+  } catch (const Json::exception& err) {
+    throw InputError(fmt::format("{}: not an ensemble table: {}", file.string(), err.what()));
+  }
+  return out;
 }
 
 }  // namespace tidalcrust

@@ -123,6 +123,16 @@ std::string ensemble_report_csv(const SweepReport& report);
 /// The same as JSON, with the method of each interval stated.
 Json ensemble_report_json(const SweepReport& report);
 
+/// One ensemble of an ensembles.json, read back.
+struct StoredEnsemble {
+  std::string name;
+  std::size_t finished = 0;
+  std::vector<SampleSummary> statistics;  ///< in ensemble_statistics() order; count 0 where the file has none
+};
+/// The ensembles of `file` (an ensembles.json that ensemble_report_json wrote). InputError naming
+/// the file when it cannot be read or is not an ensemble table.
+std::vector<StoredEnsemble> read_ensemble_report(const std::filesystem::path& file);
+
 /// CSV, one header row with the unit of each column in brackets, then one row per encounter;
 /// cells of values an encounter does not have (not finished, NaN) are empty. The crack-geometry
 /// columns (concentricity, fitted_arcs, median_arc_radius, median_arc_pole_axis) come last, after

@@ -1,8 +1,11 @@
 // tidalcrust compare A.h5 B.h5 [--json]: how alike the fractures of two encounters of one body are.
 // tidalcrust compare --resolution A.h5 B.h5 [C.h5 ...] [--out DIR] [--json]: one encounter at
 // several shell levels, the convergence table (analysis/resolution_study.hpp) and fracture maps.
+// tidalcrust compare --ensembles A/report/ensembles.json B/report/ensembles.json [--json]: whether
+// two ensembles' statistics differ beyond their spread (Welch, analysis/ensemble_statistics.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cxxopts.hpp>
 #include <filesystem>
@@ -15,6 +18,7 @@
 #include "base/errors.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "analysis/resolution_study.hpp"
+#include "analysis/sweep_report.hpp"
 #include "figures/figure_text.hpp"
 #include "figures/figures.hpp"
 #include "io/atomic_file.hpp"
@@ -102,6 +106,48 @@ int compare_resolutions(const cxxopts::ParseResult& parsed, const std::vector<st
   return exit_ok;
 }
 
+/// Every ensemble of A also in B (by name), statistic by statistic.
+int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std::string>& files) {
+  if (files.size() != 2)
+    throw InputError(fmt::format("compare --ensembles: expected two ensemble tables A.json B.json, got {}", files.size()));
+  const std::vector<StoredEnsemble> a = read_ensemble_report(files[0]), b = read_ensemble_report(files[1]);
+  Json out = {{"a", files[0]}, {"b", files[1]}, {"confidence", ensemble_confidence},
+              {"method", "Welch's t test (unequal variances, Welch-Satterthwaite degrees of freedom) on the members"},
+              {"ensembles", Json::array()}};
+  const auto json_number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  for (const StoredEnsemble& ea : a) {
+    const auto eb = std::find_if(b.begin(), b.end(), [&](const StoredEnsemble& e) { return e.name == ea.name; });
+    if (eb == b.end()) continue;
+    Json rows = Json::array();
+    if (!parsed.count("json"))
+      fmt::print("ensemble {} ({} members in A, {} in B): mean +- sd; B - A with its 95% interval\n", ea.name, ea.finished,
+                 eb->finished);
+    for (std::size_t i = 0; i < ensemble_statistics().size(); ++i) {
+      const SampleSummary &sa = ea.statistics[i], &sb = eb->statistics[i];
+      const MeanDifference d = compare_means(sa, sb);
+      const std::string verdict = !std::isfinite(d.p_value) ? "n/a" : d.beyond_noise ? "differs" : "within the noise";
+      rows.push_back({{"statistic", ensemble_statistics()[i].name}, {"unit", ensemble_statistics()[i].unit},
+                      {"a_mean", json_number(sa.mean)}, {"a_sd", json_number(sa.standard_deviation)},
+                      {"b_mean", json_number(sb.mean)}, {"b_sd", json_number(sb.standard_deviation)},
+                      {"difference", json_number(d.difference)}, {"low", json_number(d.low)},
+                      {"high", json_number(d.high)}, {"p_value", json_number(d.p_value)},
+                      {"beyond_noise", d.beyond_noise}});
+      if (!parsed.count("json"))
+        fmt::print("  {:<22} A {:>10} +- {:<9} B {:>10} +- {:<9} B - A {:>10} [{}, {}]  p = {}  {}\n",
+                   fmt::format("{} [{}]", ensemble_statistics()[i].name, ensemble_statistics()[i].unit),
+                   number(sa.mean), number(sa.standard_deviation, "{:.2g}"), number(sb.mean),
+                   number(sb.standard_deviation, "{:.2g}"), number(d.difference, "{:+.4g}"), number(d.low), number(d.high),
+                   number(d.p_value, "{:.2g}"), verdict);
+    }
+    out["ensembles"].push_back({{"name", ea.name}, {"a_members", ea.finished}, {"b_members", eb->finished},
+                                {"statistics", rows}});
+  }
+  if (out["ensembles"].empty())
+    throw InputError(fmt::format("{} and {} have no ensemble of the same name", files[0], files[1]));
+  if (parsed.count("json")) fmt::print("{}", json_text(out));
+  return exit_ok;
+}
+
 }  // namespace
 
 int command_compare(int argc, char** argv) {
@@ -110,10 +156,13 @@ int command_compare(int argc, char** argv) {
                       "Two checkpoints: overlap of failed springs (Jaccard index), angular distributions about the\n"
                       "subsatellite point (Kolmogorov-Smirnov distance), cracks and state hashes.\n"
                       "With --resolution: the same encounter at several shell levels (two or more\n"
-                      "checkpoints, any order), a convergence table and, with --out, its files.");
+                      "checkpoints, any order), a convergence table and, with --out, its files.\n"
+                      "With --ensembles: two report/ensembles.json files, whether each statistic of the\n"
+                      "ensembles of the same name differs beyond the members' spread (Welch's t test).");
   options.add_options()
       ("json", "print one JSON object")
       ("resolution", "compare one encounter at several resolutions: rows sorted by shell node count")
+      ("ensembles", "compare two ensemble tables (report/ensembles.json): every statistic, Welch's t test")
       ("out", "with --resolution: write DIR/convergence.json, convergence.csv, convergence_maps.png/.svg",
        cxxopts::value<std::string>())
       ("h,help", "show this help")
@@ -126,7 +175,13 @@ int command_compare(int argc, char** argv) {
     return exit_ok;
   }
   const auto files = parsed.count("files") ? parsed["files"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  if (parsed.count("resolution") && parsed.count("ensembles"))
+    throw InputError("compare: --resolution and --ensembles exclude each other");
   if (parsed.count("resolution")) return compare_resolutions(parsed, files);
+  if (parsed.count("ensembles")) {
+    if (parsed.count("out")) throw InputError("compare: --out is for --resolution only (see --help)");
+    return compare_ensembles(parsed, files);
+  }
   if (parsed.count("out")) throw InputError("compare: --out is for --resolution only (see --help)");
   if (files.size() != 2) throw InputError(fmt::format("expected two checkpoint files A.h5 B.h5, got {} (see --help)", files.size()));
 

@@ -106,4 +106,23 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
   const std::string csv = read_file(straight / "report" / "ensembles.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;
   EXPECT_NE(csv.find("failures_mean [1],failures_sd [1],failures_low [1],failures_high [1]"), std::string::npos);
+
+  // compare --ensembles: an ensemble against itself is within the noise in every statistic; a
+  // file that is not an ensemble table is a one-line error naming it.
+  const auto table = straight / "report" / "ensembles.json";
+  const auto same = run_cli("compare --ensembles " + quoted(table) + " " + quoted(table) + " --json");
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  const Json compared = Json::parse(same.out);
+  ASSERT_EQ(compared["ensembles"].size(), 1u);
+  for (const auto& s : compared["ensembles"][0]["statistics"]) {
+    EXPECT_FALSE(s["beyond_noise"].get<bool>()) << s;
+    if (s["difference"].is_number()) {
+      EXPECT_EQ(s["difference"].get<double>(), 0) << s;
+    }
+  }
+  const auto sweep_file = straight / "report" / "sweep.json";
+  const auto bad = run_cli("compare --ensembles " + quoted(table) + " " + quoted(sweep_file));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find(sweep_file.string() + ": not an ensemble table"), std::string::npos) << bad.err;
+  EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
 }
