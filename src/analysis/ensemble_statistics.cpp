@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "base/invariant.hpp"
 
@@ -34,7 +35,47 @@ SampleSummary summarize_sample(std::span<const double> values, double confidence
   const double n = static_cast<double>(s.count);
   s.standard_deviation = std::sqrt(squares / (n - 1));
   s.standard_error = s.standard_deviation / std::sqrt(n);
+  s.degrees_of_freedom = n - 1;
   const double half = t_quantile(confidence, n - 1) * s.standard_error;
+  s.low = s.mean - half;
+  s.high = s.mean + half;
+  return s;
+}
+
+SampleSummary summarize_about_trend(std::span<const double> values, std::span<const double> offsets,
+                                    double confidence) {
+  TIDALCRUST_ASSERT(values.size() == offsets.size(), "one offset per value");
+  std::vector<double> v, x;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (std::isfinite(values[i])) v.push_back(values[i]), x.push_back(offsets[i]);
+  SampleSummary plain = summarize_sample(v, confidence);
+  if (v.size() < 3) {
+    plain.standard_deviation = plain.standard_error = plain.low = plain.high = nan;
+    plain.degrees_of_freedom = 0;
+    return plain;
+  }
+  const double n = static_cast<double>(v.size());
+  double x_mean = 0;
+  for (double xi : x) x_mean += xi;
+  x_mean /= n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    sxx += (x[i] - x_mean) * (x[i] - x_mean);
+    sxy += (x[i] - x_mean) * (v[i] - plain.mean);
+  }
+  if (!(sxx > 0)) return plain;
+  SampleSummary s = plain;
+  s.slope = sxy / sxx;
+  s.mean = plain.mean - s.slope * x_mean;  // the line at offset 0
+  double squares = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double r = v[i] - plain.mean - s.slope * (x[i] - x_mean);
+    squares += r * r;
+  }
+  s.degrees_of_freedom = n - 2;
+  s.standard_deviation = std::sqrt(squares / (n - 2));
+  s.standard_error = s.standard_deviation * std::sqrt(1 / n + x_mean * x_mean / sxx);
+  const double half = t_quantile(confidence, n - 2) * s.standard_error;
   s.low = s.mean - half;
   s.high = s.mean + half;
   return s;
@@ -58,11 +99,10 @@ ProportionInterval wilson_interval(std::size_t successes, std::size_t trials, do
 
 MeanDifference compare_means(const SampleSummary& a, const SampleSummary& b, double confidence) {
   MeanDifference d{b.mean - a.mean, nan, nan, nan, nan, false};
-  if (a.count < 2 || b.count < 2) return d;
+  if (!(a.degrees_of_freedom >= 1 && b.degrees_of_freedom >= 1)) return d;
   const double va = a.standard_error * a.standard_error, vb = b.standard_error * b.standard_error;
   if (!(va + vb > 0)) return d;
-  const double na = static_cast<double>(a.count), nb = static_cast<double>(b.count);
-  d.degrees_of_freedom = (va + vb) * (va + vb) / (va * va / (na - 1) + vb * vb / (nb - 1));
+  d.degrees_of_freedom = (va + vb) * (va + vb) / (va * va / a.degrees_of_freedom + vb * vb / b.degrees_of_freedom);
   const double se = std::sqrt(va + vb);
   const double half = t_quantile(confidence, d.degrees_of_freedom) * se;
   d.low = d.difference - half;

@@ -150,15 +150,17 @@ std::vector<EnsembleRow> ensemble_rows(const Config& config, const std::vector<S
     e.members = n;
     std::size_t cracked = 0;
     std::vector<std::vector<double>> values(ensemble_statistics().size());
+    std::vector<double> offsets;
     for (std::size_t k = 0; k < n; ++k) {
       const SweepRow& r = rows[b * n + k];
       if (r.status != SweepStatus::finished) continue;
       ++e.finished;
+      offsets.push_back(ensemble_pericenter_offset(*config.ensemble, static_cast<std::int64_t>(k)));
       cracked += r.failures > 0 ? 1 : 0;
       for (std::size_t s = 0; s < values.size(); ++s) values[s].push_back(ensemble_statistics()[s].value(r));
     }
     e.cracked = wilson_interval(cracked, e.finished);
-    for (const auto& v : values) e.statistics.push_back(summarize_sample(v));
+    for (const auto& v : values) e.statistics.push_back(summarize_about_trend(v, offsets));
     out.push_back(std::move(e));
   }
   return out;
@@ -381,7 +383,9 @@ Json ensemble_report_json(const SweepReport& report) {
                                               {"sd", number(s.standard_deviation)},
                                               {"standard_error", number(s.standard_error)},
                                               {"low", number(s.low)},
-                                              {"high", number(s.high)}};
+                                              {"high", number(s.high)},
+                                              {"degrees_of_freedom", s.degrees_of_freedom},
+                                              {"slope_per_ln_q", number(s.slope)}};
     }
     rows.push_back({{"name", e.encounter.name},
                     {"perturber_mass", e.encounter.perturber_mass},
@@ -400,8 +404,10 @@ Json ensemble_report_json(const SweepReport& report) {
   return {{"workflow", report.workflow},
           {"folder", report.folder.string()},
           {"confidence", ensemble_confidence},
-          {"method", "mean and sample standard deviation (n - 1) over the finished members; interval of the mean: "
-                     "Student t with n - 1 degrees of freedom; cracked share: Wilson score interval"},
+          {"method", "over the finished members, the least-squares line of each statistic against the members' "
+                     "relative pericenter offsets: mean = the line at offset 0 (the unperturbed encounter), sd = the "
+                     "scatter about the line (n - 2 degrees of freedom), slope_per_ln_q = its slope; interval of the "
+                     "mean: Student t with n - 2 degrees of freedom; cracked share: Wilson score interval"},
           {"units", units},
           {"ensembles", rows}};
 }
@@ -423,11 +429,12 @@ std::vector<StoredEnsemble> read_ensemble_report(const fs::path& file) {
       e.name = row.at("name").get<std::string>();
       e.finished = row.at("finished").get<std::size_t>();
       for (const auto& statistic : ensemble_statistics()) {
-        SampleSummary s{0, nan, nan, nan, nan, nan};
+        SampleSummary s{0, nan, nan, nan, nan, nan, 0, nan};
         if (row.at("statistics").contains(statistic.name)) {
           const Json& v = row["statistics"][statistic.name];
           s = {v.at("count").get<std::size_t>(), number(v.at("mean")), number(v.at("sd")),
-               number(v.at("standard_error")), number(v.at("low")), number(v.at("high"))};
+               number(v.at("standard_error")), number(v.at("low")), number(v.at("high")),
+               v.at("degrees_of_freedom").get<double>(), number(v.at("slope_per_ln_q"))};
         }
         e.statistics.push_back(s);
       }

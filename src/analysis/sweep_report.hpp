@@ -88,7 +88,9 @@ struct EnsembleRow {
   std::size_t members = 0;
   std::size_t finished = 0;       ///< members finished; the statistics are over these
   ProportionInterval cracked;     ///< finished members with at least one failure (Wilson interval)
-  std::vector<SampleSummary> statistics;  ///< one per ensemble_statistics(), in order
+  /// One per ensemble_statistics(), in order: summarize_about_trend over the finished members
+  /// against their pericenter offsets (the value at the unperturbed q, the scatter about the trend).
+  std::vector<SampleSummary> statistics;
 };
 
 struct SweepReport {
@@ -118,7 +120,8 @@ SweepReport crack_probability_report(const SweepReport& report);
 double eq5_strain(const Encounter& encounter, double youngs_in_e_g);
 
 /// The ensemble table as CSV: per encounter (before the expansion) its inputs, members finished,
-/// the cracked share with its interval, then per statistic mean, sd, low, high (95%, Student t).
+/// the cracked share with its interval, then per statistic mean, sd, low, high (95%, Student t;
+/// summarize_about_trend).
 std::string ensemble_report_csv(const SweepReport& report);
 /// The same as JSON, with the method of each interval stated.
 Json ensemble_report_json(const SweepReport& report);

@@ -640,11 +640,11 @@ std::string ensemble_toml(const EnsembleConfig& ensemble) {
 /// Refuses an [ensemble] whose values are out of range or whose members would be too many
 /// encounters (`count` encounters before the expansion).
 void check_ensemble(const EnsembleConfig& ensemble, std::size_t count, const std::string& origin) {
-  if (ensemble.members < 2 || ensemble.members > max_ensemble_members)
-    throw InputError(fmt::format("{}: ensemble.members = {} is out of range [2, {}]", origin, ensemble.members,
+  if (ensemble.members < 3 || ensemble.members > max_ensemble_members)
+    throw InputError(fmt::format("{}: ensemble.members = {} is out of range [3, {}]", origin, ensemble.members,
                                  max_ensemble_members));
-  if (!(ensemble.pericenter_perturbation > 0 && ensemble.pericenter_perturbation <= 0.01))
-    throw InputError(fmt::format("{}: ensemble.pericenter_perturbation = {} is out of range (0, 0.01]", origin,
+  if (!(ensemble.pericenter_perturbation > 0 && ensemble.pericenter_perturbation <= 0.05))
+    throw InputError(fmt::format("{}: ensemble.pericenter_perturbation = {} is out of range (0, 0.05]", origin,
                                  ensemble.pericenter_perturbation));
   if (count > max_encounters / static_cast<std::size_t>(ensemble.members))
     throw InputError(fmt::format("{}: the workflow has {} encounters of {} members each ({} in all); at most {}", origin,

@@ -189,8 +189,8 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep);
 /// named <encounter>_m<k> and has pericenter q (1 + delta u_k), u_k = (2k + 1)/n - 1 in (-1, 1):
 /// stratified offsets, symmetric about q, so the members' mean q is q to first order.
 struct EnsembleConfig {
-  std::int64_t members = 0;                 ///< n, 2 .. max_ensemble_members
-  double pericenter_perturbation = 1e-3;    ///< delta, relative, (0, 0.01]
+  std::int64_t members = 0;                 ///< n, 3 .. max_ensemble_members (a trend and its scatter need 3)
+  double pericenter_perturbation = 5e-3;    ///< delta, relative, (0, 0.05]
   bool operator==(const EnsembleConfig&) const = default;
 };
 inline constexpr std::int64_t max_ensemble_members = 1000;

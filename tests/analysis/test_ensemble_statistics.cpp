@@ -79,3 +79,30 @@ TEST(EnsembleStatistics, WelchComparisonMatchesScipy) {
   EXPECT_LT(same.low, 0);
   EXPECT_GT(same.high, 0);
 }
+
+// The ensemble's summary about the members' trend in q (docs/ensembles.md): x = -1, 0, 1 and
+// v = 1, 3, 2 by hand: slope 1/2, line at 0 = 2, residuals -1/2, 1, -1/2, sd = sqrt(3/2) with 1
+// degree of freedom, se = sd / sqrt(3), t_{0.975, 1} = 12.706205.
+TEST(EnsembleStatistics, SummaryAboutTheTrendRemovesTheSmoothDependenceOnTheOffset) {
+  const std::vector<double> x = {-1, 0, 1}, v = {1, 3, 2};
+  const SampleSummary s = summarize_about_trend(v, x);
+  EXPECT_DOUBLE_EQ(s.slope, 0.5);
+  EXPECT_DOUBLE_EQ(s.mean, 2.0);
+  EXPECT_DOUBLE_EQ(s.standard_deviation, std::sqrt(1.5));
+  EXPECT_EQ(s.degrees_of_freedom, 1.0);
+  EXPECT_NEAR(s.high - s.mean, 12.706205 * std::sqrt(1.5 / 3), 1e-5);
+  // A pure trend has no scatter about it, while the plain sd counts the trend as spread.
+  const std::vector<double> offsets = {-0.004, -0.002, 0, 0.002, 0.004}, line = {10, 12, 14, 16, 18};
+  const SampleSummary t = summarize_about_trend(line, offsets);
+  EXPECT_NEAR(t.standard_deviation, 0, 1e-12);
+  EXPECT_NEAR(t.slope, 1000, 1e-9);
+  EXPECT_DOUBLE_EQ(t.mean, 14);
+  EXPECT_GT(summarize_sample(line).standard_deviation, 3);
+  // A member without the value is left out, the line fitted through the others.
+  const std::vector<double> gap = {10, std::numeric_limits<double>::quiet_NaN(), 14, 16, 18};
+  EXPECT_EQ(summarize_about_trend(gap, offsets).count, 4u);
+  EXPECT_NEAR(summarize_about_trend(gap, offsets).mean, 14, 1e-12);
+  // Two values: no scatter can be measured.
+  const std::vector<double> two = {1, 2}, two_x = {-1, 1};
+  EXPECT_TRUE(std::isnan(summarize_about_trend(two, two_x).standard_deviation));
+}

@@ -472,11 +472,11 @@ TEST(Config, EnsembleOverridesReexpandTheMembers) {
 TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
   const std::pair<const char*, const char*> cases[] = {
       {"[ensemble]\npericenter_perturbation = 0.001\n", "[ensemble] needs members"},
-      {"[ensemble]\nmembers = 1\n", "ensemble.members = 1 is out of range [2, 1000]"},
+      {"[ensemble]\nmembers = 1\n", "ensemble.members = 1 is out of range [3, 1000]"},
       {"[ensemble]\nmembers = 1001\n", "ensemble.members = 1001 is out of range"},
       {"[ensemble]\nmembers = 2.5\n", "ensemble.members: must be an integer"},
-      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0\n", "pericenter_perturbation = 0 is out of range (0, 0.01]"},
-      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0.5\n", "pericenter_perturbation = 0.5 is out of range"},
+      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0\n", "pericenter_perturbation = 0 is out of range (0, 0.05]"},
+      {"[ensemble]\nmembers = 3\npericenter_perturbation = 0.5\n", "pericenter_perturbation = 0.5 is out of range (0, 0.05]"},
       {"[ensemble]\nmembers = 3\npericenter_perturbation = \"1e-3\"\n", "must be a number"},
       {"[ensemble]\nmembers = 3\nseed = 2\n", "unknown key 'ensemble.seed'"},
       {"ensemble = 3\n", "'ensemble' must be a table"},
