@@ -15,6 +15,7 @@
 #include "forces/hinge_geometry.hpp"
 #include "forces/spring_force.hpp"
 #include "integrate/leapfrog.hpp"
+#include "io/stop_signal.hpp"
 #include "model/center_of_mass.hpp"
 #include "physics/continuum_elasticity.hpp"
 
@@ -189,6 +190,7 @@ BreathingResult measure_breathing(const Checkpoint& relaxed, const Config& confi
   Leapfrog reference_step(reference_forces, clock), scaled_step(scaled_forces, clock);
   const std::int64_t steps = step_count(periods * r.lamb_period, clock.dt);
   for (std::int64_t s = 0; s <= steps; ++s) {
+    throw_if_stopped("the breathing-mode measurement");
     if (s > 0) reference_step.step(reference), scaled_step.step(scaled);
     r.time.push_back(static_cast<double>(s) * clock.dt);
     r.signal.push_back(mean_radius(body, scaled) - mean_radius(body, reference));
@@ -219,6 +221,7 @@ void relax_in_tidal_field(ForceField& forces, State& state, const Vec3& center, 
     for (std::size_t i = 0; i < a.size(); ++i) a[i] = a[i] - drag * v[i];
   });
   for (std::int64_t s = 1; s <= steps; ++s) {
+    throw_if_stopped("a static-tide measurement (love or tide)");
     leapfrog.step(state);
     if (after_step) after_step(s);
   }
@@ -367,6 +370,7 @@ FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, doub
   };
   FlexureResult r;
   for (std::int64_t s = 0; s < steps; ++s) {
+    throw_if_stopped("the flexure measurement");
     if (s == early) r.early_rigidity = q0 / (sine_amplitude() * std::pow(k, 4));
     for (int p = 0; p < n; ++p) f[p] = Vec3(0, 0, q0 * node_area * std::sin(k * rest[p].x()));
     for (const auto& e : edges) {
@@ -482,6 +486,7 @@ PWaveResult measure_p_wave(const Checkpoint& relaxed, const Config& config, cons
   Leapfrog quiet_step(quiet_forces, clock), pulsed_step(pulsed_forces, clock);
   const std::int64_t steps = step_count(2 * r.theory_time, clock.dt);
   for (std::int64_t s = 0; s <= steps; ++s) {
+    throw_if_stopped("the P-wave measurement");
     if (s > 0) quiet_step.step(quiet), pulsed_step.step(pulsed);
     // The pulse's momentum moves the centre of mass too, but a receiver moves only once
     // the disturbance (or its gravity, far weaker) reaches it: no drift to remove.

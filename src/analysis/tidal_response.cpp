@@ -11,6 +11,7 @@
 #include "forces/force_field.hpp"
 #include "integrate/leapfrog.hpp"
 #include "io/progress.hpp"
+#include "io/stop_signal.hpp"
 #include "model/center_of_mass.hpp"
 
 namespace tidalcrust {
@@ -277,6 +278,7 @@ RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config,
   std::optional<ProgressReporter> line;
   if (progress) line.emplace("validate: ring-down", 0, steps, std::nullopt);
   for (std::int64_t s = 0; s <= steps; ++s) {
+    throw_if_stopped("the ring-down measurement");
     if (s > 0) plus_step.step(plus), minus_step.step(minus);
     if (line) line->update(s);
     r.time.push_back(static_cast<double>(s) * clock.dt);

@@ -27,6 +27,7 @@
 #include "io/json.hpp"
 #include "model/center_of_mass.hpp"
 #include "physics/continuum_elasticity.hpp"
+#include "io/stop_signal.hpp"
 #include "stages/workflow.hpp"
 
 namespace tidalcrust {
@@ -153,6 +154,8 @@ int command_validate(int argc, char** argv) {
                                               : fs::path("checkpoints") / config.workflow.name;
   workflow_options.quiet = parsed.count("quiet") > 0;  // no encounters: the body chain alone
   apply_thread_count(threads);
+  // SIGINT/SIGTERM end a measurement too (exit 130), also when the body chain is up to date.
+  install_stop_handlers();
   if (run_workflow(config, workflow_options).interrupted) return exit_interrupted;
 
   const fs::path relaxed_file = workflow_options.root / "body" / "relax.h5";

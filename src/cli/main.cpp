@@ -11,6 +11,7 @@
 #include "base/errors.hpp"
 #include "build_info.hpp"
 #include "cli/commands.hpp"
+#include "io/stop_signal.hpp"
 
 namespace {
 
@@ -54,6 +55,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& err) {
     fmt::print(stderr, "tidalcrust {}: error: {}\n", name, err.what());
     return exit_bad_input;
+  } catch (const Interrupted& err) {
+    fmt::print(stderr, "tidalcrust {}: {}\n", name, err.what());
+    return exit_interrupted;
   } catch (const SimulationError& err) {
     fmt::print(stderr, "tidalcrust {}: simulation failed: {}\n", name, err.what());
     return exit_simulation_failure;

@@ -1,6 +1,9 @@
 #include "io/stop_signal.hpp"
 
+#include <fmt/format.h>
+
 #include <csignal>
+
 
 namespace tidalcrust {
 namespace {
@@ -14,5 +17,12 @@ void install_stop_handlers() {
 }
 
 bool stop_requested() { return stop_flag != 0; }
+
+void throw_if_stopped(const char* what) {
+  if (stop_flag != 0)
+    throw Interrupted(fmt::format("stopped during {}; it keeps no checkpoint, so rerun the same command to measure "
+                                  "it again (the relaxed body is kept)",
+                                  what));
+}
 
 }  // namespace tidalcrust

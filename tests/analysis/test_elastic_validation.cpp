@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <numbers>
 #include <vector>
@@ -11,6 +14,7 @@
 #include "model/derived_quantities.hpp"
 #include "stages/build_stage.hpp"
 #include "base/errors.hpp"
+#include "io/stop_signal.hpp"
 #include "model/center_of_mass.hpp"
 #include "physics/continuum_elasticity.hpp"
 #include "support/quick_workflow.hpp"
@@ -138,4 +142,31 @@ TEST(ElasticValidation, AWeldedBodysModulusIsEq15OverItsDeepSprings) {
   const double whole_ball = body_material(built, paper).youngs_modulus;
   EXPECT_GT(m.youngs_modulus / whole_ball, 1.25);
   EXPECT_LT(m.youngs_modulus / whole_ball, 1.45);
+}
+
+// SIGTERM ends a measurement at its next step (exit 130 in the CLI), rather than being ignored
+// until it finishes: each measurement loop polls the stop flag. In a child process (a death test,
+// re-executed: the flag stays set), with the signal raised before the measurement starts.
+TEST(ElasticValidationDeathTest, AStopSignalEndsEveryMeasurementLoop) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  // The relaxed body first (its relax stage would stop too), then the signal, then the measurement.
+  const auto stopped = [](auto&& measure) {
+    const Checkpoint& relaxed = quick_relaxed(false);
+    const BodyMaterial& material = quick_material();
+    install_stop_handlers();
+    std::raise(SIGTERM);
+    try {
+      measure(relaxed, material);
+    } catch (const Interrupted& e) {
+      std::fputs(e.what(), stderr);
+      std::_Exit(exit_interrupted);
+    }
+    std::_Exit(0);
+  };
+  EXPECT_EXIT(stopped([](const Checkpoint& r, const BodyMaterial& m) { measure_breathing(r, quick_config(), m, 1e-3, 3); }),
+              testing::ExitedWithCode(exit_interrupted), "stopped during the breathing-mode measurement");
+  EXPECT_EXIT(stopped([](const Checkpoint& r, const BodyMaterial& m) { measure_love_h2(r, quick_config(), m); }),
+              testing::ExitedWithCode(exit_interrupted), "stopped during a static-tide measurement");
+  EXPECT_EXIT(stopped([](const Checkpoint& r, const BodyMaterial& m) { measure_p_wave(r, quick_config(), m); }),
+              testing::ExitedWithCode(exit_interrupted), "stopped during the P-wave measurement");
 }

@@ -180,3 +180,19 @@ TEST(CmdSubmit, RunBodyOnlyComputesTheBodyChainAndNoEncounter) {
     if (entry.is_directory()) folders.push_back(entry.path().filename().string());
   EXPECT_EQ(folders, std::vector<std::string>{"body"});
 }
+
+// Issue 24: an [ensemble] workflow's job array holds its members, each a task of its own.
+TEST(CmdSubmit, AnEnsembleIsAnArrayOfItsMembers) {
+  const ScratchFolder scratch("submit_ensemble");
+  const fs::path workflow = scratch.path / "ens.toml";
+  write_file(workflow, read_file(source_file("tests/support/sweep-small.toml")) + "\n[ensemble]\nmembers = 3\n");
+  const fs::path out = scratch.path / "out";
+  const CliResult r = run_cli(fmt::format("submit {} --slurm --dry-run --out {}", quoted(workflow), quoted(out)));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::vector<std::string> expected;
+  for (const auto& e : load_config(source_file("tests/support/sweep-small.toml")).encounters)
+    for (int k = 0; k < 3; ++k) expected.push_back(fmt::format("{}_m{}", e.name, k));
+  ASSERT_EQ(expected.size(), 12u);
+  EXPECT_EQ(section(r.out, "/slurm/encounters-"), expected) << r.out;
+  EXPECT_TRUE(contains_line(section(r.out, "/slurm/encounters.sbatch"), "#SBATCH --array=0-11")) << r.out;
+}

@@ -484,17 +484,8 @@ TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
        "[ensemble]\nmembers = 10\n",
        "the workflow has 2000 encounters of 10 members each (20000 in all); at most 10000"},
   };
-  for (const auto& [text, expected] : cases) {
-    try {
-      parse_config(text, "w.toml");
-      ADD_FAILURE() << "accepted: " << text;
-    } catch (const InputError& e) {
-      const std::string message = e.what();
-      EXPECT_EQ(message.rfind("w.toml: ", 0), 0u) << message;
-      EXPECT_NE(message.find(expected), std::string::npos) << message;
-      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-    }
-  }
+  for (const auto& [text, expected] : cases)
+    EXPECT_NE(one_line_error(text).find(expected), std::string::npos) << text;
   Config config = parse_config("[[encounters]]\nname = \"T5\"\n", "e.toml");
   EXPECT_THROW(apply_override(config, "ensemble.members=1"), InputError);
   EXPECT_THROW(apply_override(config, "ensemble.size=4"), InputError);
