@@ -93,10 +93,11 @@ FigureFiles write_phase_diagram(const SweepReport& report, double perturber_mass
   std::size_t finished = 0;
   for (const SweepRow* r : rows) finished += r->status == SweepStatus::finished;
   const std::string title = fmt::format(
-      "{}: {}, M\u2082 = {} M, \u03b5_S = {}\n{} of {} encounters finished; "
+      "{}: {}, M\u2082 = {} M, \u03b5_S = {}\n{} of {} {} finished; "
       "eq. 5 with E = E_I = {} e_g",
-      report.workflow, crack_probability ? "share of ensemble members cracked" : "failed fraction of the shell springs", general_text(perturber_mass), general_text(failure_strain), finished, rows.size(),
-      general_text(report.youngs_modulus, 3));
+      report.workflow, crack_probability ? "share of ensemble members cracked" : "failed fraction of the shell springs",
+      general_text(perturber_mass), general_text(failure_strain), finished, rows.size(),
+      crack_probability ? "points" : "encounters", general_text(report.youngs_modulus, 3));
 
   return write_figure(stem, page_width, page_height, [&](cairo_t* cr) {
     cairo_save(cr);
