@@ -206,7 +206,9 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"figures", figure_names},
       {"crack_geometry", crack_geometry_json(fractures.geometry)}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
-  // is up to date.
+  // is up to date. cracks.json (the crack polylines for GIS products, read by the Python
+  // package) first, so that a summary.json naming this state is never beside an older one.
+  write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, state_hash(checkpoint.state))));
   write_file_atomically(out / "summary.json", json_text(summary));
 
   return figures;
@@ -222,6 +224,8 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   // one that had to skip a snapshot (unreadable, or of another run) is not finished: the next run
   // tries again.
   if (!summary.contains("crack_geometry")) return false;
+  // Likewise one written before cracks.json existed.
+  if (!fs::exists(out / "cracks.json")) return false;
   const auto skipped = summary.find("skipped_snapshots");
   return skipped != summary.end() && skipped->is_array() && skipped->empty();
 }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "analysis/crack_geometry.hpp"
@@ -91,5 +92,17 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 /// on it); count, clusters and fitted_arcs are integers, undefined (NaN) values are written as null
 /// (the crack-geometry keys hold null in the Json too, where no failure or no arc defines them).
 Json failure_summary_json(const FractureSummary& summary);
+
+/// cracks.json of `analyze` (docs/python.md, docs/crack-geometry.md), the one home of the crack
+/// polylines the Python package turns into GeoJSON and shapefiles: `format` ("tidalcrust-cracks"),
+/// `version` (1), `frame` and `units` (text), `state_hash` (given), `crack_count`, and `cracks`,
+/// one object per cluster in the order of FractureSummary::clusters (longest first): `crack` (its
+/// index), `springs` (ascending spring indices), `length` and `extent` (R), and `polylines`, one
+/// per failed spring in the order of `springs`: the spring's dual-lattice bar as
+/// [[lon, lat], ...] in degrees of the maps' orbital frame (directions from the centre of mass;
+/// longitude (-180, 180], subsatellite point at +90, orbital plane the equator): the centroid of
+/// its first face, the spring's midpoint, the centroid of its second face (2 vertices for a
+/// spring on one face only). A polyline is not cut at the antimeridian; readers do that.
+Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash);
 
 }  // namespace tidalcrust
