@@ -158,7 +158,7 @@ def open(path: str | os.PathLike) -> xr.Dataset:  # noqa: A001 (tidalcrust.open,
       species [particle] (0 interior, 1 shell); spring_particles [spring, end];
       spring_kind [spring] (0 interior, 1 shell, 2 cross); stiffness [spring] (last file);
       rest_length, strain [time, spring] ((L - L0)/L0, 1); failed [time, spring] (bool);
-      failure_time [spring] (t_grav; NaN for a spring that never failed);
+      failed_at [spring] (t_grav: when the spring failed; NaN for one that never failed);
       faces [face, vertex]; the failure log failure_{time, step, spring, strain, released_energy}
       [failure] and failure_position [failure, xyz]; the time series sample_time [sample] and
       ts_<column> [sample] or [sample, xyz] (ts_failed: failed springs so far).
@@ -199,7 +199,7 @@ def open(path: str | os.PathLike) -> xr.Dataset:  # noqa: A001 (tidalcrust.open,
         "rest_length": (("time", "spring"), rest, {"units": "R"}),
         "strain": (("time", "spring"), (lengths - rest) / rest, {"units": "1", "long_name": "(L - L0)/L0"}),
         "failed": (("time", "spring"), np.stack([p["failed"] for p in parts]).astype(bool), {}),
-        "failure_time": (("spring",), failure_time,
+        "failed_at": (("spring",), failure_time,
                          {"units": "t_grav", "long_name": "time the spring failed (NaN: never)"}),
         "faces": (("face", "vertex"), last["faces"].astype(np.int64), {"long_name": "shell triangles"}),
     }

@@ -80,7 +80,7 @@ def _pericenter_time(ds: xr.Dataset) -> float:
 
 def failure_history(ds: xr.Dataset, ax=None):
     """Cumulative failed springs against time from pericenter (t_grav), from the failure log
-    (ds.failure_time, tidalcrust.open). Returns the Figure."""
+    (ds.failure_time of tidalcrust.open). Returns the Figure."""
     if ax is None:
         fig, ax = plt.subplots(figsize=(6, 4))
     times = np.sort(ds["failure_time"].values[np.isfinite(ds["failure_time"].values)]) - _pericenter_time(ds)
