@@ -235,7 +235,7 @@ std::string fracture_summary_line(const std::string& name, const FractureSummary
   if (fractures.count() == 0)
     return fmt::format("{}: no failed shell springs (0 of {})", name, fractures.shell_springs);
   return fmt::format("{}: {} failed shell springs ({} of {}), {} on the subsatellite hemisphere, "
-                     "median angle from it {:.0f} deg, {} cracks, longest {:.2f} R",
+                     "median angle from it {:.0f} deg, {} cracks, largest network {:.2f} R",
                      name, fractures.count(), percent(fractures.fraction_shell), fractures.shell_springs,
                      percent(fractures.hemisphere_fraction), fractures.median_angle_from_subsatellite_deg,
                      fractures.clusters.size(), fractures.longest_crack_length);
