@@ -1,4 +1,4 @@
-# tidalcrust: make run | make test | make bench | make check-viewers
+# tidalcrust: make run | make test | make bench | make check-viewers | make install
 # Installs the Debian packages it needs (when root; otherwise prints the apt-get line),
 # configures with CMake and builds what the target needs: `make run` and `make check-viewers` the
 # program only, `make test` the program and the test suite, `make bench` the program and the
@@ -7,12 +7,17 @@ BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
             libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libcairo2-dev libboost-dev \
-            slurm-wlm munge python3
+            slurm-wlm munge python3 \
+            python3-h5py python3-numpy python3-xarray python3-matplotlib python3-pyproj python3-geopandas \
+            python3-shapely python3-cartopy python3-nbclient python3-nbformat python3-ipykernel
 EXE      := $(BUILD)/tidalcrust
 # Only for check-viewers: the outside readers the files are checked with.
 VIEWER_PACKAGES := python3-paraview python3-mdanalysis python3-h5py python3-numpy xvfb
 
-.PHONY: all deps configure build program tests microbench test run bench check-viewers clean
+PREFIX   ?= /usr/local
+DESTDIR  ?=
+
+.PHONY: all deps configure build program tests microbench test run bench check-viewers install clean
 
 all: build
 
@@ -82,6 +87,13 @@ check-viewers: program
 .PHONY: results-quick
 results-quick: build
 	python3 tools/results_tables.py quick --exe $(EXE) --write
+
+# The program, the Python package (PREFIX/lib/python3.X/dist-packages; /usr/lib/python3/dist-packages
+# for PREFIX=/usr), the man page and the bash completion, under $(DESTDIR)$(PREFIX).
+install: configure
+	cmake -S . -B $(BUILD) -DCMAKE_INSTALL_PREFIX=$(PREFIX) > /dev/null
+	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust tidalcrust_usage_docs
+	DESTDIR=$(DESTDIR) cmake --install $(BUILD)
 
 clean:
 	rm -rf $(BUILD)

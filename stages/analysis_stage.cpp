@@ -206,7 +206,9 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"figures", figure_names},
       {"crack_geometry", crack_geometry_json(fractures.geometry)}};
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
-  // is up to date.
+  // is up to date. cracks.json (the crack polylines for GIS products, read by the Python
+  // package) first, so that a summary.json naming this state is never beside an older one.
+  write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, state_hash(checkpoint.state))));
   write_file_atomically(out / "summary.json", json_text(summary));
 
   return figures;
@@ -222,6 +224,8 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   // one that had to skip a snapshot (unreadable, or of another run) is not finished: the next run
   // tries again.
   if (!summary.contains("crack_geometry")) return false;
+  // Likewise one written before cracks.json existed.
+  if (!fs::exists(out / "cracks.json")) return false;
   const auto skipped = summary.find("skipped_snapshots");
   return skipped != summary.end() && skipped->is_array() && skipped->empty();
 }
@@ -231,7 +235,7 @@ std::string fracture_summary_line(const std::string& name, const FractureSummary
   if (fractures.count() == 0)
     return fmt::format("{}: no failed shell springs (0 of {})", name, fractures.shell_springs);
   return fmt::format("{}: {} failed shell springs ({} of {}), {} on the subsatellite hemisphere, "
-                     "median angle from it {:.0f} deg, {} cracks, longest {:.2f} R",
+                     "median angle from it {:.0f} deg, {} cracks, largest network {:.2f} R",
                      name, fractures.count(), percent(fractures.fraction_shell), fractures.shell_springs,
                      percent(fractures.hemisphere_fraction), fractures.median_angle_from_subsatellite_deg,
                      fractures.clusters.size(), fractures.longest_crack_length);

@@ -25,7 +25,7 @@ std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path
 /// written before it existed, counts as not finished).
 bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
 
-/// One line: failures, fraction, hemisphere fraction, mean angle, cracks, longest crack.
+/// One line: failures, fraction, hemisphere fraction, mean angle, cracks, largest crack network.
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures);
 
 }  // namespace tidalcrust

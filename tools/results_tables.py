@@ -146,13 +146,19 @@ def summary(p, folder):
     return p.load(Path(folder) / "analysis" / "summary.json")
 
 
+def network_length(f):
+    """The largest connected crack network's length (R) of a `failures` object: the key
+    largest_network_length, or longest_crack in summaries written before issue 27."""
+    return f["largest_network_length"] if "largest_network_length" in f else f["longest_crack"]
+
+
 def failures_row(f):
     """The fracture statistics every encounter table shows, from a `failures` object."""
     return [
         count(f["count"]),
         pct(f["failed_area_fraction"]),
         fixed(f["total_crack_length"], 2) + " R",
-        fixed(f["longest_crack"], 2) + " R" if f["count"] else "-",
+        fixed(network_length(f), 2) + " R" if f["count"] else "-",
         count(f["clusters"]),
         pct(f["hemisphere_fraction"]) if f["count"] else "-",
         fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg" if f["count"] else "-",
@@ -572,7 +578,7 @@ def half_dt_rows(p, pairs):
                      f"{pct(fa['hemisphere_fraction'])} / {pct(fb['hemisphere_fraction'])}",
                      f"{fixed(fa['median_angle_from_subsatellite_deg'], 1)} / "
                      f"{fixed(fb['median_angle_from_subsatellite_deg'], 1)} deg",
-                     f"{fixed(fa['longest_crack'], 2)} / {fixed(fb['longest_crack'], 2)} R",
+                     f"{fixed(network_length(fa), 2)} / {fixed(network_length(fb), 2)} R",
                      fixed(c["jaccard"], 3), fixed(c["ks_distance_angle_from_subsatellite"], 3)])
     return rows
 
@@ -766,7 +772,7 @@ def resolution(p):
         f = r["failures"]
         rows.append([str(r["shell_level"]), count(r["shell_nodes"]), count(r["particles"]), sig(r["dt"], 2),
                      count(f["count"]), pct(f["failed_area_fraction"]), fixed(f["total_crack_length"], 1) + " R",
-                     fixed(f["longest_crack"], 2) + " R", count(f["clusters"]), pct(f["hemisphere_fraction"]),
+                     fixed(network_length(f), 2) + " R", count(f["clusters"]), pct(f["hemisphere_fraction"]),
                      fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg"]
                     + ["" if r.get("change_percent") is None else fixed(r["change_percent"][k], 1) + "%"
                        for k in ("failed_area_fraction", "total_crack_length", "hemisphere_fraction")])

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 
 #include "base/errors.hpp"
@@ -178,8 +179,8 @@ Json failure_summary_json(const FractureSummary& summary) {
           {"hemisphere_fraction", summary.hemisphere_fraction},
           {"mean_angle_from_subsatellite_deg", summary.mean_angle_from_subsatellite_deg},
           {"median_angle_from_subsatellite_deg", summary.median_angle_from_subsatellite_deg},
-          {"longest_crack", summary.longest_crack_length},
-          {"longest_crack_extent", summary.longest_crack_extent},
+          {"largest_network_length", summary.longest_crack_length},
+          {"largest_network_extent", summary.longest_crack_extent},
           {"clusters", summary.clusters.size()},
           {"total_crack_length", summary.total_crack_length},
           {"failed_area_fraction", summary.failed_area_fraction},
@@ -192,6 +193,39 @@ Json failure_summary_json(const FractureSummary& summary) {
           {"longest_arc_pole_axis_from_subsatellite_deg", number(longest.pole_axis_from_subsatellite_deg)},
           {"longest_arc_span_deg", number(longest.arc_deg)},
           {"longest_arc_misfit_deg", number(longest.rms_misfit_deg)}};
+}
+
+Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash) {
+  // Each failed spring's bars (one per face it borders), in face order.
+  std::map<std::int32_t, std::vector<const CrackBar*>> bars_of_spring;
+  for (const auto& bar : summary.bars) bars_of_spring[bar.spring].push_back(&bar);
+  const auto lon_lat = [](const Vec3& r) { return Json::array({longitude_deg(r), latitude_deg(r)}); };
+  Json cracks = Json::array();
+  for (std::size_t c = 0; c < summary.clusters.size(); ++c) {
+    const CrackCluster& cluster = summary.clusters[c];
+    Json polylines = Json::array();
+    for (const std::int32_t s : cluster.springs) {
+      const auto& bars = bars_of_spring[s];
+      Json line = Json::array();
+      if (!bars.empty()) line.push_back(lon_lat(bars[0]->centroid)), line.push_back(lon_lat(bars[0]->edge_midpoint));
+      for (std::size_t k = 1; k < bars.size(); ++k) line.push_back(lon_lat(bars[k]->centroid));
+      polylines.push_back(std::move(line));
+    }
+    cracks.push_back({{"crack", c},
+                      {"springs", cluster.springs},
+                      {"length", cluster.length},
+                      {"extent", cluster.extent},
+                      {"polylines", std::move(polylines)}});
+  }
+  return {{"format", "tidalcrust-cracks"},
+          {"version", 1},
+          {"frame", "the maps' orbital frame: planetocentric longitude and latitude of directions from the body's "
+                    "centre of mass; subsatellite point (the perturber at pericenter) at longitude +90, latitude 0; "
+                    "the orbital plane is the equator (docs/crack-geometry.md)"},
+          {"units", {{"longitude", "deg"}, {"latitude", "deg"}, {"length", "R"}, {"extent", "R (unit sphere)"}}},
+          {"state_hash", state_hash},
+          {"crack_count", summary.clusters.size()},
+          {"cracks", std::move(cracks)}};
 }
 
 }  // namespace tidalcrust

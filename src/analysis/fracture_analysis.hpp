@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "analysis/crack_geometry.hpp"
@@ -57,8 +58,11 @@ struct FractureSummary {
   double hemisphere_fraction = 0;   ///< share of failed springs with midpoint . (+y) > 0; NaN if none
   double mean_angle_from_subsatellite_deg = 0;  ///< NaN if none failed
   double median_angle_from_subsatellite_deg = 0;  ///< NaN if none failed (robust to a few far cracks)
-  double longest_crack_length = 0;  ///< length of the longest cluster, R (0 if none)
-  double longest_crack_extent = 0;  ///< its great-circle extent, R (0 if none)
+  /// Length of the longest cluster, R (0 if none): the largest connected crack network (all its
+  /// branches), not one crack; summary.json's largest_network_length (before issue 27:
+  /// longest_crack).
+  double longest_crack_length = 0;
+  double longest_crack_extent = 0;  ///< its great-circle extent, R (0 if none): largest_network_extent
   /// Sum of the lengths of all clusters (= of all dual-lattice bars), R (0 if none). Unlike the
   /// failed count, it converges with resolution: a crack of given length crosses ~1/L_S bars.
   double total_crack_length = 0;
@@ -82,7 +86,8 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 
 /// The `failures` object of summary.json, compare --json and inspect: count, fraction_shell,
 /// hemisphere_fraction, mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg,
-/// longest_crack, longest_crack_extent (R), clusters (number of clusters), total_crack_length (R),
+/// largest_network_length, largest_network_extent (R; the longest cluster, named longest_crack and
+/// longest_crack_extent before issue 27), clusters (number of clusters), total_crack_length (R),
 /// failed_area_fraction, then the crack geometry (docs/crack-geometry.md): concentricity (1),
 /// crack_rose_peak_deg, fitted_arcs (number of CrackGeometry::arcs), median_arc_radius_deg,
 /// median_arc_pole_axis_from_subsatellite_deg, and of the longest fitted arc longest_arc_radius_deg,
@@ -91,5 +96,17 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 /// on it); count, clusters and fitted_arcs are integers, undefined (NaN) values are written as null
 /// (the crack-geometry keys hold null in the Json too, where no failure or no arc defines them).
 Json failure_summary_json(const FractureSummary& summary);
+
+/// cracks.json of `analyze` (docs/python.md, docs/crack-geometry.md), the one home of the crack
+/// polylines the Python package turns into GeoJSON and shapefiles: `format` ("tidalcrust-cracks"),
+/// `version` (1), `frame` and `units` (text), `state_hash` (given), `crack_count`, and `cracks`,
+/// one object per cluster in the order of FractureSummary::clusters (longest first): `crack` (its
+/// index), `springs` (ascending spring indices), `length` and `extent` (R), and `polylines`, one
+/// per failed spring in the order of `springs`: the spring's dual-lattice bar as
+/// [[lon, lat], ...] in degrees of the maps' orbital frame (directions from the centre of mass;
+/// longitude (-180, 180], subsatellite point at +90, orbital plane the equator): the centroid of
+/// its first face, the spring's midpoint, the centroid of its second face (2 vertices for a
+/// spring on one face only). A polyline is not cut at the antimeridian; readers do that.
+Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash);
 
 }  // namespace tidalcrust

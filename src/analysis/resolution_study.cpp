@@ -134,7 +134,7 @@ Json resolution_study_json(const ResolutionStudy& study) {
 std::string resolution_study_csv(const ResolutionStudy& study) {
   std::string csv =
       "file,shell_level [1],shell_nodes [1],particles [1],dt [t_grav],failed_springs [1],failed_area_fraction [1],"
-      "total_crack_length [R],longest_crack [R],clusters [1],hemisphere_fraction [1],median_angle [deg],"
+      "total_crack_length [R],largest_network_length [R],clusters [1],hemisphere_fraction [1],median_angle [deg],"
       "failed_area_fraction_change [%],hemisphere_fraction_change [%],total_crack_length_change [%],state_hash\n";
   for (const auto& r : study.rows) {
     const FractureSummary& f = r.fractures;

@@ -63,7 +63,7 @@ Json resolution_study_json(const ResolutionStudy& study);
 
 /// CSV (io/csv.hpp): a header with units in brackets, then one row per checkpoint: file,
 /// shell_level, shell_nodes, particles, dt, failed_springs, failed_area_fraction,
-/// total_crack_length, longest_crack, clusters, hemisphere_fraction, median_angle, the three
+/// total_crack_length, largest_network_length, clusters, hemisphere_fraction, median_angle, the three
 /// changes in percent (area, hemisphere, crack length), state_hash; undefined values are empty cells.
 std::string resolution_study_csv(const ResolutionStudy& study);
 

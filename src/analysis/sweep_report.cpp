@@ -38,7 +38,7 @@ void fill_results(SweepRow& row, const Checkpoint& c) {
   row.failed_fraction = fractures.fraction_shell;
   row.hemisphere_fraction = fractures.hemisphere_fraction;
   row.median_angle_deg = fractures.median_angle_from_subsatellite_deg;
-  row.longest_crack = fractures.longest_crack_length;
+  row.largest_network_length = fractures.longest_crack_length;
   row.energy_deposited = budget.internal_change;
   row.energy_dissipated = budget.dissipated;
   row.state_hash = state_hash(c.state);
@@ -57,7 +57,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   row.encounter = spec;
   row.failure_strain = spec.failure_strain.value_or(encounter_config.shell.failure_strain);
   row.strain_estimate = eq5_strain(spec, youngs);
-  row.failed_fraction = row.hemisphere_fraction = row.median_angle_deg = row.longest_crack = row.energy_deposited =
+  row.failed_fraction = row.hemisphere_fraction = row.median_angle_deg = row.largest_network_length = row.energy_deposited =
       row.energy_dissipated = row.concentricity = row.median_arc_radius_deg = row.median_arc_pole_axis_deg = row.total_crack_length = nan;
   const fs::path file = dir / "encounter.h5";
   const fs::path mid = sibling_checkpoint(file, "mid");
@@ -200,7 +200,7 @@ std::span<const EnsembleStatistic> ensemble_statistics() {
       {"failures", "1", [](const SweepRow& r) { return static_cast<double>(r.failures); }},
       {"failed_fraction", "1", [](const SweepRow& r) { return r.failed_fraction; }},
       {"total_crack_length", "R", [](const SweepRow& r) { return r.total_crack_length; }},
-      {"longest_crack", "R", [](const SweepRow& r) { return r.longest_crack; }},
+      {"largest_network_length", "R", [](const SweepRow& r) { return r.largest_network_length; }},
       {"cracks", "1", [](const SweepRow& r) { return static_cast<double>(r.cracks); }},
       {"hemisphere_fraction", "1", [](const SweepRow& r) { return r.hemisphere_fraction; }},
       {"median_angle", "deg", [](const SweepRow& r) { return r.median_angle_deg; }},
@@ -278,7 +278,7 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
 std::string sweep_report_csv(const SweepReport& report) {
   std::string csv =
       "name,status,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],failures [1],failed_fraction [1],"
-      "hemisphere_fraction [1],median_angle [deg],longest_crack [R],energy_deposited [GM^2/R],"
+      "hemisphere_fraction [1],median_angle [deg],largest_network_length [R],energy_deposited [GM^2/R],"
       "energy_dissipated [GM^2/R],state_hash,note,concentricity [1],fitted_arcs [1],median_arc_radius [deg],"
       "median_arc_pole_axis [deg],total_crack_length [R],cracks [1]\n";
   for (const auto& r : report.rows) {
@@ -287,7 +287,7 @@ std::string sweep_report_csv(const SweepReport& report) {
                        status_name(r.status), r.encounter.perturber_mass, r.encounter.pericenter,
                        r.encounter.pericenter_speed, r.failure_strain, r.strain_estimate,
                        done ? std::to_string(r.failures) : "", csv_number(r.failed_fraction),
-                       csv_number(r.hemisphere_fraction), csv_number(r.median_angle_deg), csv_number(r.longest_crack),
+                       csv_number(r.hemisphere_fraction), csv_number(r.median_angle_deg), csv_number(r.largest_network_length),
                        csv_number(r.energy_deposited), csv_number(r.energy_dissipated), r.state_hash, csv_text(r.note),
                        csv_number(r.concentricity), done ? std::to_string(r.fitted_arcs) : "",
                        csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg),
@@ -316,7 +316,7 @@ Json sweep_report_json(const SweepReport& report) {
                           {"failed_fraction", number(r.failed_fraction)},
                           {"hemisphere_fraction", number(r.hemisphere_fraction)},
                           {"median_angle_deg", number(r.median_angle_deg)},
-                          {"longest_crack", number(r.longest_crack)},
+                          {"largest_network_length", number(r.largest_network_length)},
                           {"energy_deposited", number(r.energy_deposited)},
                           {"energy_dissipated", number(r.energy_dissipated)},
                           {"state_hash", done ? Json(r.state_hash) : Json(nullptr)},

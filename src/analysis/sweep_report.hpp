@@ -38,7 +38,7 @@ struct SweepRow {
   double failed_fraction = 0;                   ///< of the shell springs
   double hemisphere_fraction = 0;               ///< of the failures on the subsatellite hemisphere; NaN if none
   double median_angle_deg = 0;                  ///< from the subsatellite point; NaN if none
-  double longest_crack = 0;                     ///< dual-lattice length of the longest crack, R
+  double largest_network_length = 0;            ///< dual-lattice length of the largest connected crack network, R
   double energy_deposited = 0;                  ///< internal energy after minus before, G M^2/R
   double energy_dissipated = 0;                 ///< to damping and failures, G M^2/R
   std::string state_hash;

@@ -51,7 +51,7 @@ void print_resolution_table(const ResolutionStudy& study) {
   const auto line = [](const auto&... cells) {
     fmt::print("{:>5} {:>7} {:>9} {:>9} {:>7} {:>9} {:>10} {:>9} {:>8} {:>10} {:>8} {:>8} {:>8} {:>8}\n", cells...);
   };
-  line("level", "N_S", "particles", "dt", "failed", "area", "total", "longest", "clusters", "hemisphere",
+  line("level", "N_S", "particles", "dt", "failed", "area", "total", "largest", "clusters", "hemisphere",
        "median", "d area", "d hemi", "d crack");
   line("", "", "", "[t_grav]", "springs", "fraction", "crack", "crack [R]", "", "fraction", "ang [deg]", "[%]", "[%]",
        "[%]");
@@ -217,8 +217,8 @@ int command_compare(int argc, char** argv) {
   row("median angle from subsatellite [deg]", number(r.a.median_angle_from_subsatellite_deg, "{:.2f}"),
       number(r.b.median_angle_from_subsatellite_deg, "{:.2f}"));
   row("cracks (clusters)", fmt::format("{}", r.a.clusters.size()), fmt::format("{}", r.b.clusters.size()));
-  row("longest crack [R]", number(r.a.longest_crack_length), number(r.b.longest_crack_length));
-  row("longest crack extent [R]", number(r.a.longest_crack_extent), number(r.b.longest_crack_extent));
+  row("largest crack network [R]", number(r.a.longest_crack_length), number(r.b.longest_crack_length));
+  row("largest network extent [R]", number(r.a.longest_crack_extent), number(r.b.longest_crack_extent));
   row("total crack length [R]", number(r.a.total_crack_length), number(r.b.total_crack_length));
   fmt::print("A: {}  state_hash {}\nB: {}  state_hash {}\n", files[0], state_hash(a.state), files[1], state_hash(b.state));
   fmt::print("failed in both {}, in either {}: Jaccard index {}\n", r.common_failed, r.either_failed, number(r.jaccard));

@@ -30,7 +30,7 @@ TEST(InspectReport, JsonHasEveryKeyOfTheDesign) {
                           "counts", "interior", "shell", "springs_interior", "springs_shell", "springs_cross",
                           "hinges", "faces", "failed", "derived", "E_I", "L_I", "k_I", "L_S", "k_S", "M_S", "L_C",
                           "k_C", "V_IP", "V_SP", "V_Co", "h_S", "E_2D", "D_F", "D_F_eq23", "dt_max", "dt_safe", "dt_unstable", "conservation", "momentum",
-                          "angular_momentum", "kinetic_energy", "record", "fail_interval", "snapshot_steps", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "longest_crack", "clusters",
+                          "angular_momentum", "kinetic_energy", "record", "fail_interval", "snapshot_steps", "perturber", "mass", "failures", "hemisphere_fraction", "mean_angle_from_subsatellite_deg", "largest_network_length", "clusters",
                           "min_distance", "speed_at_min"})
     EXPECT_TRUE(contains(json, "\"" + std::string(key) + "\": ")) << key;
   EXPECT_TRUE(contains(json, "\"state_hash\": \"" + state_hash(c.state) + "\""));

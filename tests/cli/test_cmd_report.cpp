@@ -85,7 +85,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto& header = rows[0];
   ASSERT_EQ(header.size(), 22u);
   EXPECT_EQ(header[3], "q [R]");
-  EXPECT_EQ(header[11], "longest_crack [R]");
+  EXPECT_EQ(header[11], "largest_network_length [R]");
   EXPECT_EQ(header[15], "note");
   EXPECT_EQ(header[16], "concentricity [1]");  // the crack geometry after the others
   EXPECT_EQ(header[20], "total_crack_length [R]");  // then the crack sizes

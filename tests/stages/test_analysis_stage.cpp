@@ -100,5 +100,42 @@ TEST(AnalysisStage, AnAnalysisWithoutTheCrackGeometryIsNotCurrent) {
   EXPECT_FALSE(analysis_is_current(out, c));
 }
 
+// cracks.json: the clusters of summary.json with one polyline per failed spring; an analysis
+// without it (written before it existed) is redone.
+TEST(AnalysisStage, CracksJsonHoldsTheClustersAndIsRequired) {
+  const ScratchFolder scratch("analysis_stage_cracks");
+  Checkpoint c = synthetic_encounter(2);
+  c.state.springs.failed[3] = c.state.springs.failed[4] = 1;
+  const fs::path file = scratch.path / "enc.h5", out = scratch.path / "analysis";
+  write_checkpoint(file, c);
+  analyze_encounter(file, c, out);
+  const Json summary = Json::parse(read_file(out / "summary.json"));
+  const Json cracks = Json::parse(read_file(out / "cracks.json"));
+  EXPECT_EQ(cracks["format"], "tidalcrust-cracks");
+  EXPECT_EQ(cracks["state_hash"], summary["state_hash"]);
+  EXPECT_EQ(cracks["crack_count"], summary["failures"]["clusters"]);
+  ASSERT_EQ(cracks["cracks"].size(), summary["clusters"].size());
+  std::size_t springs = 0;
+  for (std::size_t k = 0; k < cracks["cracks"].size(); ++k) {
+    const Json& crack = cracks["cracks"][k];
+    EXPECT_EQ(crack["length"], summary["clusters"][k]["length"]);
+    EXPECT_EQ(crack["springs"].size(), summary["clusters"][k]["springs"]);
+    ASSERT_EQ(crack["polylines"].size(), crack["springs"].size());
+    for (const Json& line : crack["polylines"]) {
+      EXPECT_EQ(line.size(), 3u);  // face centroid, spring midpoint, face centroid
+      for (const Json& vertex : line) {
+        EXPECT_GT(vertex[0].get<double>(), -180.0);
+        EXPECT_LE(vertex[0].get<double>(), 180.0);
+        EXPECT_LE(std::abs(vertex[1].get<double>()), 90.0);
+      }
+    }
+    springs += crack["springs"].size();
+  }
+  EXPECT_EQ(springs, 2u);
+  EXPECT_TRUE(analysis_is_current(out, c));
+  fs::remove(out / "cracks.json");
+  EXPECT_FALSE(analysis_is_current(out, c));
+}
+
 }  // namespace
 }  // namespace tidalcrust

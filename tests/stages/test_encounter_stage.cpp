@@ -474,7 +474,7 @@ TEST(FractureSummaryLine, FailuresGiveTheirStatistics) {
   const std::string line = fracture_summary_line("T5", some);
   EXPECT_NE(line.find("T5: 5 failed shell springs"), std::string::npos) << line;
   EXPECT_NE(line.find("median angle from it 42 deg"), std::string::npos) << line;
-  EXPECT_NE(line.find("longest 0.25 R"), std::string::npos) << line;
+  EXPECT_NE(line.find("largest network 0.25 R"), std::string::npos) << line;
 }
 
 }  // namespace

@@ -1,0 +1,117 @@
+"""Figures drawn with matplotlib and cartopy, each returning its Figure for the caller to restyle
+(docs/python.md). Nothing here sets a backend: in a script without a display use MPLBACKEND=Agg.
+
+Maps are in the maps' orbital frame (docs/crack-geometry.md): the orbital plane is the equator,
+the subsatellite point (the perturber's direction at pericenter) is at longitude +90, latitude 0.
+"""
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import cartopy.crs as ccrs
+import matplotlib.pyplot as plt
+import numpy as np
+import xarray as xr
+
+from .checkpoint import TidalcrustError
+from .cracks import cracks_frame
+
+#: The unit sphere (R = 1) as cartopy's globe: the maps are in the model's units.
+UNIT_GLOBE = ccrs.Globe(semimajor_axis=1.0, semiminor_axis=1.0, ellipse=None)
+SUBSATELLITE_LON_LAT = (90.0, 0.0)
+#: The binding energy of a uniform sphere, 3/5 G M^2/R: the scale of the energy errors.
+BINDING_ENERGY = 0.6
+
+
+def _projection(view: str) -> ccrs.Projection:
+    if view == "equirectangular":
+        return ccrs.PlateCarree(globe=UNIT_GLOBE)
+    if view == "orthographic":  # the hemisphere facing the perturber at pericenter
+        return ccrs.Orthographic(*SUBSATELLITE_LON_LAT, globe=UNIT_GLOBE)
+    if view == "antipode":
+        return ccrs.Orthographic(SUBSATELLITE_LON_LAT[0] - 180.0, 0.0, globe=UNIT_GLOBE)
+    raise ValueError(f"view '{view}': one of equirectangular, orthographic, antipode")
+
+
+def fracture_map(path: str | os.PathLike, view: str = "equirectangular", ax=None, color: str = "black",
+                 linewidth: float = 1.0, title: str | None = None):
+    """The cracks of an encounter (its folder, analysis folder or cracks.json) on a map.
+
+    view: "equirectangular" (longitude -180..180, latitude -90..90, the cairo map's frame),
+    "orthographic" (the hemisphere centred on the subsatellite point) or "antipode" (the other
+    one). ax: a cartopy GeoAxes to draw into (else a new figure). The subsatellite point is
+    marked with a ring. Returns the Figure. Raises CracksError (no cracks.json), ValueError (view).
+    """
+    projection = _projection(view)
+    frame = cracks_frame(path)
+    if ax is None:
+        fig = plt.figure(figsize=(9, 4.8) if view == "equirectangular" else (5.5, 5.5))
+        ax = fig.add_subplot(1, 1, 1, projection=projection)
+    fig = ax.figure
+    data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
+    ax.set_global()
+    ax.gridlines(crs=data_crs, draw_labels=view == "equirectangular", linewidth=0.3, color="0.6")
+    if len(frame):
+        ax.add_geometries(frame.geometry, crs=data_crs, facecolor="none", edgecolor=color, linewidth=linewidth)
+    ax.plot(*SUBSATELLITE_LON_LAT, marker="o", markersize=12, markerfacecolor="none", markeredgecolor="tab:red",
+            transform=data_crs)
+    ax.set_title(title if title is not None else f"{len(frame)} cracks ({view}; ring: subsatellite point)")
+    return fig
+
+
+def read_summary(path: str | os.PathLike) -> dict:
+    """summary.json of an encounter folder, analysis folder or the file itself. Raises
+    TidalcrustError naming the path."""
+    path = Path(path)
+    for candidate in (path, path / "summary.json", path / "analysis" / "summary.json"):
+        if candidate.is_file():
+            try:
+                return json.loads(candidate.read_text())
+            except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
+                raise TidalcrustError(f"{candidate}: not a readable JSON file ({err})") from None
+    raise TidalcrustError(f"{path}: no summary.json (written by `tidalcrust analyze`)")
+
+
+def _pericenter_time(ds: xr.Dataset) -> float:
+    return float(ds.attrs.get("record_pericenter_time", 0.0))
+
+
+def failure_history(ds: xr.Dataset, ax=None):
+    """Cumulative failed springs against time from pericenter (t_grav), from the failure log
+    (ds.failure_time of tidalcrust.open). Returns the Figure."""
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(6, 4))
+    times = np.sort(ds["failure_time"].values[np.isfinite(ds["failure_time"].values)]) - _pericenter_time(ds)
+    ax.step(times, np.arange(1, times.size + 1), where="post", color="black")
+    ax.axvline(0.0, color="0.6", linewidth=0.8)
+    ax.set_xlabel("time from pericenter [t_grav]")
+    ax.set_ylabel("failed springs")
+    return ax.figure
+
+
+def conserved_energy(ds: xr.Dataset) -> xr.DataArray:
+    """E = K + U_s + U_h + U_g + U_p + D + F - W_h per sample (G M^2/R; docs/energy-budget.md)."""
+    return (ds.ts_kinetic_energy + ds.ts_spring_energy + ds.ts_hinge_energy + ds.ts_self_gravity_energy +
+            ds.ts_perturber_energy + ds.ts_damping_dissipated + ds.ts_failure_released - ds.ts_hinge_residual_work)
+
+
+def energy_budget(ds: xr.Dataset, axes=None):
+    """The energy budget (docs/energy-budget.md): top, the relative error of the conserved total,
+    (E - E_0)/(3/5 G M^2/R); bottom, each term's change since the first sample (G M^2/R), against
+    time from pericenter. Returns the Figure."""
+    if axes is None:
+        fig, axes = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
+    t = ds.sample_time.values - _pericenter_time(ds)
+    energy = conserved_energy(ds).values
+    axes[0].plot(t, (energy - energy[0]) / BINDING_ENERGY, color="black")
+    axes[0].set_ylabel("(E - E0) / (3/5 GM²/R)")
+    for name in ("kinetic_energy", "spring_energy", "hinge_energy", "self_gravity_energy", "perturber_energy",
+                 "damping_dissipated", "failure_released", "hinge_residual_work"):
+        values = ds[f"ts_{name}"].values
+        axes[1].plot(t, values - values[0], label=name.replace("_", " "))
+    axes[1].set_xlabel("time from pericenter [t_grav]")
+    axes[1].set_ylabel("change [GM²/R]")
+    axes[1].legend(fontsize=7)
+    return axes[0].figure
