@@ -930,6 +930,8 @@ void validate(const Config& config, const std::string& origin) {
   const std::vector<Encounter>& unexpanded = config.ensemble ? config.ensemble_bases : config.encounters;
   const std::size_t swept = config.sweep ? std::min(sweep_size(*config.sweep), unexpanded.size()) : 0;
   check_encounter_count(unexpanded.size() - swept, swept, origin);
+  if (config.ensemble && config.ensemble->members == 0)
+    throw InputError(fmt::format("{}: [ensemble] needs members (e.g. --set ensemble.members=10)", origin));
   if (config.ensemble) check_ensemble(*config.ensemble, unexpanded.size(), origin);
   std::set<std::string> names;
   for (const auto& e : config.encounters) {
@@ -1046,8 +1048,11 @@ void apply_override(Config& config, const std::string& assignment) {
       throw InputError(fmt::format("{}: ensemble.{} must be {}", where, key, key == "members" ? "an integer" : "a number"));
     else
       throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: members, pericenter_perturbation)", where, key));
-    check_ensemble(*config.ensemble, config.ensemble_bases.size(), where);
-    config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
+    // Expanded once members is given (the keys may come in either order); validate refuses an
+    // ensemble left without members.
+    if (config.ensemble->members != 0) check_ensemble(*config.ensemble, config.ensemble_bases.size(), where);
+    config.encounters = config.ensemble->members != 0 ? expand_ensemble(config.ensemble_bases, *config.ensemble)
+                                                      : config.ensemble_bases;
     return;
   }
   if (section != "encounters") {

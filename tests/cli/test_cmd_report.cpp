@@ -123,7 +123,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
     EXPECT_EQ(row[8], fmt::format("{}", fractures.fraction_shell));
     EXPECT_EQ(entry["failed_fraction"].get<double>(), fractures.fraction_shell);
     EXPECT_EQ(row[11], fmt::format("{}", fractures.longest_crack_length));
-    EXPECT_EQ(entry["longest_crack"].get<double>(), fractures.longest_crack_length);
+    EXPECT_EQ(entry["largest_network_length"].get<double>(), fractures.longest_crack_length);
     EXPECT_EQ(row[12], fmt::format("{}", budget.internal_change));
     EXPECT_EQ(entry["energy_deposited"].get<double>(), budget.internal_change);
     EXPECT_EQ(row[14], state_hash(c.state));

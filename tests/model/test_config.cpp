@@ -489,4 +489,16 @@ TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
   Config config = parse_config("[[encounters]]\nname = \"T5\"\n", "e.toml");
   EXPECT_THROW(apply_override(config, "ensemble.members=1"), InputError);
   EXPECT_THROW(apply_override(config, "ensemble.size=4"), InputError);
+  // The keys in either order: the perturbation first, then members.
+  Config either = parse_config("[[encounters]]\nname = \"T5\"\n", "e.toml");
+  apply_override(either, "ensemble.pericenter_perturbation=0.002");
+  try {
+    validate(either, "e.toml");
+    ADD_FAILURE() << "an ensemble without members was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "e.toml: [ensemble] needs members (e.g. --set ensemble.members=10)");
+  }
+  apply_override(either, "ensemble.members=4");
+  ASSERT_EQ(either.encounters.size(), 4u);
+  EXPECT_DOUBLE_EQ(either.encounters[0].pericenter, 1.84 * (1 - 0.002 * 0.75));
 }
