@@ -89,28 +89,41 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   return row;
 }
 
-/// The lines of an [ensemble] workflow: each point an encounter before the expansion, with the
-/// share of its finished members that cracked.
-std::vector<CrackBoundary> ensemble_boundaries(const std::vector<EnsembleRow>& rows, double youngs) {
-  std::map<std::tuple<double, double, double>, std::vector<const EnsembleRow*>> lines;
+/// The (M2, eps_S, V_q) lines of the `rows` that `use` keeps, each ordered by q: where the line
+/// switches from crack to no crack (`cracked` of a row) and where eq. 5 puts strain = eps_S;
+/// `more(boundary, line)` fills the rest. One home for both kinds of row (SweepRow, EnsembleRow).
+template <typename Row, typename Use, typename Cracked, typename More>
+std::vector<CrackBoundary> boundaries_along_q(const std::vector<Row>& rows, double youngs, Use use, Cracked cracked,
+                                              More more) {
+  std::map<std::tuple<double, double, double>, std::vector<const Row*>> lines;
   for (const auto& r : rows)
-    if (r.finished > 0) lines[{r.encounter.perturber_mass, r.failure_strain, r.encounter.pericenter_speed}].push_back(&r);
+    if (use(r)) lines[{r.encounter.perturber_mass, r.failure_strain, r.encounter.pericenter_speed}].push_back(&r);
   std::vector<CrackBoundary> out;
   for (auto& [key, line] : lines) {
-    std::sort(line.begin(), line.end(), [](const EnsembleRow* a, const EnsembleRow* b) {
-      return a->encounter.pericenter < b->encounter.pericenter;
-    });
+    std::sort(line.begin(), line.end(),
+              [](const Row* a, const Row* b) { return a->encounter.pericenter < b->encounter.pericenter; });
     CrackBoundary b;
     std::tie(b.perturber_mass, b.failure_strain, b.pericenter_speed) = key;
     b.largest_cracked_q = b.smallest_intact_q = b.half_probability_q = b.half_probability_q_low =
         b.half_probability_q_high = nan;
-    for (const EnsembleRow* r : line)
-      if (r->cracked.successes > 0) b.largest_cracked_q = r->encounter.pericenter;
-    for (const EnsembleRow* r : line)
-      if (r->cracked.successes == 0 && !(r->encounter.pericenter < b.largest_cracked_q)) {
+    for (const Row* r : line)
+      if (cracked(*r)) b.largest_cracked_q = r->encounter.pericenter;
+    for (const Row* r : line)
+      if (!cracked(*r) && !(r->encounter.pericenter < b.largest_cracked_q)) {
         b.smallest_intact_q = r->encounter.pericenter;
         break;
       }
+    b.eq5_q = std::sqrt(b.perturber_mass / (std::sqrt(youngs) * b.pericenter_speed * b.failure_strain));
+    more(b, line);
+    out.push_back(b);
+  }
+  return out;
+}
+
+/// The lines of an [ensemble] workflow: each point an encounter before the expansion, "cracked"
+/// when any finished member cracked, with the q where the share of cracked members falls through 1/2.
+std::vector<CrackBoundary> ensemble_boundaries(const std::vector<EnsembleRow>& rows, double youngs) {
+  const auto half_probability = [](CrackBoundary& b, const std::vector<const EnsembleRow*>& line) {
     // The first fall of the cracked share through 1/2 along q.
     for (std::size_t i = 0; i + 1 < line.size(); ++i) {
       const double p0 = line[i]->cracked.fraction, p1 = line[i + 1]->cracked.fraction;
@@ -129,10 +142,10 @@ std::vector<CrackBoundary> ensemble_boundaries(const std::vector<EnsembleRow>& r
         b.half_probability_q_high = r->encounter.pericenter;
         break;
       }
-    b.eq5_q = std::sqrt(b.perturber_mass / (std::sqrt(youngs) * b.pericenter_speed * b.failure_strain));
-    out.push_back(b);
-  }
-  return out;
+  };
+  return boundaries_along_q(
+      rows, youngs, [](const EnsembleRow& r) { return r.finished > 0; },
+      [](const EnsembleRow& r) { return r.cracked.successes > 0; }, half_probability);
 }
 
 /// The ensemble rows of `rows`, whose encounters are the members of `config.ensemble_bases` in
@@ -167,30 +180,9 @@ std::vector<EnsembleRow> ensemble_rows(const Config& config, const std::vector<S
 }
 
 std::vector<CrackBoundary> crack_boundaries(const std::vector<SweepRow>& rows, double youngs) {
-  // Finished rows of each (M2, eps_S, V_q) line, ordered by q.
-  std::map<std::tuple<double, double, double>, std::vector<const SweepRow*>> lines;
-  for (const auto& r : rows)
-    if (r.status == SweepStatus::finished)
-      lines[{r.encounter.perturber_mass, r.failure_strain, r.encounter.pericenter_speed}].push_back(&r);
-  std::vector<CrackBoundary> out;
-  for (auto& [key, line] : lines) {
-    std::sort(line.begin(), line.end(),
-              [](const SweepRow* a, const SweepRow* b) { return a->encounter.pericenter < b->encounter.pericenter; });
-    CrackBoundary b;
-    std::tie(b.perturber_mass, b.failure_strain, b.pericenter_speed) = key;
-    b.largest_cracked_q = b.smallest_intact_q = nan;
-    for (const SweepRow* r : line)
-      if (r->cracked()) b.largest_cracked_q = r->encounter.pericenter;
-    for (const SweepRow* r : line)
-      if (!r->cracked() && !(r->encounter.pericenter < b.largest_cracked_q)) {
-        b.smallest_intact_q = r->encounter.pericenter;
-        break;
-      }
-    b.eq5_q = std::sqrt(b.perturber_mass / (std::sqrt(youngs) * b.pericenter_speed * b.failure_strain));
-    b.half_probability_q = b.half_probability_q_low = b.half_probability_q_high = nan;
-    out.push_back(b);
-  }
-  return out;
+  return boundaries_along_q(
+      rows, youngs, [](const SweepRow& r) { return r.status == SweepStatus::finished; },
+      [](const SweepRow& r) { return r.cracked(); }, [](CrackBoundary&, const std::vector<const SweepRow*>&) {});
 }
 
 }  // namespace
