@@ -15,9 +15,9 @@
 #include "analysis/energy_budget.hpp"
 #include "analysis/body_shape.hpp"
 #include "base/errors.hpp"
-#include "figures/figure_body_shape.hpp"
-#include "figures/figure_text.hpp"
-#include "figures/figures.hpp"
+#include "analysis/figure_data.hpp"
+#include "analysis/figure_text.hpp"
+#include "figures/figure_script.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "io/atomic_file.hpp"
@@ -95,26 +95,31 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   std::vector<const Checkpoint*> panels;
   std::vector<std::size_t> panel_indices =
       choose_snapshot_panels(candidate_times, record.pericenter_time, max_snapshot_panels);
-  std::vector<double> panel_times;
-  for (const std::size_t i : panel_indices) panels.push_back(candidates[i]), panel_times.push_back(candidate_times[i]);
+  for (const std::size_t i : panel_indices) panels.push_back(candidates[i]);
 
   const std::string name = record.encounter.name.empty() ? from.stem().string() : record.encounter.name;
   const double t_after = checkpoint.state.time - record.pericenter_time;
   auto title = [&](const std::string& headline) {
     return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock);
   };
+  // The figures' titles (two lines: headline, then the encounter's parameters and dt).
+  const Json titles = {
+      {"fracture_map", title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
+                                         percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))},
+      {"hemisphere", title(name + ": hemisphere facing pericenter")},
+      {"orbit", title(name + ": perturber orbit")},
+      {"failures", title(name + ": shell spring failures")},
+      {"conservation", title(name + ": conservation diagnostics")},
+      {"body_shape", title(name + ": the body in the orbital plane")},
+      {"axis_ratios", title(name + ": principal axis ratios")},
+      {"crack_geometry",
+       title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name, fractures.geometry.arcs.size(),
+                         std::isfinite(fractures.geometry.orientations.concentricity)
+                             ? fixed_text(fractures.geometry.orientations.concentricity, 2)
+                             : "n/a"))}};
   std::vector<fs::path> figures;
-  auto add = [&](const FigureFiles& files) { figures.insert(figures.end(), files.begin(), files.end()); };
-  add(write_fracture_map(fractures, out / "fracture_map",
-                         title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
-                                           percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))));
-  add(write_hemisphere_views(panels, record.pericenter_time, out / "hemisphere",
-                             title(name + ": hemisphere facing pericenter")));
-  add(write_orbit_plot(checkpoint, record, panel_times, out / "orbit", title(name + ": perturber orbit")));
-  add(write_failure_history(checkpoint, record.pericenter_time, out / "failures",
-                            title(name + ": shell spring failures")));
-  add(write_conservation_plot(checkpoint, record.pericenter_time, out / "conservation",
-                              title(name + ": conservation diagnostics")));
+  for (const std::string& figure : encounter_figure_names())
+    for (const char* extension : {".png", ".svg"}) figures.push_back(out / (figure + extension));
   // Figure 5 (fig:mush): the body's shape at every snapshot and at the end.
   std::vector<double> shape_times;
   std::vector<PrincipalAxes> shapes;
@@ -122,15 +127,6 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
     shape_times.push_back(c->state.time - record.pericenter_time);
     shapes.push_back(principal_axes(c->body.mass, c->state.position));
   }
-  add(write_body_slices(panels, record.pericenter_time, out / "body_shape",
-                        title(name + ": the body in the orbital plane")));
-  add(write_axis_ratios(shape_times, shapes, out / "axis_ratios", title(name + ": principal axis ratios")));
-  add(write_crack_geometry(fractures, out / "crack_geometry",
-                           title(fmt::format("{}: crack geometry, {} fitted arcs, concentricity {}", name,
-                                             fractures.geometry.arcs.size(),
-                                             std::isfinite(fractures.geometry.orientations.concentricity)
-                                                 ? fixed_text(fractures.geometry.orientations.concentricity, 2)
-                                                 : "n/a"))));
   Json shape_list = Json::array();
   for (std::size_t k = 0; k < shapes.size(); ++k)
     shape_list.push_back({{"time_from_pericenter", shape_times[k]},
@@ -208,9 +204,16 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
   // is up to date. cracks.json (the crack polylines for GIS products, read by the Python
   // package) first, so that a summary.json naming this state is never beside an older one.
-  write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, state_hash(checkpoint.state))));
+  // figure_data.json (what the figures draw besides those two) before them too. The figures are
+  // drawn last, by the Python package, from these files: the numbers never depend on it.
+  const std::string hash = state_hash(checkpoint.state);
+  write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, hash)));
+  write_file_atomically(out / "figure_data.json", figure_data_json(checkpoint, record, panels, titles, hash).dump() + "\n");
   write_file_atomically(out / "summary.json", json_text(summary));
-
+  // Figures of an earlier analysis are removed first, so that a figure process that fails leaves
+  // no figure of another state beside this summary.json (analysis_is_current then redoes it).
+  for (const fs::path& figure : figures) fs::remove(figure, ec);
+  draw_figures("analysis", {out.string()});
   return figures;
 }
 
@@ -225,7 +228,12 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   // tries again.
   if (!summary.contains("crack_geometry")) return false;
   // Likewise one written before cracks.json existed.
-  if (!fs::exists(out / "cracks.json")) return false;
+  if (!fs::exists(out / "cracks.json") || !fs::exists(out / "figure_data.json")) return false;
+  // And one whose figures were not all drawn (the figure script failed or was interrupted).
+  const auto figures = summary.find("figures");
+  if (figures == summary.end() || !figures->is_array()) return false;
+  for (const auto& figure : *figures)
+    if (!figure.is_string() || !fs::exists(out / figure.get<std::string>())) return false;
   const auto skipped = summary.find("skipped_snapshots");
   return skipped != summary.end() && skipped->is_array() && skipped->empty();
 }

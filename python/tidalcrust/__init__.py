@@ -12,9 +12,10 @@ naming the file.
 from .checkpoint import UNITS_NOTE, CheckpointError, TidalcrustError, checkpoint_files, open  # noqa: A004
 from .cracks import (UNIT_SPHERE_CRS, CracksError, body_crs, cracks_file, cracks_frame, read_cracks,
                      write_geojson, write_shapefile)
-from .maps import energy_budget, failure_history, fracture_map, read_summary
+from .figures import fracture_map, read_figure_data
+from .maps import energy_budget, failure_history, read_summary
 
 __version__ = "0.1.0"
 __all__ = ["open", "checkpoint_files", "read_cracks", "cracks_file", "cracks_frame", "body_crs", "write_geojson",
-           "write_shapefile", "fracture_map", "failure_history", "energy_budget", "read_summary", "UNITS_NOTE",
+           "write_shapefile", "fracture_map", "read_figure_data", "failure_history", "energy_budget", "read_summary", "UNITS_NOTE",
            "UNIT_SPHERE_CRS", "TidalcrustError", "CheckpointError", "CracksError"]

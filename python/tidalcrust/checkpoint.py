@@ -14,7 +14,6 @@ from pathlib import Path
 
 import h5py
 import numpy as np
-import xarray as xr
 
 UNITS_NOTE = ("model units G = M = R = 1: lengths in R (the body's radius), masses in M, times in "
               "t_grav = sqrt(R^3/(G M)), velocities in sqrt(G M/R), energies in G M^2/R; the file's H5MD "
@@ -233,4 +232,6 @@ def open(path: str | os.PathLike) -> xr.Dataset:  # noqa: A001 (tidalcrust.open,
     }
     for key, value in last["record"].items():
         attrs[f"record_{key}"] = value
+    import xarray as xr  # here, not at the top: the figure script does not need it (and it is slow to import)
+
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -11,7 +11,6 @@ import os
 import warnings
 from pathlib import Path
 
-import geopandas as gpd
 import numpy as np
 import pyproj
 from pyproj.database import query_crs_info
@@ -110,6 +109,8 @@ def cracks_frame(path: str | os.PathLike, body: str | None = None) -> gpd.GeoDat
         rows.append({"crack": int(crack["crack"]), "springs": len(crack["springs"]),
                      "length": float(crack["length"]), "extent": float(crack["extent"]),
                      "geometry": MultiLineString(lines)})
+    import geopandas as gpd  # here, not at the top: the figure script does not need it (and it is slow to import)
+
     frame = gpd.GeoDataFrame(rows, columns=["crack", "springs", "length", "extent", "geometry"],
                              geometry="geometry", crs=crs)
     if body is not None:

@@ -1,64 +1,21 @@
-"""Figures drawn with matplotlib and cartopy, each returning its Figure for the caller to restyle
-(docs/python.md). Nothing here sets a backend: in a script without a display use MPLBACKEND=Agg.
-
-Maps are in the maps' orbital frame (docs/crack-geometry.md): the orbital plane is the equator,
-the subsatellite point (the perturber's direction at pericenter) is at longitude +90, latitude 0.
+"""Figures of a Dataset (tidalcrust.open): the failures and the energy budget over time, each
+returning its Figure for the caller to restyle (docs/python.md); the figures of `analyze`, drawn
+from its files, are in tidalcrust.figures. Nothing here sets a backend: in a script without a display use
+MPLBACKEND=Agg.
 """
-from __future__ import annotations
+from __future__ import annotations  # the annotations name xarray types without importing xarray (slow)
 
 import json
 import os
 from pathlib import Path
 
-import cartopy.crs as ccrs
 import matplotlib.pyplot as plt
 import numpy as np
-import xarray as xr
 
 from .checkpoint import TidalcrustError
-from .cracks import cracks_frame
 
-#: The unit sphere (R = 1) as cartopy's globe: the maps are in the model's units.
-UNIT_GLOBE = ccrs.Globe(semimajor_axis=1.0, semiminor_axis=1.0, ellipse=None)
-SUBSATELLITE_LON_LAT = (90.0, 0.0)
 #: The binding energy of a uniform sphere, 3/5 G M^2/R: the scale of the energy errors.
 BINDING_ENERGY = 0.6
-
-
-def _projection(view: str) -> ccrs.Projection:
-    if view == "equirectangular":
-        return ccrs.PlateCarree(globe=UNIT_GLOBE)
-    if view == "orthographic":  # the hemisphere facing the perturber at pericenter
-        return ccrs.Orthographic(*SUBSATELLITE_LON_LAT, globe=UNIT_GLOBE)
-    if view == "antipode":
-        return ccrs.Orthographic(SUBSATELLITE_LON_LAT[0] - 180.0, 0.0, globe=UNIT_GLOBE)
-    raise ValueError(f"view '{view}': one of equirectangular, orthographic, antipode")
-
-
-def fracture_map(path: str | os.PathLike, view: str = "equirectangular", ax=None, color: str = "black",
-                 linewidth: float = 1.0, title: str | None = None):
-    """The cracks of an encounter (its folder, analysis folder or cracks.json) on a map.
-
-    view: "equirectangular" (longitude -180..180, latitude -90..90, the cairo map's frame),
-    "orthographic" (the hemisphere centred on the subsatellite point) or "antipode" (the other
-    one). ax: a cartopy GeoAxes to draw into (else a new figure). The subsatellite point is
-    marked with a ring. Returns the Figure. Raises CracksError (no cracks.json), ValueError (view).
-    """
-    projection = _projection(view)
-    frame = cracks_frame(path)
-    if ax is None:
-        fig = plt.figure(figsize=(9, 4.8) if view == "equirectangular" else (5.5, 5.5))
-        ax = fig.add_subplot(1, 1, 1, projection=projection)
-    fig = ax.figure
-    data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
-    ax.set_global()
-    ax.gridlines(crs=data_crs, draw_labels=view == "equirectangular", linewidth=0.3, color="0.6")
-    if len(frame):
-        ax.add_geometries(frame.geometry, crs=data_crs, facecolor="none", edgecolor=color, linewidth=linewidth)
-    ax.plot(*SUBSATELLITE_LON_LAT, marker="o", markersize=12, markerfacecolor="none", markeredgecolor="tab:red",
-            transform=data_crs)
-    ax.set_title(title if title is not None else f"{len(frame)} cracks ({view}; ring: subsatellite point)")
-    return fig
 
 
 def read_summary(path: str | os.PathLike) -> dict:

@@ -19,8 +19,9 @@
 #include "analysis/fracture_comparison.hpp"
 #include "analysis/resolution_study.hpp"
 #include "analysis/sweep_report.hpp"
-#include "figures/figure_text.hpp"
-#include "figures/figures.hpp"
+#include "analysis/figure_text.hpp"
+#include "analysis/plot_data.hpp"
+#include "figures/figure_script.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "io/state_hash.hpp"
@@ -79,9 +80,10 @@ std::vector<std::filesystem::path> write_resolution_outputs(const ResolutionStud
   write_file_atomically(dir / "convergence.json", json_text(resolution_study_json(study)));
   write_file_atomically(dir / "convergence.csv", resolution_study_csv(study));
   std::vector<const FractureSummary*> panels;
-  std::vector<std::string> titles;
+  std::vector<std::string> titles, hashes;
   for (const auto& r : study.rows) {
     panels.push_back(&r.fractures);
+    hashes.push_back(r.state_hash);
     titles.push_back(fmt::format("level {}, N_S = {}: {:.1f}% of the area failed", level_text(r), r.shell_nodes,
                                  100 * r.fractures.failed_area_fraction));
   }
@@ -89,7 +91,10 @@ std::vector<std::filesystem::path> write_resolution_outputs(const ResolutionStud
                                         study.encounter.name, encounter_parameters_text(study.encounter),
                                         general_text(study.failure_strain), choice_name(study.failure_rule));
   std::vector<std::filesystem::path> written{dir / "convergence.json", dir / "convergence.csv"};
-  for (const auto& f : write_fracture_map_row(panels, titles, dir / "convergence_maps", title)) written.push_back(f);
+  written.push_back(write_figure_data_file(
+      dir, {{"convergence_maps", fracture_map_row_json((dir / "convergence_maps").string(), panels, hashes, titles, title)}}));
+  draw_figures("compare", {dir.string()});
+  for (const char* extension : {".png", ".svg"}) written.push_back(dir / (std::string("convergence_maps") + extension));
   return written;
 }
 

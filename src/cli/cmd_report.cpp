@@ -13,7 +13,8 @@
 #include "base/errors.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
-#include "figures/figures.hpp"
+#include "analysis/plot_data.hpp"
+#include "figures/figure_script.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "stages/workflow.hpp"
@@ -67,13 +68,15 @@ int command_report(int argc, char** argv) {
   const SweepReport drawn = report.ensembles.empty() ? report : crack_probability_report(report);
   std::map<std::pair<double, double>, bool> groups;
   for (const auto& r : drawn.rows) groups[{r.encounter.perturber_mass, r.failure_strain}] = true;
+  Json diagrams = Json::object();
   std::vector<std::string> figures;
-  for (const auto& [key, unused] : groups)
-    for (const auto& file : write_phase_diagram(drawn, key.first, key.second,
-                                                dir / fmt::format("phase_M{}_eps{}", file_number(key.first),
-                                                                  file_number(key.second)),
-                                                !report.ensembles.empty()))
-      figures.push_back(file.filename().string());
+  for (const auto& [key, unused] : groups) {
+    const std::string stem = fmt::format("phase_M{}_eps{}", file_number(key.first), file_number(key.second));
+    diagrams[stem] = phase_diagram_json((dir / stem).string(), drawn, key.first, key.second, !report.ensembles.empty());
+    figures.push_back(stem + ".png"), figures.push_back(stem + ".svg");
+  }
+  write_figure_data_file(dir, diagrams);
+  draw_figures("report", {dir.string()});
 
   fmt::print("report of workflow {} ({} encounters in {}):\n", report.workflow, report.rows.size(),
              report.folder.string());

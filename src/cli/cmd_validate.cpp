@@ -21,7 +21,8 @@
 #include "base/errors.hpp"
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
-#include "figures/validation_figures.hpp"
+#include "analysis/plot_data.hpp"
+#include "figures/figure_script.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/json.hpp"
@@ -214,6 +215,7 @@ int command_validate(int argc, char** argv) {
   json["units"] = Json{{"time", "t_grav"}, {"length", "R"}, {"modulus", "e_g"}, {"rigidity", "G M^2/R"},
                        {"speed", "sqrt(GM/R)"}};
   Json details;
+  Json plots = Json::object();  // the figures, drawn from validate/figure_data.json
   if (wanted("breathing")) {
     const BreathingResult b = measure_breathing(relaxed, config, material);
     add("breathing", b.period, b.lamb_period);
@@ -226,7 +228,7 @@ int command_validate(int argc, char** argv) {
       marks.push_back({n * b.lamb_period, n == 1 ? "Lamb period" : "", false});
     marks.push_back({b.self_gravitating_period, "", false});  // just after Lamb's first: no label
     for (int n = 1; n * b.period <= b.time.back(); ++n) marks.push_back({n * b.period, n == 1 ? "measured" : "", true});
-    write_signal_plot(b.time, b.signal, marks, out / "breathing",
+    plots["breathing"] = signal_plot_json((out / "breathing").string(), b.time, b.signal, marks,
                       fmt::format("Breathing mode of {}\nmeasured period {:.4f}, Lamb {:.4f}, with self-gravity {:.4f} t_grav",
                                   config.workflow.name, b.period, b.lamb_period, b.self_gravitating_period),
                       "mean radius change [R]");
@@ -276,7 +278,7 @@ int command_validate(int argc, char** argv) {
     std::vector<TimeMark> marks = {{p.theory_time, "path / V_IP", false},
                                    {p.layered_time, "layered", false},
                                    {p.arrival_time, "arrival", true}};
-    write_signal_plot(p.time, p.signal, marks, out / "p_wave",
+    plots["p_wave"] = signal_plot_json((out / "p_wave").string(), p.time, p.signal, marks,
                       fmt::format("P-wave pulse of {}: mean |dv| at the far pole\narrival {:.4f}, path/V_IP {:.4f} t_grav",
                                   config.workflow.name, p.arrival_time, p.theory_time),
                       "|dv| [sqrt(GM/R)]");
@@ -335,7 +337,7 @@ int command_validate(int argc, char** argv) {
                              {"median_ratio", t.ratio.median}, {"ratio_scatter", t.ratio.scatter},
                              {"ratio_springs", t.ratio.springs},
                              {"strain_unit", "per unit eps (G M / R^3)"}, {"bands", bins}};
-      write_tidal_strain_plot(t.bins, theory.h, theory.l, out / "tide_strain",
+      plots["tide_strain"] = tidal_strain_plot_json((out / "tide_strain").string(), t.bins, theory.h, theory.l,
                               fmt::format("Crust strain under a static degree-2 tide, {}\nh2 {:.4f} (TS72 {:.4f}), "
                                           "l2 {:.4f} (TS72 {:.4f}), correlation {:.3f}",
                                           config.workflow.name, t.fit.h2, theory.h, t.fit.l2, theory.l, t.correlation));
@@ -360,7 +362,7 @@ int command_validate(int argc, char** argv) {
       for (int n = 1; n * 2 * std::numbers::pi / omega <= d.time.back(); ++n)
         marks.push_back({n * 2 * std::numbers::pi / omega, n == 1 ? "0S2 (TS72)" : "", false});
       for (int n = 1; n * d.period <= d.time.back(); ++n) marks.push_back({n * d.period, n == 1 ? "measured" : "", true});
-      write_signal_plot(d.time, d.signal, marks, out / "ringdown",
+      plots["ringdown"] = signal_plot_json((out / "ringdown").string(), d.time, d.signal, marks,
                         fmt::format("Degree-2 ring-down of {}\nmeasured period {:.4f}, 0S2 {:.4f}, Lamb {:.4f} t_grav",
                                     config.workflow.name, d.period, 2 * std::numbers::pi / omega,
                                     2 * std::numbers::pi / omega_lamb),
@@ -372,6 +374,10 @@ int command_validate(int argc, char** argv) {
   json["comparisons"] = comparisons;
   json["details"] = details.is_null() ? Json::object() : details;
   write_file_atomically(out / "validation.json", json_text(json));
+  if (!plots.empty()) {
+    write_figure_data_file(out, plots);
+    draw_figures("validate", {out.string()});
+  }
 
   fmt::print("\n{:<18} {:>12} {:>12} {:>8} {:>6}  {}\n", "check", "measured", "theory", "ratio", "tol", "");
   for (const auto& r : rows)

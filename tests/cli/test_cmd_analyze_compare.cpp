@@ -65,14 +65,31 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   const fs::path out = dir / "analysis";
   const auto r = run_cli("analyze --from \"" + encounter.string() + "\" --out \"" + out.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* stem :
-       {"fracture_map", "hemisphere", "orbit", "failures", "conservation", "body_shape", "axis_ratios"}) {
-    const std::string png = read_file(out / (stem + ".png"s));
-    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << stem;
-    EXPECT_NE(read_file(out / (stem + ".svg"s)).find("</svg>"), std::string::npos) << stem;
-  }
+  // Every figure of analyze, drawn by the Python package (tidalcrust.figures) as PNG and SVG, and
+  // listed in summary.json; figure_data.json names them.
   const std::string summary = read_file(out / "summary.json");
   const Json json = Json::parse(summary);
+  const Json data = Json::parse(read_file(out / "figure_data.json"));
+  EXPECT_EQ(data["figures"], Json({"fracture_map", "hemisphere", "orbit", "failures", "conservation", "body_shape",
+                                   "axis_ratios", "crack_geometry"}));
+  Json listed = Json::array();
+  for (const Json& name : data["figures"]) {
+    const std::string stem = name.get<std::string>();
+    const std::string png = read_file(out / (stem + ".png"));
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << stem;
+    EXPECT_NE(read_file(out / (stem + ".svg")).find("</svg>"), std::string::npos) << stem;
+    listed.push_back(stem + ".png"), listed.push_back(stem + ".svg");
+  }
+  EXPECT_EQ(json["figures"], listed);
+  EXPECT_EQ(data["state_hash"], json["state_hash"]);
+  // The hemisphere and body-shape panels: the snapshot at step 600 and the final state.
+  ASSERT_EQ(data["hemisphere"]["panels"].size(), 2u);
+  EXPECT_EQ(data["hemisphere"]["panels"][1]["failed"], 5);
+  EXPECT_EQ(data["hemisphere"]["panels"][0]["failed"], 2);
+  EXPECT_EQ(data["body_shape"]["panels"].size(), 2u);
+  EXPECT_EQ(data["failures"]["source"], "samples");
+  EXPECT_EQ(data["failures"]["failed"].back(), 4.0);  // the last sample's count (i / 4 at i = 19)
+  EXPECT_EQ(data["conservation"]["time_from_pericenter"].size(), 20u);
   EXPECT_EQ(json["failures"]["count"], 5) << summary;
   EXPECT_EQ(json["failures"]["fraction_shell"], 5.0 / 480);
   EXPECT_EQ(json["failed_springs"]["spring"], Json({10, 20, 30, 40, 50}));
@@ -106,6 +123,40 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   }
   EXPECT_EQ(shapes[0]["b_over_a"], shapes[1]["b_over_a"]);
   EXPECT_EQ(shapes[0]["c_over_a"], shapes[1]["c_over_a"]);
+}
+
+// The figures are drawn by a child process (figures/figure_script.hpp); without its interpreter,
+// or when it fails, analyze says so in one line (exit 2) after the numbers are written, and the
+// analysis is not current, so `run` draws the figures again.
+TEST_F(AnalyzeCompareCli, AFigureProcessThatCannotRunIsOneLineAfterTheNumbers) {
+  const fs::path out = dir / "analysis";
+  const std::string args = "analyze --from " + quoted(encounter) + " --out " + quoted(out);
+  auto r = run_cli(args, "TIDALCRUST_PYTHON=" + (dir / "no-python").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 2) << r.err;  // the skipped snapshot's line, then the error
+  EXPECT_NE(r.err.find((dir / "no-python").string() + ": no such interpreter"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("TIDALCRUST_PYTHON"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "cracks.json"));
+  EXPECT_TRUE(fs::exists(out / "figure_data.json"));
+  EXPECT_FALSE(fs::exists(out / "fracture_map.png"));
+  fs::remove(snapshot_path(encounter, 700));
+  r = run_cli(args, "TIDALCRUST_PYTHON=/bin/false");  // an interpreter that fails
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("/bin/false -m tidalcrust.figures analysis) failed (exit 1)"), std::string::npos) << r.err;
+  EXPECT_FALSE(analysis_is_current(out, read_checkpoint(encounter)));
+  // A figure script that fails on its input: its own one-line message is passed on.
+  std::ofstream(dir / "python.sh") << "#!/bin/sh\necho 'Traceback (most recent call last):' >&2\n"
+                                       "echo \"ModuleNotFoundError: No module named 'cartopy'\" >&2\nexit 1\n";
+  fs::permissions(dir / "python.sh", fs::perms::owner_all);
+  r = run_cli(args, "TIDALCRUST_PYTHON=" + (dir / "python.sh").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("No module named 'cartopy'"), std::string::npos) << r.err;
+  r = run_cli(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(analysis_is_current(out, read_checkpoint(encounter)));
 }
 
 TEST_F(AnalyzeCompareCli, AnalyzeRefusesOtherStagesAndMissingFiles) {

@@ -1,7 +1,6 @@
 // `tidalcrust compare --resolution`: one small real encounter run at shell levels 1 and 2, the
 // table sorted coarsest first, its JSON equal to each encounter's own summary.json, the files of
 // --out, and the one-line errors (exit 2) for input that is not one encounter at two resolutions.
-#include <cairo.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,13 +52,6 @@ pericenter_speed = 1.6
   static fs::path encounter(int level) { return scratch->path / ("L" + std::to_string(level)) / "S" / "encounter.h5"; }
   static inline std::unique_ptr<ScratchFolder> scratch;
 };
-
-/// Width and height in pixels of a PNG file.
-std::pair<int, int> png_size(const fs::path& file) {
-  std::unique_ptr<cairo_surface_t, void (*)(cairo_surface_t*)> png(cairo_image_surface_create_from_png(file.c_str()),
-                                                                   cairo_surface_destroy);
-  return {cairo_image_surface_get_width(png.get()), cairo_image_surface_get_height(png.get())};
-}
 
 }  // namespace
 
@@ -121,10 +113,20 @@ TEST_F(CompareResolutionCli, OutWritesJsonCsvAndOneMapPerLevel) {
   EXPECT_NE(lines[0].find(",total_crack_length_change [%],state_hash"), std::string::npos) << lines[0];
   for (const std::string& line : lines)  // every row has the header's columns (no commas in the paths)
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), std::count(lines[0].begin(), lines[0].end(), ',')) << line;
-  // Two map panels of 320 x 160 points side by side (figure_fracture_map.cpp's layout: 62-point
-  // margins, 70 between panels; 80 above, 58 below), at 2 pixels per point.
-  ASSERT_TRUE(fs::exists(out / "convergence_maps.svg"));
-  EXPECT_EQ(png_size(out / "convergence_maps.png"), std::make_pair(2 * (2 * 62 + 2 * 320 + 70), 2 * (80 + 160 + 58)));
+  // One figure of two map panels (matplotlib, tidalcrust.figures), drawn from figure_data.json:
+  // one panel per level, coarsest first, each holding that level's cracks as its cracks.json does.
+  EXPECT_TRUE(fs::exists(out / "convergence_maps.png"));
+  EXPECT_TRUE(fs::exists(out / "convergence_maps.svg"));
+  const Json data = Json::parse(read_file(out / "figure_data.json"));
+  const Json& row = data["figures"]["convergence_maps"];
+  EXPECT_EQ(row["kind"], "fracture_map_row");
+  ASSERT_EQ(row["panels"].size(), 2u);
+  for (const int level : {1, 2}) {
+    const Json& panel = row["panels"][static_cast<std::size_t>(level - 1)];
+    EXPECT_EQ(panel["title"].get<std::string>().rfind("level " + std::to_string(level) + ",", 0), 0u) << panel["title"];
+    EXPECT_EQ(panel["cracks"],
+              Json::parse(read_file(encounter(level).parent_path() / "analysis" / "cracks.json")));
+  }
 }
 
 TEST_F(CompareResolutionCli, BadInputIsOneLineNamingTheFileAndWritesNothing) {

@@ -137,6 +137,19 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   }
   for (const char* figure : {"phase_M0.5_eps0.002.png", "phase_M1_eps0.002.png", "phase_M1_eps0.002.svg"})
     EXPECT_TRUE(fs::exists(out / "report" / figure)) << figure;
+  // The phase diagrams are drawn (tidalcrust.figures) from report/figure_data.json: one per
+  // (M2, eps_S), together one point per encounter of the table.
+  const Json figures = Json::parse(read_file(out / "report" / "figure_data.json"))["figures"];
+  ASSERT_EQ(figures.size(), 2u) << figures.dump();
+  std::size_t points = 0;
+  for (const char* stem : {"phase_M0.5_eps0.002", "phase_M1_eps0.002"}) {
+    const Json& d = figures.at(stem);
+    EXPECT_EQ(d["kind"], "phase_diagram");
+    EXPECT_EQ(d["x_label"], "pericenter q [R]");
+    EXPECT_EQ(d["eq5"]["q"].size(), d["eq5"]["v_q"].size());
+    points += d["points"].size();
+  }
+  EXPECT_EQ(points, names.size());
 }
 
 TEST(Report, NothingRunIsOneLineErrorAndWritesNothing) {

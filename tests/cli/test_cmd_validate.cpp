@@ -70,6 +70,17 @@ TEST(CmdValidate, WritesEveryComparisonWithItsRatioAndTheFigures) {
   EXPECT_NE(r.out.find("network moduli: E ="), std::string::npos) << r.out;
   for (const char* figure : {"breathing.png", "breathing.svg", "p_wave.png", "p_wave.svg"})
     EXPECT_GT(fs::file_size(out / "validate" / figure), 1000u) << figure;
+  // Drawn (tidalcrust.figures) from validate/figure_data.json: the measured signals and marks.
+  const Json plots = Json::parse(read_file(out / "validate" / "figure_data.json"))["figures"];
+  for (const char* stem : {"breathing", "p_wave"}) {
+    const Json& p = plots.at(stem);
+    EXPECT_EQ(p["kind"], "signal");
+    EXPECT_GE(p["time"].size(), 2u);
+    EXPECT_EQ(p["time"].size(), p["signal"].size());
+    bool measured = false;
+    for (const Json& mark : p["marks"]) measured = measured || mark["measured"].get<bool>();
+    EXPECT_TRUE(measured) << stem;
+  }
   // The body chain is reused on a second call: only the selected measurement is redone.
   const auto again = run_cli("validate " + quoted(tiny_workflow(scratch.path)) + " --measure flexure --out " + quoted(out));
   ASSERT_EQ(again.exit_code, 0) << again.err;

@@ -1,4 +1,4 @@
-#include "figures/figure_text.hpp"
+#include "analysis/figure_text.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,8 @@
 #pragma once
-// Every number and every title line printed on a figure goes through these helpers, so that no
-// figure shows "-0.00" (a tiny negative value rounded to zero) and every quantity names its unit
-// (README "Units": M, R, t_grav, sqrt(GM/R)).
+// Every title and panel label the C++ side writes for a figure (figure_data.json, plot_data.hpp;
+// the Python package prints them as given) goes through these helpers, so that no figure shows
+// "-0.00" (a tiny negative value rounded to zero) and every quantity names its unit (README
+// "Units": M, R, t_grav, sqrt(GM/R)).
 #include <string>
 
 #include "model/encounter.hpp"
@@ -37,8 +38,8 @@ double dt_factor_of(const StepClock& clock);
 /// is not 1: figures of a half-dt rerun never carry the same titles as the full-dt ones.
 std::string time_step_text(const StepClock& clock);
 
-/// Title of an encounter figure: `headline` on the first line (bold), then a second line with
-/// the encounter's parameters and the time step (draw_title draws the two lines).
+/// Title of an encounter figure: `headline` on the first line, then a second line with the
+/// encounter's parameters and the time step.
 std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock);
 
 }  // namespace tidalcrust

@@ -1,0 +1,300 @@
+#include "analysis/figure_data.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "analysis/body_shape.hpp"
+#include "analysis/crack_geometry.hpp"
+#include "analysis/figure_text.hpp"
+#include "analysis/fracture_analysis.hpp"
+#include "analysis/recorded_track.hpp"
+#include "model/center_of_mass.hpp"
+#include "physics/conservation.hpp"
+#include "physics/orbital_frame.hpp"
+#include "physics/two_body_orbit.hpp"
+
+namespace tidalcrust {
+
+namespace {
+
+/// Positions are drawn, not computed with: 1e-6 R is far below a pixel and keeps the file small.
+double rounded(double v) { return std::isfinite(v) ? std::round(v * 1e6) / 1e6 : v; }
+Json xyz(const Vec3& p) { return Json::array({rounded(p.x()), rounded(p.y()), rounded(p.z())}); }
+Json xy(const Vec3& p) { return Json::array({rounded(p.x()), rounded(p.y())}); }
+
+Vec3 perturber_offset(const Checkpoint& c, const Vec3& center) {
+  const auto& p = c.state.perturber.position;
+  return Vec3(p[0], p[1], p[2]) - center;
+}
+
+/// One hemisphere panel: the shell nodes (positions), the crack bars (3D, with their face), the
+/// perturber; the faces themselves are the body's (the same for every panel).
+Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes) {
+  const Vec3 center = body_center_of_mass(c.body, c.state);
+  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  Json positions = Json::array();
+  for (const std::int32_t i : nodes) positions.push_back(xyz(vec3_at(c.state.position, static_cast<std::size_t>(i)) - center));
+  Json bars = Json::array();
+  for (const CrackBar& bar : fractures.bars)
+    bars.push_back({{"face", bar.face}, {"from", xyz(bar.centroid)}, {"to", xyz(bar.edge_midpoint)}});
+  const bool has_perturber = c.state.perturber.present && c.state.perturber.mass > 0;
+  return {{"time_from_pericenter", c.state.time - pericenter_time},
+          {"label", time_from_pericenter_text(c.state.time - pericenter_time)},
+          {"failed", fractures.count()},
+          {"positions", positions},
+          {"crack_bars", bars},
+          {"perturber", has_perturber ? Json{{"position", xyz(perturber_offset(c, center))},
+                                             {"radius", std::cbrt(c.state.perturber.mass)}}
+                                      : Json(nullptr)}};
+}
+
+Json hemisphere_json(const std::vector<const Checkpoint*>& panels, double pericenter_time) {
+  // The shell nodes, numbered in the order of their particle index; faces renumbered to them.
+  const Body& body = panels.front()->body;
+  std::vector<std::int32_t> nodes;
+  for (const auto& f : body.faces) nodes.insert(nodes.end(), f.begin(), f.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  std::map<std::int32_t, std::size_t> local;
+  for (std::size_t k = 0; k < nodes.size(); ++k) local[nodes[k]] = k;
+  Json faces = Json::array();
+  for (const auto& f : body.faces) faces.push_back({local[f[0]], local[f[1]], local[f[2]]});
+  Json list = Json::array();
+  for (const Checkpoint* c : panels) list.push_back(hemisphere_panel(*c, pericenter_time, nodes));
+  return {{"view", "orthographic from +y (the subsatellite side) in the orbital plane, +z up: screen x = -x, y = z"},
+          {"nodes", nodes},
+          {"faces", faces},
+          {"panels", list}};
+}
+
+/// Figure 7: the simulated track (timeseries perturber_offset) or the analytic two-body track.
+Json orbit_json(const Checkpoint& checkpoint, const EncounterRecord& record, const std::vector<double>& snapshot_times) {
+  constexpr double tick_interval = 0.1;  ///< t_grav between diamonds (as in the paper)
+  constexpr double max_ticks = 400;      ///< a longer track gets a whole multiple of the interval
+  double t_start = checkpoint.stage.clock.start_time, t_end = checkpoint.state.time;
+  if (!(t_end > t_start)) t_start = record.pericenter_time - 1.5, t_end = record.pericenter_time + 1.5;
+  const double tq = record.pericenter_time;
+  const TwoBodyOrbit orbit =
+      perturber_orbit(record.encounter.perturber_mass, record.encounter.pericenter, record.encounter.pericenter_speed);
+  auto analytic = [&](double t) { return orbit.state_at_time(t - tq).position; };
+  const RecordedTrack recorded(checkpoint.observables.timeseries);
+  const bool simulated = !recorded.empty();
+  auto position = [&](double t) { return recorded.covers(t) ? recorded.position_at(t) : analytic(t); };
+
+  Json analytic_track = Json::array();
+  constexpr int track_points = 600;
+  for (int i = 0; i <= track_points; ++i)
+    analytic_track.push_back(xy(analytic(t_start + (t_end - t_start) * static_cast<double>(i) / track_points)));
+  const double span = t_end - t_start;
+  const double interval =
+      span / tick_interval > max_ticks ? tick_interval * std::ceil(span / (tick_interval * max_ticks)) : tick_interval;
+  const double tick_count = std::isfinite(span / interval) ? std::floor(span / interval + 1e-9) : 0;
+  Json ticks = Json::array();
+  for (long k = 0; k <= static_cast<long>(std::clamp(tick_count, 0.0, max_ticks)); ++k) {
+    const double t = t_start + static_cast<double>(k) * interval;
+    if (!simulated || recorded.covers(t)) ticks.push_back(xy(position(t)));
+  }
+  Json snapshots = Json::array();
+  for (const double t : snapshot_times) snapshots.push_back(xy(position(t)));
+
+  Json track = analytic_track;
+  double max_deviation = 0;
+  Vec3 pericenter = analytic(tq), direction = (analytic(tq + 0.02) - pericenter).normalized();
+  if (simulated) {
+    track = Json::array();
+    const auto& times = recorded.times();
+    const auto& points = recorded.positions();
+    std::size_t nearest = 0;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      track.push_back(xy(points[i]));
+      max_deviation = std::max(max_deviation, (points[i] - analytic(times[i])).norm());
+      if (points[i].norm() < points[nearest].norm()) nearest = i;
+    }
+    pericenter = points[nearest];
+    const std::size_t before = nearest > 0 ? nearest - 1 : nearest;
+    const std::size_t after = nearest + 1 < times.size() ? nearest + 1 : nearest;
+    direction = after > before ? Vec3((points[after] - points[before]).normalized()) : Vec3(Vec3::UnitX());
+  }
+  const Vec3 center = body_center_of_mass(checkpoint.body, checkpoint.state);
+  return {{"simulated", simulated},
+          {"track", track},
+          {"analytic_track", analytic_track},
+          {"max_deviation", max_deviation},
+          {"tick_every", interval},
+          {"ticks", ticks},
+          {"snapshots", snapshots},
+          {"snapshot_radius", std::cbrt(record.encounter.perturber_mass)},
+          {"pericenter", xy(pericenter)},
+          {"direction", xy(direction)},
+          {"stored_position", checkpoint.state.perturber.present ? xy(perturber_offset(checkpoint, center)) : Json(nullptr)},
+          {"stored_label", "stored position, " + time_from_pericenter_text(checkpoint.state.time - tq)}};
+}
+
+/// Cumulative failed shell springs: a step function of the failure events, else the samples.
+Json failures_json(const Checkpoint& checkpoint, double pericenter_time) {
+  std::vector<double> t, n;
+  const double t_start = checkpoint.stage.clock.start_time - pericenter_time;
+  const double t_end = checkpoint.state.time - pericenter_time;
+  const auto& events = checkpoint.observables.failures;
+  const auto& samples = checkpoint.observables.timeseries;
+  const bool from_events = !events.empty() || samples.empty();
+  if (from_events) {
+    std::vector<double> times;
+    for (const auto& e : events) times.push_back(e.time - pericenter_time);
+    std::sort(times.begin(), times.end());
+    t.push_back(std::min(t_start, times.empty() ? t_start : times.front())), n.push_back(0);
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      t.push_back(times[i]), n.push_back(static_cast<double>(i));
+      t.push_back(times[i]), n.push_back(static_cast<double>(i + 1));
+    }
+    t.push_back(std::max(t_end, t.back())), n.push_back(static_cast<double>(times.size()));
+  } else {
+    for (const auto& s : samples) t.push_back(s.time - pericenter_time), n.push_back(static_cast<double>(s.failed));
+  }
+  return {{"source", from_events ? "events" : "samples"},
+          {"note", from_events ? "cumulative failure events (/checkpoint/failures)" : "sampled counts (/checkpoint/timeseries)"},
+          {"events", events.size()},
+          {"time_from_pericenter", t},
+          {"failed", n}};
+}
+
+/// The energy budget's conserved total relative to the binding energy (the kinetic energy's
+/// relative change for a record without the budget), |P - P0| and |L - L0|.
+Json conservation_json(const Checkpoint& checkpoint, double pericenter_time) {
+  const auto& samples = checkpoint.observables.timeseries;
+  const bool budget = !samples.empty() && std::isfinite(samples.front().conserved_energy());
+  Json t = Json::array(), energy = Json::array(), momentum = Json::array(), angular = Json::array();
+  for (const auto& s : samples) {
+    const auto& first = samples.front();
+    t.push_back(s.time - pericenter_time);
+    if (budget)
+      energy.push_back((s.conserved_energy() - first.conserved_energy()) / uniform_sphere_binding_energy);
+    else
+      energy.push_back(first.kinetic_energy != 0 ? (s.kinetic_energy - first.kinetic_energy) / first.kinetic_energy
+                                                 : s.kinetic_energy - first.kinetic_energy);
+    double dp = 0, dl = 0;
+    for (int k = 0; k < 3; ++k) {
+      dp += (s.momentum[k] - first.momentum[k]) * (s.momentum[k] - first.momentum[k]);
+      dl += (s.angular_momentum[k] - first.angular_momentum[k]) * (s.angular_momentum[k] - first.angular_momentum[k]);
+    }
+    momentum.push_back(std::sqrt(dp));
+    angular.push_back(std::sqrt(dl));
+  }
+  return {{"budget", budget},
+          {"energy_label", budget ? "(E \u2212 E\u2080)/(3/5 GM\u00b2/R)" : "(K \u2212 K\u2080)/K\u2080"},
+          {"note", samples.empty() ? "no timeseries samples stored"
+                   : budget ? "body + perturber about the origin; E = K + U + damping and failure losses \u2212 hinge work"
+                            : "body + perturber about the origin; K: kinetic energy (damping and tides change it)"},
+          {"time_from_pericenter", t},
+          {"energy", energy},
+          {"momentum", momentum},
+          {"angular_momentum", angular}};
+}
+
+using Point = std::array<double, 2>;
+
+/// Convex hull of points in the plane, counter-clockwise (Andrew's monotone chain).
+std::vector<Point> convex_hull(std::vector<Point> points) {
+  auto cross = [](const Point& o, const Point& a, const Point& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  std::vector<Point> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const Point& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+/// Figure 5: the body seen from +z, its outline (convex hull of all particles projected onto the
+/// orbital plane), the springs with both ends within body_slice_half_width of the plane and those
+/// particles, the perturber's direction in the plane.
+Json body_slice_panel(const Checkpoint& c, double pericenter_time) {
+  const Vec3 center = body_center_of_mass(c.body, c.state);
+  const std::size_t n = c.body.particle_count();
+  std::vector<Vec3> r(n);
+  std::vector<Point> projected(n);
+  for (std::size_t i = 0; i < n; ++i) r[i] = vec3_at(c.state.position, i) - center, projected[i] = {r[i].x(), r[i].y()};
+  auto in_slice = [&](std::size_t i) { return std::abs(r[i].z()) < body_slice_half_width; };
+  Json hull = Json::array(), springs = Json::array(), particles = Json::array();
+  for (const Point& p : convex_hull(projected)) hull.push_back({rounded(p[0]), rounded(p[1])});
+  for (const auto& [a, b] : c.body.springs) {
+    const auto i = static_cast<std::size_t>(a), j = static_cast<std::size_t>(b);
+    if (in_slice(i) && in_slice(j)) springs.push_back({xy(r[i]), xy(r[j])});
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (in_slice(i)) particles.push_back(xy(r[i]));
+  Json direction = nullptr;
+  if (c.state.perturber.present) {
+    const Vec3 toward = perturber_offset(c, center);
+    const double length = std::hypot(toward.x(), toward.y());
+    if (length > 0) direction = {toward.x() / length, toward.y() / length};
+  }
+  const PrincipalAxes shape = principal_axes(c.body.mass, c.state.position);
+  return {{"time_from_pericenter", c.state.time - pericenter_time},
+          {"label", time_from_pericenter_text(c.state.time - pericenter_time)},
+          {"b_over_a", shape.b_over_a()},
+          {"c_over_a", shape.c_over_a()},
+          {"hull", hull},
+          {"springs", springs},
+          {"particles", particles},
+          {"perturber_direction", direction}};
+}
+
+/// The fitted circles of the crack geometry on the map: each as [lon, lat] points every 2 deg of
+/// its azimuth about the pole, the arc the crack covers and the rest of the circle.
+Json crack_circles_json(const CrackGeometry& geometry) {
+  constexpr double step_deg = 2;
+  auto points = [&](const SmallCircleFit& fit, double from, double to) {
+    Json list = Json::array();
+    const int steps = std::max(1, static_cast<int>(std::ceil((to - from) / step_deg)));
+    for (int i = 0; i <= steps; ++i) {
+      const Vec3 p = point_on_circle(fit, from + (to - from) * i / steps);
+      list.push_back({rounded(longitude_deg(p)), rounded(latitude_deg(p))});
+    }
+    return list;
+  };
+  Json arcs = Json::array();
+  for (const CrackArc& arc : geometry.arcs)
+    arcs.push_back({{"covered", points(arc.fit, 0, arc.fit.arc_deg)}, {"rest", points(arc.fit, arc.fit.arc_deg, 360)}});
+  return arcs;
+}
+
+}  // namespace
+
+Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord& record,
+                      const std::vector<const Checkpoint*>& panels, const Json& titles, const std::string& state_hash) {
+  const double tq = record.pericenter_time;
+  std::vector<double> panel_times;
+  for (const Checkpoint* c : panels) panel_times.push_back(c->state.time);
+  Json slices = Json::array();
+  for (const Checkpoint* c : panels) slices.push_back(body_slice_panel(*c, tq));
+  const FractureSummary fractures = analyze_fractures(final_checkpoint.body, final_checkpoint.state);
+  return {{"format", "tidalcrust-figure-data"},
+          {"version", 1},
+          {"state_hash", state_hash},
+          {"units", "lengths in R relative to the body's centre of mass in the orbital frame (orbital plane = equator, "
+                    "subsatellite point on +y, longitude +90); times in t_grav from pericenter; angles in degrees"},
+          {"figures", encounter_figure_names()},
+          {"titles", titles},
+          {"pericenter_time", tq},
+          {"hemisphere", hemisphere_json(panels, tq)},
+          {"orbit", orbit_json(final_checkpoint, record, panel_times)},
+          {"failures", failures_json(final_checkpoint, tq)},
+          {"conservation", conservation_json(final_checkpoint, tq)},
+          {"body_shape", {{"slice_half_width", body_slice_half_width}, {"panels", slices}}},
+          {"crack_geometry", {{"circles", crack_circles_json(fractures.geometry)}}}};
+}
+
+}  // namespace tidalcrust
