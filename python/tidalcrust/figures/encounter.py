@@ -506,7 +506,8 @@ def save(fig, stem: str | os.PathLike) -> list[Path]:
     it. Returns the two paths."""
     stem = Path(stem)
     with matplotlib.rc_context({"svg.hashsalt": "tidalcrust", "svg.fonttype": "path"}):
-        png, svg = stem.with_suffix(".png"), stem.with_suffix(".svg")
+        # Not with_suffix: a stem may hold dots (phase_M0.5_eps0.002).
+        png, svg = stem.parent / f"{stem.name}.png", stem.parent / f"{stem.name}.svg"
         fig.savefig(png, dpi=110, metadata={"Software": None})
         fig.savefig(svg, metadata={"Date": None})
     plt.close(fig)
