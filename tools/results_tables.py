@@ -763,6 +763,30 @@ def welded_t5(p):
                      "T5: failed shell springs (fraction)"] + FAILURE_COLUMNS[1:], rows))
 
 
+@full_table("welded-T-series")
+def welded_t_series(p):
+    """The paper's T-series encounters (T5, T1, T10, T10b) on the material of material-L4 with the
+    paper's coupling and welded (issue 23 item 5): each statistic side by side and welded / paper."""
+    rows, files = [], []
+    for name in ("T5", "T1", "T10", "T10b"):
+        pair = []
+        for label, body in (("paper coupling", "material-L4"), ("welded", "welded-L4")):
+            f = summary(p, p.work / body / name)["failures"]
+            files.append(p.work / body / name / "encounter.h5")
+            pair.append(f)
+            rows.append([name, label] + failures_row(f))
+        paper, welded = pair
+        rows.append([name, "welded / paper"]
+                    + [fixed(welded[k] / paper[k], 2) + "x" if paper[k] else "-"
+                       for k in ("count", "failed_area_fraction", "total_crack_length")]
+                    + [fixed(network_length(welded) / network_length(paper), 2) + "x" if paper["count"] else "-",
+                       fixed(welded["clusters"] / paper["clusters"], 2) + "x" if paper["clusters"] else "-", "", ""])
+    return (commands("tidalcrust run workflows/material-L4.toml --out material-L4",
+                     "tidalcrust run workflows/welded-L4.toml --out welded-L4")
+            + measured_line(p, *files)
+            + table(["encounter", "coupling"] + FAILURE_COLUMNS, rows))
+
+
 @full_table("resolution")
 def resolution(p):
     files = [p.work / name / "T5" / "encounter.h5" for name in MATERIAL if (p.work / name / "T5").is_dir()]
