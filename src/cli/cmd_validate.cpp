@@ -367,7 +367,8 @@ int command_validate(int argc, char** argv) {
       const RingdownResult d =
           measure_ringdown(relaxed, config, t, omega, 6 * 2 * std::numbers::pi / omega, !workflow_options.quiet);
       add("ringdown", d.period, 2 * std::numbers::pi / omega, layered_reference ? layered_ringdown_source : nullptr);
-      add("ringdown-lamb", d.period, 2 * std::numbers::pi / omega_lamb);
+      if (!layered_reference)  // Lamb's sphere has one layer: no theory for a body with a core
+        add("ringdown-lamb", d.period, 2 * std::numbers::pi / omega_lamb);
       const double shear_speed = std::sqrt(sphere.youngs_modulus / (2 * (1 + sphere.poisson_ratio)) / sphere.density);
       details["ringdown"] = Json{{"amplitude", d.amplitude}, {"initial", d.initial}, {"samples", d.time.size()},
                                  {"omega_a_over_vs_measured", 2 * std::numbers::pi / d.period * sphere.radius / shear_speed},
