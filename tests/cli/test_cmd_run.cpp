@@ -491,3 +491,17 @@ TEST(RunWorkflow, AnUnreadableCheckpointIsRetriedThenReportedNeverTakenForAbsent
   EXPECT_FALSE(fs::exists(newer / "body" / "relax.h5"));
   EXPECT_EQ(read_file(mid), mid_bytes);
 }
+
+// Issue 27 item 6: a workflow without encounters is refused before anything runs (one line naming
+// the file and the way to run the body alone), not relaxed and left silently.
+TEST(CmdRun, AWorkflowWithoutEncountersIsRefusedNamingBodyOnly) {
+  const ScratchFolder scratch("run_no_encounters");
+  const fs::path workflow = scratch.path / "bare.toml";
+  std::ofstream(workflow) << "[workflow]\nname = \"bare\"\n";
+  const auto r = run_cli("run " + quoted(workflow) + " --out " + quoted(scratch.path / "out"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(workflow.string() + ": the workflow has no encounters"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--body-only"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(scratch.path / "out" / "body"));
+}
