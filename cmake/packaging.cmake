@@ -2,6 +2,10 @@
 # page, the completion, the example notebook) with CPack: `make package`, or in build/
 # `cpack -G DEB`. Checked by CTest package.deb_holds_the_install_and_its_dependencies
 # (tests/install/test_package.sh).
+# cpack (and `make install`) install what is built and build nothing first: without this, cpack's
+# preinstall step would build every target (the test suite, the benchmarks) before packaging.
+# `make package` and `make install` build the program and its man page and completion first.
+set(CMAKE_SKIP_INSTALL_ALL_DEPENDENCY TRUE)
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME tidalcrust)
 set(CPACK_PACKAGE_VENDOR "tidalcrust")
