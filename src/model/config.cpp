@@ -539,6 +539,20 @@ void check_encounter_count(std::size_t listed, std::size_t swept, const std::str
                                origin, total, listed, swept, max_encounters));
 }
 
+/// Gives `e` the parabolic speed of its M2 and q (the one default speed) once both are within
+/// their ranges (else validate names the one that is not, and the speed stays); InputError naming
+/// both when their speed is not a finite number (M2 = 1e308).
+void make_parabolic(Encounter& e, const std::string& where) {
+  const double m = e.perturber_mass, q = e.pericenter;
+  if (!(std::isfinite(m) && m > 0 && std::isfinite(q) && q > 1)) return;
+  const double v = parabolic_speed(m, q);
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{}: encounters.perturber_mass = {} and pericenter = {} give a parabolic "
+                                 "pericenter_speed that is not a finite number (give pericenter_speed)",
+                                 where, m, q));
+  e.pericenter_speed = v;
+}
+
 std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
   auto* array = node.as_array();
   if (!array) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
@@ -554,7 +568,7 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
         throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
                                      known_keys<Encounter>("encounters")));
     // The one default speed, as a [sweep]'s: parabolic for this table's M2 and q.
-    if (table->get("pericenter_speed") == nullptr) e.pericenter_speed = parabolic_speed(e.perturber_mass, e.pericenter);
+    if (table->get("pericenter_speed") == nullptr) make_parabolic(e, where);
   }
   return encounters;
 }
@@ -1089,8 +1103,7 @@ void apply_override(Config& config, const std::string& assignment) {
     const bool parabolic = spec.pericenter_speed == parabolic_speed(spec.perturber_mass, spec.pericenter);
     if (!set_key(spec, "encounters", key, node, where, where))
       throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
-    if (parabolic && (key == "perturber_mass" || key == "pericenter"))
-      spec.pericenter_speed = parabolic_speed(spec.perturber_mass, spec.pericenter);
+    if (parabolic && (key == "perturber_mass" || key == "pericenter")) make_parabolic(spec, where);
   };
   if (config.ensemble) {  // an encounter before the expansion: all its members change
     const auto base = std::find_if(config.ensemble_bases.begin(), config.ensemble_bases.end(), named);
