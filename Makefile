@@ -1,4 +1,4 @@
-# tidalcrust: make run | make test | make bench | make check-viewers | make install
+# tidalcrust: make run | make test | make bench | make check-viewers | make install | make package
 # Installs the Debian packages it needs (when root; otherwise prints the apt-get line),
 # configures with CMake and builds what the target needs: `make run` and `make check-viewers` the
 # program only, `make test` the program and the test suite, `make bench` the program and the
@@ -17,7 +17,7 @@ VIEWER_PACKAGES := python3-paraview python3-mdanalysis python3-h5py python3-nump
 PREFIX   ?= /usr/local
 DESTDIR  ?=
 
-.PHONY: all deps configure build program tests microbench test run bench check-viewers install clean
+.PHONY: all deps configure build program tests microbench test run bench check-viewers install package clean
 
 all: build
 
@@ -94,6 +94,13 @@ install: configure
 	cmake -S . -B $(BUILD) -DCMAKE_INSTALL_PREFIX=$(PREFIX) > /dev/null
 	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust tidalcrust_usage_docs
 	DESTDIR=$(DESTDIR) cmake --install $(BUILD)
+
+# The Debian package of the same install rules (CPack, cmake/packaging.cmake):
+# $(BUILD)/tidalcrust_<version>_amd64.deb; `sudo apt install ./$(BUILD)/tidalcrust_*.deb` installs it
+# with its dependencies. For other machines configure with -DTIDALCRUST_NATIVE=OFF (no -march=native).
+package: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tidalcrust tidalcrust_usage_docs
+	cd $(BUILD) && cpack -G DEB
 
 clean:
 	rm -rf $(BUILD)

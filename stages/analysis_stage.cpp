@@ -13,6 +13,7 @@
 
 #include "analysis/conservation_drift.hpp"
 #include "analysis/energy_budget.hpp"
+#include "analysis/failure_trend.hpp"
 #include "analysis/body_shape.hpp"
 #include "base/errors.hpp"
 #include "analysis/figure_data.hpp"
@@ -81,6 +82,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
   const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
+  const FailureTrend trend =
+      failure_trend(checkpoint.observables.failures, checkpoint.stage.clock.start_time, checkpoint.state.time);
   std::vector<std::string> skipped_snapshots;
   const std::vector<Snapshot> snapshots = load_snapshots(from, checkpoint, skipped_snapshots);
 
@@ -171,6 +174,17 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"min_distance", record.min_distance},
         {"speed_at_min", record.speed_at_min}}},
       {"failures", failure_summary_json(fractures)},
+      {"failure_trend",
+       {{"still_rising", trend.still_rising},
+        {"rule", fmt::format("still rising: at least {} failures and {:g} of them in the last {:g} of the "
+                             "encounter's time (docs/failure-rule.md)",
+                             failure_trend_min_count, failure_trend_share, failure_trend_window)},
+        {"failures", trend.failures},
+        {"failures_in_window", trend.failures_in_window},
+        {"share_in_window", trend.share_in_window},
+        {"window_start_time", trend.window_start},
+        {"end_time", trend.end_time},
+        {"end_distance", record.end_distance}}},
       {"shell_springs", fractures.shell_springs},
       {"angles_from_subsatellite_deg",
        {{"mean", fractures.mean_angle_from_subsatellite_deg},
@@ -226,7 +240,7 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   // An analysis written before summary.json had its newest object (crack_geometry) is redone, and
   // one that had to skip a snapshot (unreadable, or of another run) is not finished: the next run
   // tries again.
-  if (!summary.contains("crack_geometry")) return false;
+  if (!summary.contains("crack_geometry") || !summary.contains("failure_trend")) return false;
   // Likewise one written before cracks.json existed.
   if (!fs::exists(out / "cracks.json") || !fs::exists(out / "figure_data.json")) return false;
   // And one whose figures were not all drawn (the figure script failed or was interrupted).
@@ -236,6 +250,13 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
     if (!figure.is_string() || !fs::exists(out / figure.get<std::string>())) return false;
   const auto skipped = summary.find("skipped_snapshots");
   return skipped != summary.end() && skipped->is_array() && skipped->empty();
+}
+
+std::string failure_trend_line(const std::string& name, const Checkpoint& encounter) {
+  const EncounterRecord& record = stage_record<EncounterRecord>(encounter, name);
+  return failure_trend_warning(
+      name, failure_trend(encounter.observables.failures, encounter.stage.clock.start_time, encounter.state.time),
+      record.end_distance);
 }
 
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures) {

@@ -23,11 +23,15 @@ std::vector<std::filesystem::path> analyze_encounter(const std::filesystem::path
                                                      const std::filesystem::path& out);
 
 /// True if out/summary.json was written for exactly this state (same state_hash) by an analysis
-/// that writes everything this one does (it has the crack_geometry object, summary.json's newest;
+/// that writes everything this one does (it has the failure_trend object, summary.json's newest;
 /// cracks.json and figure_data.json beside it) with every snapshot read (its "skipped_snapshots"
 /// list empty; a summary without the list, written before it existed, counts as not finished)
 /// and every figure it lists drawn.
 bool analysis_is_current(const std::filesystem::path& out, const Checkpoint& checkpoint);
+
+/// The warning line of an encounter that ended while its crust was still failing
+/// (analysis/failure_trend.hpp), "" otherwise; summary.json holds the numbers ("failure_trend").
+std::string failure_trend_line(const std::string& name, const Checkpoint& encounter);
 
 /// One line: failures, fraction, hemisphere fraction, mean angle, cracks, largest crack network.
 std::string fracture_summary_line(const std::string& name, const FractureSummary& fractures);

@@ -44,20 +44,31 @@ Separation separation(const Body& body, const State& state) {
   return {r.norm(), v.norm()};
 }
 
-/// Snapshot steps: one t_grav before pericenter, pericenter, one after, and the end; for a body
-/// without a crust (the paper's run N) also every body_shape_interval counted from pericenter,
-/// before and after, for its shape over time (Figure 5, analysis/body_shape.hpp; a snapshot of
-/// run N's 798 particles is ~0.4 MB), except where one of the four lies within half an interval
-/// (+-1 t_grav is not a whole number of intervals in steps: no pairs one step apart). Kept
-/// inside (start_step, end_step], without duplicates.
+/// The most snapshot files one encounter may write (encounter.snapshot_interval): a level-4 body's
+/// snapshot is ~1 MB.
+constexpr double max_snapshots = 1000;
+
+/// The interval of the snapshot series (t_grav): encounter.snapshot_interval, else for a body
+/// without a crust (the paper's run N) body_shape_interval, else none (0).
+double snapshot_series_interval(const Config& config, bool interior_only) {
+  if (config.encounter.snapshot_interval > 0) return config.encounter.snapshot_interval;
+  return interior_only ? body_shape_interval : 0.0;
+}
+
+/// Snapshot steps: one t_grav before pericenter, pericenter, one after, and the end; with a series
+/// interval (snapshot_series_interval) also every interval counted from pericenter, before and
+/// after, for the body's shape over time (Figure 5, analysis/body_shape.hpp; a snapshot of run N's
+/// 798 particles is ~0.4 MB), except where one of the four lies within half an interval (+-1
+/// t_grav need not be a whole number of intervals in steps: no pairs one step apart). The
+/// interval becomes steps here, once. Kept inside (start_step, end_step], without duplicates.
 std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t pericenter_step,
-                                         std::int64_t end_step, double dt, bool interior_only) {
+                                         std::int64_t end_step, double dt, double series_interval) {
   const std::int64_t offset = steps_for_duration(snapshot_offset, dt);
   std::vector<std::int64_t> steps;
   for (std::int64_t s : {pericenter_step - offset, pericenter_step, pericenter_step + offset, end_step})
     steps.push_back(std::clamp(s, start_step + 1, end_step));
-  if (interior_only) {
-    const std::int64_t interval = std::max<std::int64_t>(1, steps_for_duration(body_shape_interval, dt));
+  if (series_interval > 0) {
+    const std::int64_t interval = std::max<std::int64_t>(1, steps_for_duration(series_interval, dt));
     const std::vector<std::int64_t> figure6 = steps;
     auto near_figure6 = [&](std::int64_t s) {
       return std::any_of(figure6.begin(), figure6.end(), [&](std::int64_t f) { return 2 * std::abs(f - s) < interval; });
@@ -105,6 +116,11 @@ void check_encounter(const Config& config, const Encounter& spec) {
                                  "encounter.start_distance, end_distance)",
                                  what, err.what()));
   }
+  const double interval = config.encounter.snapshot_interval;
+  if (interval > 0 && !(duration / interval <= max_snapshots))
+    throw InputError(fmt::format("{}: encounter.snapshot_interval = {:g} t_grav gives {:.3g} snapshots over the "
+                                 "encounter's {:.3g} t_grav, at most {:g} (choose a longer interval)",
+                                 what, interval, duration / interval, duration, max_snapshots));
   const double in_encounter = duration / dt;
   if (!(in_encounter >= min_steps_per_pericenter_passage))
     throw InputError(fmt::format(
@@ -161,8 +177,8 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   record.pericenter_time = state.time + start.time_to_pericenter;
   record.pericenter_step = state.step + steps_for_duration(start.time_to_pericenter, dt);
   const bool interior_only = c.body.count_species(Species::shell) == 0;
-  record.snapshot_steps =
-      plan_snapshots(stage.clock.start_step, record.pericenter_step, stage.end_step, dt, interior_only);
+  record.snapshot_steps = plan_snapshots(stage.clock.start_step, record.pericenter_step, stage.end_step, dt,
+                                         snapshot_series_interval(config, interior_only));
   record.min_distance = initial.distance;
   record.speed_at_min = initial.speed;
   record.time_of_min = state.time;

@@ -230,7 +230,8 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
       parent_file = job.file;
     }
     result.encounters.push_back({spec.name, parent_file, dir / "analysis",
-                                 fracture_summary_line(spec.name, analyze_fractures(parent->body, parent->state))});
+                                 fracture_summary_line(spec.name, analyze_fractures(parent->body, parent->state)),
+                                 failure_trend_line(spec.name, *parent)});
   }
 
   Json status = {{"stage", "workflow " + config.workflow.name},

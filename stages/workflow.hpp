@@ -30,6 +30,7 @@ struct WorkflowEncounter {
   std::filesystem::path checkpoint;  ///< its encounter.h5
   std::filesystem::path analysis;    ///< its analysis folder
   std::string summary;               ///< one line of fracture statistics (analysis_stage.hpp)
+  std::string warning;               ///< failures still rising at the end (failure_trend_line), or ""
 };
 
 struct WorkflowResult {

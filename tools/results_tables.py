@@ -763,6 +763,30 @@ def welded_t5(p):
                      "T5: failed shell springs (fraction)"] + FAILURE_COLUMNS[1:], rows))
 
 
+@full_table("welded-T-series")
+def welded_t_series(p):
+    """The paper's T-series encounters (T5, T1, T10, T10b) on the material of material-L4 with the
+    paper's coupling and welded (issue 23 item 5): each statistic side by side and welded / paper."""
+    rows, files = [], []
+    for name in ("T5", "T1", "T10", "T10b"):
+        pair = []
+        for label, body in (("paper coupling", "material-L4"), ("welded", "welded-L4")):
+            f = summary(p, p.work / body / name)["failures"]
+            files.append(p.work / body / name / "encounter.h5")
+            pair.append(f)
+            rows.append([name, label] + failures_row(f))
+        paper, welded = pair
+        rows.append([name, "welded / paper"]
+                    + [fixed(welded[k] / paper[k], 2) + "x" if paper[k] else "-"
+                       for k in ("count", "failed_area_fraction", "total_crack_length")]
+                    + [fixed(network_length(welded) / network_length(paper), 2) + "x" if paper["count"] else "-",
+                       fixed(welded["clusters"] / paper["clusters"], 2) + "x" if paper["clusters"] else "-", "", ""])
+    return (commands("tidalcrust run workflows/material-L4.toml --out material-L4",
+                     "tidalcrust run workflows/welded-L4.toml --out welded-L4")
+            + measured_line(p, *files)
+            + table(["encounter", "coupling"] + FAILURE_COLUMNS, rows))
+
+
 @full_table("resolution")
 def resolution(p):
     files = [p.work / name / "T5" / "encounter.h5" for name in MATERIAL if (p.work / name / "T5").is_dir()]
@@ -821,10 +845,8 @@ COUPLING_ROWS = [("tide", "h2"), ("tide-l2", "l2"), ("tide-l2-over-h2", "l2 / h2
                  ("ringdown", "0S2 period (t_grav) against TS72"), ("ringdown-lamb", "0S2 period against Lamb, no gravity")]
 
 
-@full_table("crust-coupling")
-def crust_coupling(p):
-    columns = [(label, p.work / name) for name, label in COUPLING
-               if (p.work / name / "validate" / "validation.json").is_file()]
+def coupling_lines(p, columns, command_lines):
+    """The tide and ring-down of validation.json side by side: one column per (label, run folder)."""
     docs = [(label, p.load(folder / "validate" / "validation.json")) for label, folder in columns]
     rows = []
     for key, label in COUPLING_ROWS:
@@ -835,15 +857,37 @@ def crust_coupling(p):
                 + [fixed(d["details"]["tide"]["ratio_scatter"], 3) for _, d in docs] + [""])
     rows.append(["layered TS72 h2 / 0S2 (eq. 15 per layer x the strain test's factor)"]
                 + [f"{sig(d['details']['tide']['layered_h2'], 3)} / {sig(d['details']['ringdown']['layered_period'], 4)}"
-                   for _, d in docs] + [""])
+                   if "ringdown" in d["details"] else sig(d["details"]["tide"]["layered_h2"], 3) for _, d in docs] + [""])
     rows.append(["sphere E, nu (network moduli)"]
                 + [f"{fixed(d['network_moduli']['youngs_modulus'], 3)} e_g, {fixed(d['network_moduli']['poisson_ratio'], 3)}"
                    for _, d in docs] + [""])
-    return (commands(*[f"tidalcrust validate workflows/{folder.name}.toml --measure tide,ringdown" for _, folder in columns])
+    rows.append(["theory of the tide's rows"]
+                + [d["details"]["tide"].get("reference", "homogeneous") + " sphere" for _, d in docs] + [""])
+    return (commands(*command_lines)
             + measured_line(p, *[folder / "body" / "relax.h5" for _, folder in columns])
             + ["Each cell: measured (theory, measured / theory). Theory: Takeuchi & Saito (1972) for the homogeneous "
-               "sphere of the network's measured moduli.", ""]
+               "sphere of the network's measured moduli, or for a body with a core the layered sphere of its own "
+               "layers (last row).", ""]
             + table(["", *[label for label, _ in docs], "tolerance"], rows))
+
+
+@full_table("crust-coupling")
+def crust_coupling(p):
+    columns = [(label, p.work / name) for name, label in COUPLING
+               if (p.work / name / "validate" / "validation.json").is_file()]
+    return coupling_lines(p, columns, [f"tidalcrust validate workflows/{folder.name}.toml --measure tide,ringdown"
+                                       for _, folder in columns])
+
+
+@full_table("crust-coupling-L5")
+def crust_coupling_l5(p):
+    """Level 5 welded, and a welded body with a core (issue 23): the runs of this session's folder."""
+    columns = [("welded-L5 (level 5): welded", p.work / "welded-L5"),
+               ("core-T welded, level 3", p.work / "core-welded-L3")]
+    return coupling_lines(p, columns, [
+        "tidalcrust validate workflows/welded-L5.toml --out welded-L5 --measure tide,ringdown",
+        "tidalcrust validate workflows/core-T.toml --out core-welded-L3 --set cross.coupling=welded "
+        "--set resolution.shell_level=3 --measure tide,ringdown"])
 
 
 def median(values):

@@ -39,6 +39,9 @@ int command_analyze(int argc, char** argv) {
   const std::string& name = stage_record<EncounterRecord>(checkpoint, from.string()).encounter.name;
   fmt::print("{}\n", fracture_summary_line(name.empty() ? from.stem().string() : name,
                                            analyze_fractures(checkpoint.body, checkpoint.state)));
+  if (const std::string warning = failure_trend_line(name.empty() ? from.stem().string() : name, checkpoint);
+      !warning.empty())
+    fmt::print("warning: {}\n", warning);
   fmt::print("wrote {} figures and summary.json to {}\n", figures.size(), out.string());
   return exit_ok;
 }

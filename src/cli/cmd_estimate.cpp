@@ -183,7 +183,7 @@ int command_estimate(int argc, char** argv) {
       ("radius", "body radius (km), with --mass", cxxopts::value<std::string>())
       ("m2", "perturber mass (body masses; default 1)", cxxopts::value<std::string>())
       ("q", "--q: pericenter distance (body radii; default 2)", cxxopts::value<std::string>())
-      ("vq", "speed at pericenter (v_c = sqrt(GM/R); default sqrt(2): parabolic at q = 2, M2 = 1)",
+      ("vq", "speed at pericenter (v_c = sqrt(GM/R); default parabolic, sqrt(2 (1 + M2) / q): sqrt(2) at the defaults)",
        cxxopts::value<std::string>())
       ("youngs", "Young's modulus of the crust (GPa; default 0.9, Vaughan 1995)", cxxopts::value<std::string>())
       ("config", "also the material equivalents (E_I, E_2D, h_S, D_F, V_IP, V_SP, V_Co) and time-step bounds of "
@@ -203,7 +203,8 @@ int command_estimate(int argc, char** argv) {
   Encounter geometry = grazing_parabolic_encounter();
   geometry.perturber_mass = positive_option(parsed, "m2", geometry.perturber_mass, /*allow_zero=*/true);
   geometry.pericenter = positive_option(parsed, "q", geometry.pericenter);
-  geometry.pericenter_speed = positive_option(parsed, "vq", geometry.pericenter_speed);
+  geometry.pericenter_speed =
+      positive_option(parsed, "vq", parabolic_speed(geometry.perturber_mass, geometry.pericenter));
   const double youngs_GPa = positive_option(parsed, "youngs", ice_youngs_modulus_GPa);
 
   const bool has_mass = parsed.count("mass") > 0, has_radius = parsed.count("radius") > 0;

@@ -150,6 +150,12 @@ int command_run(int argc, char** argv) {
   const int jobs = parsed["jobs"].as<int>();
   if (jobs < 1 || jobs > max_jobs) throw InputError(fmt::format("--jobs must be between 1 and {}, got {}", max_jobs, jobs));
   std::vector<Encounter> encounters = config.encounters;
+  // A workflow without encounters would build and relax its body (the paper-size one by default)
+  // and stop without a word: say so before anything runs, and name the way to ask for it.
+  if (config.encounters.empty() && !parsed.count("body-only"))
+    throw InputError(fmt::format("{}: the workflow has no encounters (no [[encounters]] table, no [sweep]); add one, "
+                                 "or pass --body-only to build and relax the body alone",
+                                 w.file.string()));
   if (parsed.count("body-only")) {
     // The first job of `submit --slurm`: the shared body, before the encounters' job array.
     if (parsed.count("only")) throw InputError("--body-only and --only exclude each other");
@@ -192,7 +198,10 @@ int command_run(int argc, char** argv) {
                result.relaxed->max_shell_strain, result.relaxed->max_shell_tension,
                result.relaxed->probe_failure_strain, result.relaxed->probe_failures,
                result.relaxed->probe_max_shell_strain);
-  for (const auto& e : result.encounters) fmt::print("  {}\n    figures: {}\n", e.summary, e.analysis.string());
+  for (const auto& e : result.encounters) {
+    fmt::print("  {}\n    figures: {}\n", e.summary, e.analysis.string());
+    if (!e.warning.empty()) fmt::print("  warning: {}\n", e.warning);
+  }
   // What a batch job must request (the level-6 T5 run: 567 MB with its analysis figures).
   fmt::print("peak memory: {:.0f} MB{}\n", peak_memory_mb(true), jobs > 1 ? " (largest process)" : "");
   return exit_ok;

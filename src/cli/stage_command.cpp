@@ -74,7 +74,7 @@ void add_encounter_options(cxxopts::Options& options) {
       ("encounter", "name of an encounter of the configuration", cxxopts::value<std::string>())
       ("m2", "perturber mass M2 (M)", cxxopts::value<double>())
       ("q", "pericenter distance (R)", cxxopts::value<double>())
-      ("vq", "speed at pericenter (sqrt(GM/R))", cxxopts::value<double>())
+      ("vq", "speed at pericenter (sqrt(GM/R); default parabolic, sqrt(2 (1 + M2) / q))", cxxopts::value<double>())
       ("failure-strain", "eps_S for this encounter", cxxopts::value<double>());
 }
 
@@ -84,17 +84,18 @@ void add_encounter_options(cxxopts::Options& options) {
 Encounter encounter_of(const cxxopts::ParseResult& parsed, const Config& config) {
   const bool by_name = parsed.count("encounter") > 0;
   const bool by_values = parsed.count("m2") || parsed.count("q") || parsed.count("vq");
-  if (by_name == by_values) throw InputError("give either --encounter NAME or all of --m2 M --q Q --vq V");
+  if (by_name == by_values) throw InputError("give either --encounter NAME or --m2 M --q Q [--vq V]");
   Encounter spec;
   if (by_name) {
     spec = config.find_encounter(parsed["encounter"].as<std::string>());
   } else {
-    if (!(parsed.count("m2") && parsed.count("q") && parsed.count("vq")))
-      throw InputError("--m2, --q and --vq must be given together");
+    if (!(parsed.count("m2") && parsed.count("q")))
+      throw InputError("--m2 and --q must be given together (--vq: default parabolic)");
     spec.name = "custom";
     spec.perturber_mass = parsed["m2"].as<double>();
     spec.pericenter = parsed["q"].as<double>();
-    spec.pericenter_speed = parsed["vq"].as<double>();
+    spec.pericenter_speed =
+        parsed.count("vq") ? parsed["vq"].as<double>() : parabolic_speed(spec.perturber_mass, spec.pericenter);
   }
   if (parsed.count("failure-strain")) spec.failure_strain = parsed["failure-strain"].as<double>();
   Config checked = config;

@@ -62,6 +62,9 @@ constexpr Condition material_body{"a [material] body", [](const Config& c) { ret
 /// Stretch reads it too: a [material] body's interior then fills the ball under the crust.
 constexpr Condition welded_crust{"cross.coupling = \"welded\"",
                                  [](const Config& c) { return c.cross.coupling == CrossCoupling::welded; }};
+/// Snapshots at a chosen interval: an encounter without them keeps the fingerprint it had before the key.
+constexpr Condition snapshot_series{"encounter.snapshot_interval > 0",
+                                    [](const Config& c) { return c.encounter.snapshot_interval > 0; }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
@@ -216,6 +219,11 @@ void visit_keys(C& c, V&& visit) {
   key(c.encounter.sample_interval,
       {"encounter", "sample_interval", reads(relax, encounter), "steps", "steps between timeseries samples", 1,
        1'000'000'000});
+  key(c.encounter.snapshot_interval,
+      {"encounter", "snapshot_interval", changes_no_result.and_when(snapshot_series, encounter), "t_grav",
+       "snapshot checkpoints every this long, counted from pericenter (0: only 1 t_grav before and after "
+       "pericenter, at it and at the end; every 0.5 for a body without a crust)",
+       0, 1e4});
   key(c.encounter.failure_rule,
       {"encounter", "failure_rule", reads(relax, encounter), "-", choice_doc<FailureRuleKind>()});
   key(c.encounter.exclusion_radius,
@@ -287,7 +295,8 @@ void visit_keys(E& e, V&& visit) {
   key(e.perturber_mass, {"encounters", "perturber_mass", reads(encounter), "M", "M2", 0, inf, true});
   key(e.pericenter, {"encounters", "pericenter", reads(encounter), "R", "q", 1, inf, true});  // outside the body
   key(e.pericenter_speed,
-      {"encounters", "pericenter_speed", reads(encounter), "sqrt(GM/R)", "V_q", 0, inf, true});
+      {"encounters", "pericenter_speed", reads(encounter), "sqrt(GM/R)",
+       "V_q; default parabolic, sqrt(2 (1 + M2) / q) of the table's M2 and q", 0, inf, true});
   key(e.failure_strain, {"encounters", "failure_strain", reads(relax, encounter), "-", "eps_S override", 0, inf, true});
   key(e.relaxation_crossings,
       {"encounters", "relaxation_crossings", reads(encounter), "L_S/V_SP",
@@ -530,6 +539,20 @@ void check_encounter_count(std::size_t listed, std::size_t swept, const std::str
                                origin, total, listed, swept, max_encounters));
 }
 
+/// Gives `e` the parabolic speed of its M2 and q (the one default speed) once both are within
+/// their ranges (else validate names the one that is not, and the speed stays); InputError naming
+/// both when their speed is not a finite number (M2 = 1e308).
+void make_parabolic(Encounter& e, const std::string& where) {
+  const double m = e.perturber_mass, q = e.pericenter;
+  if (!(std::isfinite(m) && m > 0 && std::isfinite(q) && q > 1)) return;
+  const double v = parabolic_speed(m, q);
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{}: encounters.perturber_mass = {} and pericenter = {} give a parabolic "
+                                 "pericenter_speed that is not a finite number (give pericenter_speed)",
+                                 where, m, q));
+  e.pericenter_speed = v;
+}
+
 std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
   auto* array = node.as_array();
   if (!array) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
@@ -544,6 +567,8 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
       if (!set_key(e, "encounters", k.str(), value, where, origin))
         throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
                                      known_keys<Encounter>("encounters")));
+    // The one default speed, as a [sweep]'s: parabolic for this table's M2 and q.
+    if (table->get("pericenter_speed") == nullptr) make_parabolic(e, where);
   }
   return encounters;
 }
@@ -844,7 +869,7 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep) {
           Encounter& e = out.emplace_back();
           e.perturber_mass = m;
           e.pericenter = q;
-          e.pericenter_speed = speeds.empty() ? std::sqrt(2.0 * (1.0 + m) / q) : speeds[v];
+          e.pericenter_speed = speeds.empty() ? parabolic_speed(m, q) : speeds[v];
           e.name = fmt::format("M{}_q{}_V{}", name_number(m), name_number(q),
                                speeds.empty() ? std::string("par") : name_number(speeds[v]));
           if (!strains.empty()) {
@@ -914,6 +939,10 @@ void validate(const Config& config, const std::string& origin) {
   if (config.relax.settle_duration > config.relax.duration)
     throw InputError(fmt::format("{}: relax.settle_duration ({}) must not exceed relax.duration ({})", origin,
                                  config.relax.settle_duration, config.relax.duration));
+  if (config.encounter.snapshot_interval > 0 && config.encounter.snapshot_interval < config.integrator.dt)
+    throw InputError(fmt::format("{}: encounter.snapshot_interval = {} is shorter than integrator.dt = {}: at most one "
+                                 "snapshot per step (0: no series)",
+                                 origin, config.encounter.snapshot_interval, config.integrator.dt));
   if (config.relax.crust_support != CrustSupport::paper && config.cross.nonlinear)
     throw InputError(fmt::format("{}: relax.crust_support = \"{}\" needs linear cross springs "
                                  "(cross.nonlinear = false): the balance solves for linear spring tensions",
@@ -1068,19 +1097,25 @@ void apply_override(Config& config, const std::string& assignment) {
   const std::string name = key.substr(0, dot2);
   key = key.substr(dot2 + 1);
   const auto named = [&](const Encounter& spec) { return spec.name == name; };
+  // A parabolic encounter stays parabolic when --set changes its M2 or q (its speed was derived
+  // from them, parse_encounters); a speed given otherwise is kept.
+  const auto set_encounter_key = [&](Encounter& spec) {
+    const bool parabolic = spec.pericenter_speed == parabolic_speed(spec.perturber_mass, spec.pericenter);
+    if (!set_key(spec, "encounters", key, node, where, where))
+      throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
+    if (parabolic && (key == "perturber_mass" || key == "pericenter")) make_parabolic(spec, where);
+  };
   if (config.ensemble) {  // an encounter before the expansion: all its members change
     const auto base = std::find_if(config.ensemble_bases.begin(), config.ensemble_bases.end(), named);
     if (base != config.ensemble_bases.end()) {
-      if (!set_key(*base, "encounters", key, node, where, where))
-        throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
+      set_encounter_key(*base);
       config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
       return;
     }
   }
   const auto e = std::find_if(config.encounters.begin(), config.encounters.end(), named);
   if (e == config.encounters.end()) throw InputError(fmt::format("{}: no encounter named '{}'", where, name));
-  if (!set_key(*e, "encounters", key, node, where, where))
-    throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, key, known_keys<Encounter>("encounters")));
+  set_encounter_key(*e);
 }
 
 namespace {

@@ -54,7 +54,8 @@ struct CrossConfig {
   double min_force_factor = 0.1;  ///< F_Ck
   /// Every shell node gets at least this many cross springs (to its nearest interior nodes,
   /// spanning three directions when >= 3) although d_C gives fewer; 0 keeps the paper's d_C rule.
-  std::int64_t min_per_shell_node = 0;
+  /// Default 3: what the default crust support, "balanced", needs (docs/crust-support.md).
+  std::int64_t min_per_shell_node = 3;
   /// How the shell is tied to the interior (model/choices.hpp): paper (the d_C rule with k_C,
   /// section 2.7) or welded (bodies/welded_coupling.hpp, docs/crust-support.md). A [material] body
   /// with welded fills its interior out to r_I = 1 - h_S (the crust's thickness), not 1 - 1.03 d_IS.
@@ -95,7 +96,9 @@ struct RelaxConfig {
   double probe_damping = 0.01;            ///< gamma of the probe, 1/t_grav
   double probe_duration = 3.0;            ///< t_grav
   /// How the relaxed crust is supported (model/choices.hpp; docs/crust-support.md).
-  CrustSupport crust_support = CrustSupport::paper;
+  /// Default balanced (no pre-stress: failure strains below ~2e-3 can be simulated); the
+  /// paper's workflows name "paper".
+  CrustSupport crust_support = CrustSupport::balanced;
 };
 
 /// Defaults shared by all encounters (sections 2.6, 2.9).
@@ -106,10 +109,14 @@ struct EncounterDefaults {
   double end_distance = 3.0;               ///< perturber distance at end, R
   std::int64_t checkpoint_interval = 250;  ///< steps between mid-stage checkpoints (0: none)
   std::int64_t sample_interval = 10;       ///< steps between timeseries samples
+  /// Snapshot checkpoints every this long (t_grav), counted from pericenter, besides the four of
+  /// Figure 6; 0: those four only (a body without a crust: every 0.5 t_grav). encounter_stage.cpp.
+  double snapshot_interval = 0.0;
   /// Which springs fail when (model/choices.hpp; docs/failure-rule.md): paper, the single most
   /// strained spring every fail_interval steps (section 2.6); local, every over-strained spring,
   /// most strained first, at most one per crack neighbourhood per relaxation interval.
-  FailureRuleKind failure_rule = FailureRuleKind::paper;
+  /// Default local (its statistics converge with dt); the paper's workflows name "paper".
+  FailureRuleKind failure_rule = FailureRuleKind::local;
   double exclusion_radius = 2.0;           ///< local: neighbourhood radius, in mean shell spacings L_S
   double relaxation_crossings = 2.0;       ///< local: relaxation interval, in shell crossing times L_S/V_SP
 };

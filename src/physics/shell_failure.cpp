@@ -116,6 +116,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
     case FailureRuleKind::paper:
       break;
     case FailureRuleKind::local: {
+      // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
+      if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
       if (!(q.L_S > 0) || !(q.V_SP > 0))
         throw InputError(fmt::format("encounter.failure_rule = \"{}\" needs a shell (no shell springs in this body)",

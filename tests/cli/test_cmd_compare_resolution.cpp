@@ -32,6 +32,7 @@ class CompareResolutionCli : public ::testing::Test {
     scratch = std::make_unique<ScratchFolder>("compare_resolution");
     const fs::path workflow = scratch->path / "res.toml";
     std::ofstream(workflow) << small_body_toml("res", "failure_strain = 0.002\n") << R"([encounter]
+failure_rule = "paper"
 start_distance = 2.2
 end_distance = 2.2
 [[encounters]]

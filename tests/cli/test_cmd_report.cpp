@@ -32,6 +32,7 @@ namespace {
 fs::path sweep_workflow(const fs::path& dir) {
   const auto file = dir / "sweep.toml";
   std::ofstream(file) << small_body_toml("reported", "failure_strain = 0.002\n") << R"([encounter]
+failure_rule = "paper"
 start_distance = 2.5
 end_distance = 2.5
 [sweep]

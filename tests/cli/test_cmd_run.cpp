@@ -33,6 +33,7 @@ fs::path small_workflow(const fs::path& dir) {
   const auto file = dir / "small.toml";
   std::ofstream(file) << small_body_toml("small") << R"(checkpoint_interval = 15
 [encounter]
+failure_rule = "paper"
 start_distance = 2.2
 end_distance = 2.2
 checkpoint_interval = 15
@@ -489,4 +490,18 @@ TEST(RunWorkflow, AnUnreadableCheckpointIsRetriedThenReportedNeverTakenForAbsent
   EXPECT_EQ(read_file(newer / "body" / "relax.mid.h5"), newer_bytes);
   EXPECT_FALSE(fs::exists(newer / "body" / "relax.h5"));
   EXPECT_EQ(read_file(mid), mid_bytes);
+}
+
+// Issue 27 item 6: a workflow without encounters is refused before anything runs (one line naming
+// the file and the way to run the body alone), not relaxed and left silently.
+TEST(CmdRun, AWorkflowWithoutEncountersIsRefusedNamingBodyOnly) {
+  const ScratchFolder scratch("run_no_encounters");
+  const fs::path workflow = scratch.path / "bare.toml";
+  std::ofstream(workflow) << "[workflow]\nname = \"bare\"\n";
+  const auto r = run_cli("run " + quoted(workflow) + " --out " + quoted(scratch.path / "out"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(workflow.string() + ": the workflow has no encounters"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--body-only"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(scratch.path / "out" / "body"));
 }

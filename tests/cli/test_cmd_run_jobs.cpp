@@ -30,6 +30,7 @@ namespace {
 fs::path sweep_workflow(const fs::path& dir) {
   const auto file = dir / "sweep.toml";
   std::ofstream(file) << small_body_toml("jobs") << R"([encounter]
+failure_rule = "paper"
 start_distance = 3.0
 end_distance = 3.0
 checkpoint_interval = 15

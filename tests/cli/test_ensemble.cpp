@@ -28,6 +28,7 @@ namespace {
 fs::path ensemble_workflow(const fs::path& dir) {
   const auto file = dir / "ensemble.toml";
   std::ofstream(file) << small_body_toml("ens", "failure_strain = 0.002\n") << R"([encounter]
+failure_rule = "paper"
 start_distance = 2.5
 end_distance = 2.5
 [[encounters]]

@@ -35,6 +35,7 @@ fs::path small_workflow(const fs::path& dir) {
   const auto file = dir / "small.toml";
   std::ofstream(file) << small_body_toml("small") << R"(checkpoint_interval = 15
 [encounter]
+failure_rule = "paper"
 start_distance = 2.2
 end_distance = 2.2
 checkpoint_interval = 15

@@ -122,9 +122,11 @@ TEST(Config, SeedIsAnUnsignedInteger) {
 TEST(Config, EncounterTablesUseTheSameDescription) {
   Encounter spec;
   spec.name = "T1";
+  spec.pericenter_speed = 1.6;
   EXPECT_EQ(encounter_toml(spec),
             "[[encounters]]\nname = 'T1'\nperturber_mass = 0.5  # [M] M2\npericenter = 1.84  # [R] q\n"
-            "pericenter_speed = 1.6  # [sqrt(GM/R)] V_q\n");
+            "pericenter_speed = 1.6  # [sqrt(GM/R)] V_q; default parabolic, sqrt(2 (1 + M2) / q) of the table's M2 "
+            "and q\n");
   spec.failure_strain = 0.002;
   EXPECT_NE(encounter_toml(spec).find("failure_strain = 0.002  # [-] eps_S override\n"), std::string::npos);
   EXPECT_NE(message_of("[[encounters]]\nname = 'x'\npericenter = 'far'\n").find("'pericenter' must be a number"),
@@ -143,7 +145,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
   const auto keys = describe_keys(config);
-  EXPECT_EQ(keys.size(), 67u);  // every key of Config, [workflow] to [core]
+  EXPECT_EQ(keys.size(), 68u);  // every key of Config, [workflow] to [core]
   for (const KeyInfo& key : keys) {
     if (!key.value) {  // an unset optional key: to_toml leaves it out
       EXPECT_TRUE(key.optional) << key.section << "." << key.name;
@@ -161,10 +163,10 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
 
 TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {
   Config config;
-  apply_override(config, "relax.crust_support=balanced");
-  EXPECT_EQ(config.relax.crust_support, CrustSupport::balanced);
-  apply_override(config, "encounter.failure_rule=\"local\"");
-  EXPECT_EQ(config.encounter.failure_rule, FailureRuleKind::local);
+  apply_override(config, "relax.crust_support=paper");  // the default is balanced
+  EXPECT_EQ(config.relax.crust_support, CrustSupport::paper);
+  apply_override(config, "encounter.failure_rule=\"paper\"");
+  EXPECT_EQ(config.encounter.failure_rule, FailureRuleKind::paper);
   EXPECT_THROW(apply_override(config, "integrator.dt=small"), InputError);
   try {
     apply_override(config, "relax.crust_support=glued");
@@ -501,4 +503,57 @@ TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
   apply_override(either, "ensemble.members=4");
   ASSERT_EQ(either.encounters.size(), 4u);
   EXPECT_DOUBLE_EQ(either.encounters[0].pericenter, 1.84 * (1 - 0.002 * 0.75));
+}
+
+// issue 27 item 6: one default speed (parabolic) for an [[encounters]] table, as for a [sweep].
+TEST(Config, AnEncounterWithoutASpeedIsParabolicAsASweptOne) {
+  Config config = parse_config(R"(
+[[encounters]]
+name = "A"
+perturber_mass = 0.3
+pericenter = 2.0
+[[encounters]]
+name = "B"
+pericenter_speed = 1.6
+[sweep]
+perturber_mass = [0.3]
+pericenter = [2.0]
+)",
+                               "speeds.toml");
+  ASSERT_EQ(config.encounters.size(), 3u);
+  EXPECT_EQ(config.encounters[0].pericenter_speed, std::sqrt(2.0 * 1.3 / 2.0));
+  EXPECT_EQ(config.encounters[0].pericenter_speed, config.encounters[2].pericenter_speed);  // the swept one
+  EXPECT_EQ(config.encounters[1].pericenter_speed, 1.6);                                   // given: kept
+  EXPECT_EQ(Encounter{}.pericenter_speed, parabolic_speed(Encounter{}.perturber_mass, Encounter{}.pericenter));
+  // The resolved text keeps the speed (a stored configuration does not depend on the default).
+  EXPECT_EQ(parse_config(to_toml(config), "resolved").encounters, config.encounters);
+  // --set of M2 or q keeps a parabolic encounter parabolic, and a given speed given.
+  apply_override(config, "encounters.A.pericenter=3.0");
+  apply_override(config, "encounters.B.pericenter=3.0");
+  EXPECT_EQ(config.encounters[0].pericenter_speed, std::sqrt(2.0 * 1.3 / 3.0));
+  EXPECT_EQ(config.encounters[1].pericenter_speed, 1.6);
+}
+
+// issue 27 item 6: defaults a new user can trust; the paper's workflows name the paper's choices.
+TEST(Config, DefaultsAreTheBalancedCrustAndTheLocalRuleAndThePaperWorkflowsNameThePapers) {
+  const Config defaults;
+  EXPECT_EQ(defaults.relax.crust_support, CrustSupport::balanced);
+  EXPECT_EQ(defaults.encounter.failure_rule, FailureRuleKind::local);
+  EXPECT_EQ(defaults.cross.min_per_shell_node, 3);  // what the balanced support needs
+  for (const char* name : {"paper-T.toml", "paper-N.toml", "quick.toml"}) {
+    const Config c = load_config(workflow(name));
+    EXPECT_EQ(c.relax.crust_support, CrustSupport::paper) << name;
+    EXPECT_EQ(c.encounter.failure_rule, FailureRuleKind::paper) << name;
+    EXPECT_EQ(c.cross.min_per_shell_node, 0) << name;
+  }
+}
+
+TEST(Config, SnapshotIntervalIsCheckedAgainstTheTimeStep) {
+  EXPECT_EQ(parse_config("[encounter]\nsnapshot_interval = 0.5\n", "s.toml").encounter.snapshot_interval, 0.5);
+  const std::string shorter = message_of("[integrator]\ndt = 0.004\n[encounter]\nsnapshot_interval = 0.001\n");
+  EXPECT_NE(shorter.find("bad.toml: encounter.snapshot_interval = 0.001 is shorter than integrator.dt"),
+            std::string::npos)
+      << shorter;
+  const std::string negative = message_of("[encounter]\nsnapshot_interval = -1\n");
+  EXPECT_NE(negative.find("bad.toml: encounter.snapshot_interval = -1 is out of range"), std::string::npos) << negative;
 }

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <string>
+
+#include "base/errors.hpp"
 
 #include "stages/build_stage.hpp"
 #include "stages/encounter_stage.hpp"
@@ -88,4 +91,39 @@ TEST(ShapeSnapshots, BodyWithCrustKeepsTheFourSnapshotsOfFigure6) {
   const std::vector<std::int64_t> expected = {record.pericenter_step - offset, record.pericenter_step,
                                               record.pericenter_step + offset, c.stage.end_step};
   EXPECT_EQ(record.snapshot_steps, expected);
+}
+
+// issue 27 item 4: encounter.snapshot_interval gives any body a series every interval counted from
+// pericenter (in steps, converted once), besides the four of Figure 6; too many is a one-line error.
+TEST(ShapeSnapshots, TheSnapshotIntervalGivesABodyWithACrustASeries) {
+  Config config = quick_config();
+  config.encounter.snapshot_interval = 0.2;  // 50 steps at dt = 0.004
+  const Checkpoint c = begin_encounter(as_relaxed(quick_stretched()), config, encounter_n());
+  const auto& record = c.stage.as<EncounterRecord>();
+  const auto& steps = record.snapshot_steps;
+  const std::int64_t interval = 50, offset = std::llround(1.0 / config.integrator.dt);
+  ASSERT_TRUE(std::is_sorted(steps.begin(), steps.end()));
+  for (const std::int64_t figure6 : {record.pericenter_step - offset, record.pericenter_step,
+                                     record.pericenter_step + offset, c.stage.end_step})
+    EXPECT_TRUE(std::binary_search(steps.begin(), steps.end(), figure6)) << figure6;
+  for (const std::int64_t s : steps)
+    EXPECT_TRUE((s - record.pericenter_step) % interval == 0 || s == c.stage.end_step) << s;
+  // Every interval from the first after the start to the end (the end within half an interval
+  // of a series step replaces it).
+  const std::int64_t span = c.stage.end_step - c.stage.clock.start_step;
+  EXPECT_GE(static_cast<std::int64_t>(steps.size()), span / interval - 1);
+  EXPECT_GT(steps.size(), 4u);
+  // The default keeps the four.
+  EXPECT_EQ(begin_encounter(as_relaxed(quick_stretched()), quick_config(), encounter_n())
+                .stage.as<EncounterRecord>().snapshot_steps.size(),
+            4u);
+  config.encounter.snapshot_interval = 0.004;  // one per step over a long encounter: thousands of files
+  config.encounter.start_distance = config.encounter.end_distance = 20.0;
+  try {
+    check_encounter(config, encounter_n());
+    ADD_FAILURE() << "a snapshot every step was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("encounter.snapshot_interval = 0.004 t_grav gives"), std::string::npos)
+        << e.what();
+  }
 }

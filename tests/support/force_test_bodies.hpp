@@ -15,6 +15,8 @@
 
 namespace tidalcrust::test_support {
 
+/// The small body of the force and build tests, with the paper's cross springs, crust support and
+/// failure rule named (the defaults are others since issue 27), so its bits are those of before.
 inline Config small_body_config() {
   return parse_config(R"(
 [workflow]
@@ -34,9 +36,14 @@ bending_constant = 0.01
 [cross]
 distance = 0.3
 spring_constant = 0.007
+min_per_shell_node = 0
 [integrator]
 dt = 0.003
 softening_fraction = 0.01
+[relax]
+crust_support = "paper"
+[encounter]
+failure_rule = "paper"
 )",
                       "small.toml");
 }

@@ -29,7 +29,9 @@ inline std::vector<std::string> other_key_values(const KeyInfo& key) {
     for (long long w : {v + 1, v - 1, 2 * v, 3LL, 1LL}) out.push_back(fmt::format("{}", w));
   } else {
     const double v = key.value ? std::stod(*key.value) : 0.3;
-    for (double w : {v * 1.25, v * 0.8, v + 0.01, 0.3, 0.05, 1.5}) out.push_back(fmt::format("{}", w));
+    // Not the value itself in another spelling (a default 0.0 scaled is "0").
+    for (double w : {v * 1.25, v * 0.8, v + 0.01, 0.3, 0.05, 1.5})
+      if (w != v) out.push_back(fmt::format("{}", w));
   }
   return out;
 }

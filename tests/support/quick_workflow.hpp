@@ -14,8 +14,9 @@
 namespace tidalcrust::test_support {
 
 /// The small body of the command-line tests (shell level 2, 150 interior nodes, dt 0.005, a short
-/// relax): the TOML from [workflow] (named `name`) through [relax]; `shell_extra` lines go into
-/// [shell]. Callers append their [relax] keys, [encounter] and encounters.
+/// relax; the paper's crust support and cross springs, named as the defaults are others): the TOML
+/// from [workflow] (named `name`) through [relax]; `shell_extra` lines go into [shell]. Callers
+/// append their [relax] keys, [encounter] (with failure_rule = "paper") and encounters.
 inline std::string small_body_toml(const std::string& name, const std::string& shell_extra = "") {
   return "[workflow]\nname = \"" + name + R"("
 seed = 3
@@ -31,12 +32,14 @@ bending_constant = 0.03
 )" + shell_extra + R"([cross]
 distance = 0.4
 spring_constant = 0.03
+min_per_shell_node = 0
 [integrator]
 dt = 0.005
 [relax]
 duration = 0.5
 probe_duration = 0.2
 settle_duration = 0.2
+crust_support = "paper"
 )";
 }
 
@@ -56,8 +59,14 @@ spring_distance = 0.4
 spring_constant = 0.02
 [shell]
 enabled = false
+[cross]
+min_per_shell_node = 0
 [integrator]
 dt = 0.004
+[relax]
+crust_support = "paper"
+[encounter]
+failure_rule = "paper"
 )",
                       "interior-only.toml");
 }
