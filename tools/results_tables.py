@@ -787,9 +787,9 @@ def welded_t_series(p):
             + table(["encounter", "coupling"] + FAILURE_COLUMNS, rows))
 
 
-@full_table("resolution")
-def resolution(p):
-    files = [p.work / name / "T5" / "encounter.h5" for name in MATERIAL if (p.work / name / "T5").is_dir()]
+def resolution_lines(p, folders, command_lines):
+    """compare --resolution of the T5 runs in `folders` (run folder names), one row per shell level."""
+    files = [p.work / name / "T5" / "encounter.h5" for name in folders if (p.work / name / "T5").is_dir()]
     study = p.json_of("compare", "--resolution", *files, "--json")
     rows = []
     for r in study["rows"]:
@@ -800,12 +800,26 @@ def resolution(p):
                      fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg"]
                     + ["" if r.get("change_percent") is None else fixed(r["change_percent"][k], 1) + "%"
                        for k in ("failed_area_fraction", "total_crack_length", "hemisphere_fraction")])
-    return (commands("tidalcrust run workflows/material-L3.toml   (and -L4, -L5, -L6)",
-                     "tidalcrust compare --resolution checkpoints/material-L{3,4,5,6}/T5/encounter.h5 --json")
+    return (commands(*command_lines)
             + measured_line(p, *files)
             + table(["level", "N_S", "particles", "dt", "failed springs", "failed area", "total crack length",
                      "longest crack", "clusters", "hemisphere", "median angle", "d area", "d crack length",
                      "d hemisphere"], rows))
+
+
+@full_table("resolution")
+def resolution(p):
+    return resolution_lines(p, MATERIAL, [
+        "tidalcrust run workflows/material-L3.toml   (and -L4, -L5, -L6)",
+        "tidalcrust compare --resolution checkpoints/material-L{3,4,5,6}/T5/encounter.h5 --json"])
+
+
+@full_table("resolution-welded")
+def resolution_welded(p):
+    """T5 on the welded bodies of levels 3-5 (issue 23 item 5)."""
+    return resolution_lines(p, ["welded-L3", "welded-L4", "welded-L5"], [
+        "tidalcrust run workflows/welded-L3.toml   (and -L4, -L5)",
+        "tidalcrust compare --resolution checkpoints/welded-L{3,4,5}/T5/encounter.h5 --json"])
 
 
 @full_table("sweep-T")
