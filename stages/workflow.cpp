@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <fstream>
+#include <functional>
+#include <map>
 
 #include "analysis/fracture_analysis.hpp"
 #include "base/errors.hpp"
@@ -62,7 +64,7 @@ void prepare_stage(const RunContext& ctx, const StageKind& kind, Config& config,
 
 }  // namespace
 
-fs::path superseded_check_file(const fs::path& root) { return root / "body" / "encounters-checked"; }
+fs::path superseded_check_file(const fs::path& body_dir) { return body_dir / "encounters-checked"; }
 
 void check_same_body(const fs::path& build_file, const Config& config) {
   if (!fs::exists(build_file)) return;
@@ -94,25 +96,27 @@ void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpo
   say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
 }
 
-/// The relaxed body's state_hash against which every encounter folder of `root` was last checked
-/// (remove_superseded_encounters), or "" when none was.
-std::string checked_against(const fs::path& root) {
-  std::ifstream in(superseded_check_file(root));
+/// The relaxed body's state_hash against which the encounter folders of the body in `body_dir` were
+/// last checked (remove_superseded_encounters), or "" when they were not.
+std::string checked_against(const fs::path& body_dir) {
+  std::ifstream in(superseded_check_file(body_dir));
   std::string hash;
   if (in) std::getline(in, hash);
   return hash;
 }
 
-/// Encounter folders below `root` (also in dt<factor>/) whose first per-encounter stage (`files`:
-/// the per-encounter stages' file names, in chain order) branched from another relaxed body (the
-/// body chain changed) are superseded: their checkpoints, snapshots and analysis are removed,
-/// unless another process holds the first stage's lock. Unreadable ones are left alone (run
-/// reports them when it reaches them). Once every folder was checked (none locked by another
-/// process), superseded_check_file records `relaxed_hash`, and later runs on the same relaxed body
-/// skip the scan: each task of a sweep then reads no other encounter's files (O(1), not O(N)).
-void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const std::vector<fs::path>& files,
-                                  const std::string& relaxed_hash) {
-  if (checked_against(root) == relaxed_hash) return;
+/// Encounter folders below `root` (also in dt<factor>/) of the body in `body_dir` (`of_this_body`
+/// of the folder's name) whose first per-encounter stage (`files`: the per-encounter stages' file
+/// names, in chain order) branched from another relaxed body (that body chain changed) are
+/// superseded: their checkpoints, snapshots and analysis are removed, unless another process holds
+/// the first stage's lock. Unreadable ones are left alone (run reports them when it reaches them).
+/// Once every folder was checked (none locked by another process), superseded_check_file records
+/// `relaxed_hash`, and later runs on the same relaxed body skip the scan: each task of a sweep then
+/// reads no other encounter's files (O(1), not O(N)).
+void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const fs::path& body_dir,
+                                  const std::function<bool(const std::string&)>& of_this_body,
+                                  const std::vector<fs::path>& files, const std::string& relaxed_hash) {
+  if (checked_against(body_dir) == relaxed_hash) return;
   bool every_folder_checked = true;
   std::vector<fs::path> folders;
   std::error_code ec;
@@ -124,6 +128,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
         if (inner.is_directory(ec)) folders.push_back(inner.path());
   }
   for (const auto& dir : folders) {
+    if (!of_this_body(dir.filename().string())) continue;
     const fs::path file = dir / files.front();
     const fs::path found = fs::exists(file) ? file : sibling_checkpoint(file, "mid");
     if (!fs::exists(found)) continue;
@@ -138,7 +143,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
       continue;
     }
   }
-  if (every_folder_checked) write_file_atomically(superseded_check_file(root), relaxed_hash + "\n");
+  if (every_folder_checked) write_file_atomically(superseded_check_file(body_dir), relaxed_hash + "\n");
 }
 
 WorkflowResult interrupted(WorkflowResult& result) {
@@ -148,8 +153,9 @@ WorkflowResult interrupted(WorkflowResult& result) {
 
 }  // namespace
 
-Config body_chain_config(const Config& config, const fs::path& root) {
-  Config prepared = config;
+Config body_chain_config(const Config& config, const fs::path& root, const Encounter* encounter) {
+  Config prepared = encounter ? body_config_of(config, *encounter) : config;
+  const fs::path body_dir = body_folder(root, config, encounter);
   fs::path parent_file;
   for (const StageKind& kind : stage_kinds()) {
     if (kind.per_encounter) continue;
@@ -157,50 +163,61 @@ Config body_chain_config(const Config& config, const fs::path& root) {
       if (!fs::exists(parent_file)) return prepared;  // nothing run yet: the caller says so
       kind.prepare(prepared, read_checkpoint(parent_file), parent_file.string());
     }
-    parent_file = stage_file(root / "body", kind);
+    parent_file = stage_file(body_dir, kind);
   }
   return prepared;
 }
 
-WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
-  RunContext ctx;
-  ctx.quiet = options.quiet;
-  ctx.allow_kernel_change = options.allow_kernel_change;
-  const fs::path body_dir = options.root / "body";
+namespace {
+
+/// A finished body chain: the configuration its prepare steps left (the relax's time step) and
+/// its last checkpoint, the relaxed body the encounters branch from.
+struct BodyChain {
+  Config config;
+  Checkpoint relaxed;
+  fs::path file;
+};
+
+/// Runs (or reuses) the body chain of `config` (the stages that are not per encounter, in table
+/// order, each beginning from the one before) in `body_dir`; nothing when interrupted. One process
+/// computes each stage, others that need the same version wait.
+std::optional<BodyChain> run_body_chain(const RunContext& ctx, const Config& config, const fs::path& body_dir) {
   // Checked before anything is written, and again under the first stage's lock (a process with
   // another body may have written it since: one folder, one body chain, decided under that lock).
   const fs::path first_file = stage_file(body_dir, stage_kinds().front());
   check_same_body(first_file, config);
   test_point_after_body_check();
   fs::create_directories(body_dir);
+  BodyChain chain{config, {}, {}};
+  std::optional<Checkpoint> body;
+  for (const StageKind& kind : stage_kinds()) {
+    if (kind.per_encounter) continue;
+    if (body) prepare_stage(ctx, kind, chain.config, *body, chain.file);
+    const StageJob job{&kind, kind.name(), stage_file(body_dir, kind), body ? &*body : nullptr, chain.file, nullptr};
+    StageRunOptions stage_options = workflow_stage_options(ctx);
+    if (job.file == first_file) stage_options.check_locked = [&] { check_same_body(first_file, config); };
+    StageResult done = run_stage(job, chain.config, std::move(stage_options));
+    if (done.outcome == LoopOutcome::interrupted) return std::nullopt;
+    body = std::move(done.checkpoint);
+    chain.file = job.file;
+  }
+  chain.relaxed = std::move(*body);
+  return chain;
+}
+
+}  // namespace
+
+WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options) {
+  RunContext ctx;
+  ctx.quiet = options.quiet;
+  ctx.allow_kernel_change = options.allow_kernel_change;
+  fs::create_directories(options.root);
   ctx.status_file = options.root / "status.json";
   WorkflowResult result;
 
-  // Body chain (the stages that are not per encounter, in table order), each beginning from the
-  // one before: one process computes each stage, others that need the same version wait.
-  Config body_config = config;  // as StageKind::prepare leaves it (the relax's time step)
-  std::optional<Checkpoint> body;
-  fs::path body_file;
-  for (const StageKind& kind : stage_kinds()) {
-    if (kind.per_encounter) continue;
-    if (body) prepare_stage(ctx, kind, body_config, *body, body_file);
-    const StageJob job{&kind, kind.name(), stage_file(body_dir, kind), body ? &*body : nullptr, body_file, nullptr};
-    StageRunOptions stage_options = workflow_stage_options(ctx);
-    if (job.file == first_file) stage_options.check_locked = [&] { check_same_body(first_file, config); };
-    StageResult done = run_stage(job, body_config, std::move(stage_options));
-    if (done.outcome == LoopOutcome::interrupted) return interrupted(result);
-    body = std::move(done.checkpoint);
-    body_file = job.file;
-  }
-  if (const auto* relaxed = std::get_if<RelaxRecord>(&body->stage.record)) result.relaxed = *relaxed;
-
-  // Per-encounter stages, for each encounter branching from the end of the body chain, at
-  // dt * dt_factor; the lock of an encounter's last stage also covers its analysis, so processes
+  // Per-encounter stages run for each encounter from the end of its body chain, at dt *
+  // dt_factor; the lock of an encounter's last stage also covers its analysis, so processes
   // running different encounters run side by side.
-  Config encounter_config = body_config;
-  if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
-  const fs::path encounter_root =
-      options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);
   std::vector<const StageKind*> per_encounter;
   std::vector<fs::path> per_encounter_files;
   for (const StageKind& kind : stage_kinds())
@@ -208,15 +225,45 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
       per_encounter.push_back(&kind);
       per_encounter_files.push_back(stage_file("", kind));
     }
-  remove_superseded_encounters(ctx, options.root, per_encounter_files, state_hash(body->state));
+  const fs::path encounter_root =
+      options.dt_factor == 1.0 ? options.root : options.root / fmt::format("dt{}", options.dt_factor);
+
+  // Each body chain once, when its first encounter needs it (the workflow's own body also with
+  // no encounter: --body-only); an encounter folder belongs to the body of the workflow's
+  // encounter of that name, an unknown folder to the workflow's own body.
+  std::map<std::uint64_t, BodyChain> chains;
+  const auto body_seed_of_folder = [&](const std::string& name) {
+    for (const Encounter& e : config.encounters)
+      if (e.name == name) return body_seed_of(config, e);
+    return config.workflow.seed;
+  };
+  const auto chain_for = [&](const Encounter* spec) -> const BodyChain* {
+    const std::uint64_t seed = spec ? body_seed_of(config, *spec) : config.workflow.seed;
+    if (auto found = chains.find(seed); found != chains.end()) return &found->second;
+    const fs::path body_dir = body_folder(options.root, config, spec);
+    std::optional<BodyChain> chain = run_body_chain(ctx, spec ? body_config_of(config, *spec) : config, body_dir);
+    if (!chain) return nullptr;
+    if (chains.empty())
+      if (const auto* relaxed = std::get_if<RelaxRecord>(&chain->relaxed.stage.record)) result.relaxed = *relaxed;
+    remove_superseded_encounters(
+        ctx, options.root, body_dir, [&](const std::string& name) { return body_seed_of_folder(name) == seed; },
+        per_encounter_files, state_hash(chain->relaxed.state));
+    return &chains.emplace(seed, std::move(*chain)).first->second;
+  };
+  if (options.encounters.empty() && !chain_for(nullptr)) return interrupted(result);
+
   for (const auto& spec : options.encounters) {
+    const BodyChain* chain = chain_for(&spec);
+    if (!chain) return interrupted(result);
+    Config encounter_config = chain->config;
+    if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);
     std::optional<Checkpoint> parent;
-    fs::path parent_file = body_file;
+    fs::path parent_file = chain->file;
     for (const StageKind* kind : per_encounter) {
       const StageJob job{kind, fmt::format("{} {}", kind->name(), spec.name), stage_file(dir, *kind),
-                         parent ? &*parent : &*body, parent_file, &spec};
+                         parent ? &*parent : &chain->relaxed, parent_file, &spec};
       StageRunOptions stage_options = workflow_stage_options(ctx);
       if (kind == per_encounter.back()) {
         stage_options.derived = dir / "analysis";

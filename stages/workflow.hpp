@@ -1,9 +1,10 @@
 #pragma once
 // The restart-driven workflow behind `tidalcrust run`: one body chain (build, stretch, relax)
-// shared by all encounters, each encounter and its analysis in a folder of its own. Rerunning
-// after an interruption continues from the newest valid checkpoint; finished stages whose
-// fingerprint (model/stage_fingerprint.hpp) and parent match are reused; a changed value reruns
-// exactly the stages it affects. Output layout: checkpoints/README.md.
+// shared by all encounters, and one more per other body seed the encounters name (body_seed: the
+// members of an ensemble that varies the body); each encounter and its analysis in a folder of its
+// own. Rerunning after an interruption continues from the newest valid checkpoint; finished stages
+// whose fingerprint (model/stage_fingerprint.hpp) and parent match are reused; a changed value
+// reruns exactly the stages it affects. Output layout: checkpoints/README.md.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -39,10 +40,11 @@ struct WorkflowResult {
   std::vector<WorkflowEncounter> encounters;
 };
 
-/// root/body/encounters-checked: the state_hash of the relaxed body against which `run` last
-/// checked every encounter folder of `root` for ones branched from another body (and removed
-/// those); a run on the same relaxed body does not check them again.
-std::filesystem::path superseded_check_file(const std::filesystem::path& root);
+/// BODY_DIR/encounters-checked: the state_hash of the relaxed body in `body_dir` (root/body or
+/// root/body-seed<N>) against which `run` last checked the encounter folders of that body for ones
+/// branched from another body (and removed those); a run on the same relaxed body does not check
+/// them again.
+std::filesystem::path superseded_check_file(const std::filesystem::path& body_dir);
 
 /// Refuses an output folder whose body/build.h5 (`build_file`) holds another body than `config`
 /// builds: InputError naming the file and the first difference. Nothing when the file is absent.
@@ -50,10 +52,12 @@ void check_same_body(const std::filesystem::path& build_file, const Config& conf
 
 /// The configuration as the body chain's StageKind::prepare steps leave it (the relax's time
 /// step, chosen from the stretched body when integrator.dt is not given), from the body
-/// checkpoints `run` wrote in root/body: what the encounters of run_workflow were computed with,
-/// so that `report` judges them as run does. Stops at the first body checkpoint that is missing
-/// (nothing run yet); InputError naming one that cannot be read.
-Config body_chain_config(const Config& config, const std::filesystem::path& root);
+/// checkpoints `run` wrote in the body folder of `encounter` (body_folder: root/body without one):
+/// what that encounter of run_workflow was computed with, so that `report` judges it as run does.
+/// Its workflow.seed is the body's (body_config_of). Stops at the first body checkpoint that is
+/// missing (nothing run yet); InputError naming one that cannot be read.
+Config body_chain_config(const Config& config, const std::filesystem::path& root,
+                         const Encounter* encounter = nullptr);
 
 /// Runs (or resumes) the workflow of `config`, which must be validated. InputError before
 /// anything is written if root holds checkpoints of another body; SimulationError on a blow-up

@@ -239,8 +239,9 @@ double eq5_strain(const Encounter& encounter, double youngs_in_e_g) {
   return estimate_encounter(encounter, youngs_in_e_g).strain;
 }
 
-SweepReport build_sweep_report(const Config& config, const fs::path& root, double dt_factor) {
-  const fs::path relax_file = root / "body" / "relax.h5";
+SweepReport build_sweep_report(const Config& config, const fs::path& root, double dt_factor,
+                               const BodyChainConfig& prepared) {
+  const fs::path relax_file = body_folder(root, config) / "relax.h5";
   if (!fs::exists(relax_file))
     throw InputError(fmt::format("{}: nothing has been run for workflow '{}' here (no relaxed body); run "
                                  "`tidalcrust run WORKFLOW.toml --out {}` first",
@@ -255,13 +256,34 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
   report.dt_factor = dt_factor;
   report.folder = dt_factor == 1.0 ? root : root / fmt::format("dt{}", dt_factor);
   report.youngs_modulus = derive_quantities(relaxed.body, relaxed.state, config.interior.radius).E_I;
-  Config encounter_config = config;
-  if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
-  const std::string relaxed_hash = state_hash(relaxed.state);
-  for (const auto& spec : config.encounters)
-    report.rows.push_back(
-        encounter_row(encounter_config, spec, relaxed_hash, report.youngs_modulus, report.folder / spec.name));
+  // Per body seed: the configuration its encounters ran with and its relaxed state's hash ("" while
+  // that body is not relaxed: its encounters cannot be current).
+  struct BodyOfEncounters {
+    Config config;
+    std::string relaxed_hash;
+  };
+  std::map<std::uint64_t, BodyOfEncounters> bodies;
+  bodies.emplace(config.workflow.seed, BodyOfEncounters{prepared(nullptr), state_hash(relaxed.state)});
+  for (const auto& spec : config.encounters) {
+    const std::uint64_t seed = body_seed_of(config, spec);
+    auto body = bodies.find(seed);
+    if (body == bodies.end()) {
+      const fs::path own_relax = body_folder(root, config, &spec) / "relax.h5";
+      std::string hash;
+      try {
+        if (fs::exists(own_relax))
+          if (const Checkpoint c = read_checkpoint(own_relax); c.stage.complete) hash = state_hash(c.state);
+      } catch (const InputError&) {  // its encounters are then stale or missing rows, as of an unrun body
+      }
+      body = bodies.emplace(seed, BodyOfEncounters{prepared(&spec), hash}).first;
+    }
+    Config encounter_config = body->second.config;
+    if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
+    report.rows.push_back(encounter_row(encounter_config, spec, body->second.relaxed_hash, report.youngs_modulus,
+                                        report.folder / spec.name));
+  }
   report.ensembles = ensemble_rows(config, report.rows, report.youngs_modulus);
+  if (config.ensemble) report.ensemble_vary = config.ensemble->vary;
   report.boundaries = config.ensemble ? ensemble_boundaries(report.ensembles, report.youngs_modulus)
                                       : crack_boundaries(report.rows, report.youngs_modulus);
   return report;
@@ -396,10 +418,16 @@ Json ensemble_report_json(const SweepReport& report) {
   return {{"workflow", report.workflow},
           {"folder", report.folder.string()},
           {"confidence", ensemble_confidence},
-          {"method", "over the finished members, the least-squares line of each statistic against the members' "
-                     "relative pericenter offsets: mean = the line at offset 0 (the unperturbed encounter), sd = the "
-                     "scatter about the line (n - 2 degrees of freedom), slope_per_ln_q = its slope; interval of the "
-                     "mean: Student t with n - 2 degrees of freedom; cracked share: Wilson score interval"},
+          {"vary", choice_name(report.ensemble_vary)},
+          {"method", report.ensemble_vary == EnsembleVariation::body_seed
+                         ? "over the finished members (each on a body of its own seed, one pericenter): mean, sd "
+                           "(n - 1 degrees of freedom); interval of the mean: Student t with n - 1 degrees of "
+                           "freedom; cracked share: Wilson score interval"
+                         : "over the finished members, the least-squares line of each statistic against the members' "
+                           "relative pericenter offsets: mean = the line at offset 0 (the unperturbed encounter), sd "
+                           "= the scatter about the line (n - 2 degrees of freedom), slope_per_ln_q = its slope; "
+                           "interval of the mean: Student t with n - 2 degrees of freedom; cracked share: Wilson "
+                           "score interval"},
           {"units", units},
           {"ensembles", rows}};
 }

@@ -7,6 +7,7 @@
 // G = M = R = 1 (masses in M, distances in R, speeds in sqrt(GM/R), energies in G M^2/R).
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -101,15 +102,24 @@ struct SweepReport {
   std::vector<SweepRow> rows;            ///< the workflow's encounters, in its order
   std::vector<CrackBoundary> boundaries; ///< by M2, eps_S, V_q (ascending)
   std::vector<EnsembleRow> ensembles;    ///< per encounter before the expansion; empty without [ensemble]
+  EnsembleVariation ensemble_vary = EnsembleVariation::pericenter;  ///< what differs between the members
   std::size_t count(SweepStatus status) const;
 };
 
+/// The configuration an encounter of the workflow was computed with, as its body chain left it
+/// (stages/workflow.hpp, body_chain_config: the relax's time step of that body, its seed); called
+/// with nullptr for the workflow's own body.
+using BodyChainConfig = std::function<Config(const Encounter*)>;
+
 /// The report of the encounters of `config` (validated) below `root` (the --out of run; with
-/// dt_factor != 1 the encounters of root/dt<factor>/), read from their checkpoints. InputError
-/// when root/body/relax.h5 is missing or unfinished (nothing has been run: the message says
-/// which command runs it) or cannot be read; an encounter that cannot be read is a row marked
-/// unreadable.
-SweepReport build_sweep_report(const Config& config, const std::filesystem::path& root, double dt_factor);
+/// dt_factor != 1 the encounters of root/dt<factor>/), read from their checkpoints, each judged
+/// against the relaxed body it branches from (body_folder: root/body, or root/body-seed<N> for a
+/// member on a body of its own) and the configuration `prepared` gives for it. InputError when
+/// root/body/relax.h5 is missing or unfinished (nothing has been run: the message says which
+/// command runs it) or cannot be read; an encounter that cannot be read is a row marked
+/// unreadable, one whose own body is not relaxed yet a row marked missing or stale.
+SweepReport build_sweep_report(const Config& config, const std::filesystem::path& root, double dt_factor,
+                               const BodyChainConfig& prepared);
 
 /// The report of `report`'s ensemble rows as rows of their own, for the phase diagram of crack
 /// probability: a row per encounter before the expansion (unperturbed q), finished when a member

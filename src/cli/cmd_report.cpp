@@ -51,7 +51,9 @@ int command_report(int argc, char** argv) {
   if (parsed.count("help")) return fmt::print("{}\n", options.help()), exit_ok;
   const WorkflowArguments w = read_workflow_arguments(parsed);
   // The time step as run resolved it (chosen from the stretched body for a [material] body).
-  const SweepReport report = build_sweep_report(body_chain_config(w.config, w.root), w.root, w.dt_factor);
+  const SweepReport report = build_sweep_report(w.config, w.root, w.dt_factor, [&](const Encounter* encounter) {
+    return body_chain_config(w.config, w.root, encounter);
+  });
   const fs::path dir = report.folder / "report";
   std::error_code ec;
   fs::create_directories(dir, ec);

@@ -9,6 +9,11 @@
 
 namespace tidalcrust {
 
+std::filesystem::path body_folder(const std::filesystem::path& root, const Config& config, const Encounter* encounter) {
+  const std::uint64_t seed = encounter ? body_seed_of(config, *encounter) : config.workflow.seed;
+  return seed == config.workflow.seed ? root / "body" : root / ("body-seed" + std::to_string(seed));
+}
+
 std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix) {
   std::filesystem::path p = out;
   p.replace_extension();

@@ -8,7 +8,15 @@
 #include <string_view>
 #include <vector>
 
+#include "model/config.hpp"
+
 namespace tidalcrust {
+
+/// The folder of the body chain `encounter` branches from in the output root `root`: root/body
+/// for the workflow's own body (no encounter, or one without another body_seed), root/body-seed<N>
+/// for the body of seed N (body_seed_of; docs/ensembles.md, "Members on bodies of their own").
+std::filesystem::path body_folder(const std::filesystem::path& root, const Config& config,
+                                  const Encounter* encounter = nullptr);
 
 /// A file beside `out`: out.h5 -> out.<suffix>.h5 ("mid", "diagnostic").
 std::filesystem::path sibling_checkpoint(const std::filesystem::path& out, const std::string& suffix);

@@ -126,6 +126,21 @@ struct ChoiceTable<GravityKernel> {
   };
 };
 
+/// [ensemble] vary: what differs between the members of an ensemble (docs/ensembles.md).
+enum class EnsembleVariation {
+  pericenter,  ///< the trajectory: q (1 + delta u_k), one relaxed body
+  body_seed,   ///< the body: member k on the body of seed workflow.seed + k, each its own body chain
+  both,        ///< member k on the body of seed workflow.seed + k at q (1 + delta u_k)
+};
+template <>
+struct ChoiceTable<EnsembleVariation> {
+  static constexpr std::array rows{
+      ChoiceRow<EnsembleVariation>{EnsembleVariation::pericenter, "pericenter", "pericenters spread by delta, one body"},
+      ChoiceRow<EnsembleVariation>{EnsembleVariation::body_seed, "body_seed", "a body of its own seed per member"},
+      ChoiceRow<EnsembleVariation>{EnsembleVariation::both, "both", "its own body and its own pericenter"},
+  };
+};
+
 // ---- reading the tables -----------------------------------------------------------------------
 
 /// True when row i of E's table holds enumerator i (so that a value indexes its row).

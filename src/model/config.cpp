@@ -291,7 +291,7 @@ template <class E, class V>
 void visit_keys(E& e, V&& visit) {
   using enum StageId;
   auto key = [&]<class F>(F& field, const Key<value_of<F>>& k) { visit(field, k); };
-  key(e.name, {"encounters", "name", reads(encounter), "", "name of the encounter (required): its folder and label (letters, digits, -, _, .; not body, slurm, validate, analysis, status.json, dt<F>)"});
+  key(e.name, {"encounters", "name", reads(encounter), "", "name of the encounter (required): its folder and label (letters, digits, -, _, .; not body, body-seed<N>, slurm, validate, analysis, status.json, dt<F>)"});
   key(e.perturber_mass, {"encounters", "perturber_mass", reads(encounter), "M", "M2", 0, inf, true});
   key(e.pericenter, {"encounters", "pericenter", reads(encounter), "R", "q", 1, inf, true});  // outside the body
   key(e.pericenter_speed,
@@ -301,6 +301,10 @@ void visit_keys(E& e, V&& visit) {
   key(e.relaxation_crossings,
       {"encounters", "relaxation_crossings", reads(encounter), "L_S/V_SP",
        "local failure rule: relaxation interval override", 0, 1e6, true});
+  key(e.body_seed, {"encounters", "body_seed", reads(encounter), "-",
+                    "seed of the body this encounter branches from (its own body chain in body-seed<N>/); none: "
+                    "workflow.seed, the workflow's body",
+                    0, max_toml_integer});
 }
 
 /// The sections of Config in to_toml order (without "encounters").
@@ -515,6 +519,7 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
 bool reserved_encounter_name(std::string_view name) {
   for (std::string_view taken : {"body", "slurm", "validate", "status.json", "analysis"})
     if (name == taken) return true;
+  if (name.starts_with("body-seed")) return true;  // the body chains of other seeds (body_seed)
   return name.size() > 2 && name.starts_with("dt") &&
          (std::isdigit(static_cast<unsigned char>(name[2])) || name[2] == '.');
 }
@@ -524,8 +529,8 @@ void check_encounter_name(const std::string& name, const std::string& origin) {
   if (const std::string problem = path_name_problem(name); !problem.empty())
     throw InputError(fmt::format("{}: encounter name {}", origin, problem));
   if (reserved_encounter_name(name))
-    throw InputError(fmt::format("{}: encounter name '{}' is reserved (the output folder holds body/, slurm/, "
-                                 "validate/, status.json and dt<F>/ beside the encounters)",
+    throw InputError(fmt::format("{}: encounter name '{}' is reserved (the output folder holds body/, body-seed<N>/, "
+                                 "slurm/, validate/, status.json and dt<F>/ beside the encounters)",
                                  origin, name));
 }
 
@@ -633,6 +638,9 @@ SweepConfig parse_sweep(const toml::node& node, const std::string& origin) {
   return sweep;
 }
 
+/// The keys of [ensemble], for the unknown-key errors.
+constexpr const char* ensemble_keys = "members, pericenter_perturbation, vary";
+
 /// [ensemble] as an EnsembleConfig (members required; ranges checked by validate).
 EnsembleConfig parse_ensemble(const toml::node& node, const std::string& origin) {
   auto* table = node.as_table();
@@ -647,9 +655,11 @@ EnsembleConfig parse_ensemble(const toml::node& node, const std::string& origin)
       const auto v = value.value<double>();
       if (!v || !value.is_number()) throw InputError(where + ": must be a number");
       ensemble.pericenter_perturbation = *v;
+    } else if (k.str() == "vary") {
+      if (!value.is_string()) throw InputError(where + ": must be a string");
+      ensemble.vary = parse_choice<EnsembleVariation>(*value.value<std::string>(), where);
     } else {
-      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: members, pericenter_perturbation)", origin,
-                                   k.str()));
+      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: {})", origin, k.str(), ensemble_keys));
     }
   }
   if (!table->get("members")) throw InputError(fmt::format("{}: [ensemble] needs members", origin));
@@ -658,8 +668,10 @@ EnsembleConfig parse_ensemble(const toml::node& node, const std::string& origin)
 
 /// The [ensemble] table of to_toml.
 std::string ensemble_toml(const EnsembleConfig& ensemble) {
-  return fmt::format("[ensemble]\nmembers = {}\npericenter_perturbation = {}  # relative change of q, -\n",
-                     ensemble.members, toml_text(ensemble.pericenter_perturbation));
+  return fmt::format("[ensemble]\nmembers = {}\npericenter_perturbation = {}  # relative change of q, -\nvary = \"{}\"  # "
+                     "{}\n",
+                     ensemble.members, toml_text(ensemble.pericenter_perturbation), choice_name(ensemble.vary),
+                     choice_doc<EnsembleVariation>());
 }
 
 /// Refuses an [ensemble] whose values are out of range or whose members would be too many
@@ -675,6 +687,25 @@ void check_ensemble(const EnsembleConfig& ensemble, std::size_t count, const std
     throw InputError(fmt::format("{}: the workflow has {} encounters of {} members each ({} in all); at most {}", origin,
                                  count, ensemble.members, count * static_cast<std::size_t>(ensemble.members),
                                  max_encounters));
+}
+
+/// config.encounters = the members of config.ensemble_bases (the one place the expansion is
+/// stored). InputError naming `origin` when [ensemble] is out of range or a member's body seed
+/// would pass the largest seed.
+void expand_ensemble_of(Config& config, const std::string& origin) {
+  const EnsembleConfig& ensemble = *config.ensemble;
+  check_ensemble(ensemble, config.ensemble_bases.size(), origin);
+  if (ensemble.vary != EnsembleVariation::pericenter)
+    for (const Encounter& base : config.ensemble_bases) {
+      const std::uint64_t seed = base.body_seed.value_or(config.workflow.seed);
+      const auto last = static_cast<std::uint64_t>(ensemble.members - 1);
+      if (seed > max_toml_integer || max_toml_integer - seed < last)
+        throw InputError(fmt::format("{}: ensemble.vary = \"{}\": encounter '{}' on the body of seed {} would give "
+                                     "member {} the seed {} + {}, past the largest seed {}",
+                                     origin, choice_name(ensemble.vary), base.name, seed, last, seed, last,
+                                     max_toml_integer));
+    }
+  config.encounters = expand_ensemble(config.ensemble_bases, ensemble, config.workflow.seed);
 }
 
 /// How many of `config.encounters` to_toml writes as [[encounters]] tables: all of them, unless
@@ -881,11 +912,13 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep) {
 }
 
 double ensemble_pericenter_offset(const EnsembleConfig& ensemble, std::int64_t member) {
+  if (ensemble.vary == EnsembleVariation::body_seed) return 0.0;
   const double n = static_cast<double>(ensemble.members);
   return ensemble.pericenter_perturbation * ((2.0 * static_cast<double>(member) + 1.0) / n - 1.0);
 }
 
-std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble) {
+std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble,
+                                       std::uint64_t workflow_seed) {
   std::vector<Encounter> out;
   out.reserve(encounters.size() * static_cast<std::size_t>(std::max<std::int64_t>(0, ensemble.members)));
   for (const Encounter& base : encounters)
@@ -893,7 +926,22 @@ std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters,
       Encounter& member = out.emplace_back(base);
       member.name = fmt::format("{}_m{}", base.name, k);
       member.pericenter = base.pericenter * (1.0 + ensemble_pericenter_offset(ensemble, k));
+      if (ensemble.vary != EnsembleVariation::pericenter && k > 0) {
+        // Seeds count from the encounter's own body; member 0 stays on it (and keeps its name of it).
+        const std::uint64_t seed = base.body_seed.value_or(workflow_seed) + static_cast<std::uint64_t>(k);
+        member.body_seed = seed == workflow_seed ? std::nullopt : std::optional<std::uint64_t>(seed);
+      }
     }
+  return out;
+}
+
+std::uint64_t body_seed_of(const Config& config, const Encounter& encounter) {
+  return encounter.body_seed.value_or(config.workflow.seed);
+}
+
+Config body_config_of(const Config& config, const Encounter& encounter) {
+  Config out = config;
+  out.workflow.seed = body_seed_of(config, encounter);
   return out;
 }
 
@@ -1012,9 +1060,8 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
     config.encounters.insert(config.encounters.end(), swept.begin(), swept.end());
   }
   if (config.ensemble) {
-    check_ensemble(*config.ensemble, config.encounters.size(), origin);
     config.ensemble_bases = std::move(config.encounters);
-    config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
+    expand_ensemble_of(config, origin);
   }
   if (config.from_material())  // [material] derives these: giving them too is ambiguous
     for (auto&& [sk, snode] : root)
@@ -1073,15 +1120,19 @@ void apply_override(Config& config, const std::string& assignment) {
       config.ensemble->members = node.value<std::int64_t>().value_or(0);
     else if (key == "pericenter_perturbation" && node.is_number())
       config.ensemble->pericenter_perturbation = node.value<double>().value_or(0);
-    else if (key == "members" || key == "pericenter_perturbation")
-      throw InputError(fmt::format("{}: ensemble.{} must be {}", where, key, key == "members" ? "an integer" : "a number"));
+    else if (key == "vary" && node.is_string())
+      config.ensemble->vary = parse_choice<EnsembleVariation>(*node.value<std::string>(), where + ": ensemble.vary");
+    else if (key == "members" || key == "pericenter_perturbation" || key == "vary")
+      throw InputError(fmt::format("{}: ensemble.{} must be {}", where, key,
+                                   key == "members" ? "an integer" : key == "vary" ? "a string" : "a number"));
     else
-      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: members, pericenter_perturbation)", where, key));
+      throw InputError(fmt::format("{}: unknown key 'ensemble.{}' (known: {})", where, key, ensemble_keys));
     // Expanded once members is given (the keys may come in either order); validate refuses an
     // ensemble left without members.
-    if (config.ensemble->members != 0) check_ensemble(*config.ensemble, config.ensemble_bases.size(), where);
-    config.encounters = config.ensemble->members != 0 ? expand_ensemble(config.ensemble_bases, *config.ensemble)
-                                                      : config.ensemble_bases;
+    if (config.ensemble->members != 0)
+      expand_ensemble_of(config, where);
+    else
+      config.encounters = config.ensemble_bases;
     return;
   }
   if (section != "encounters") {
@@ -1089,6 +1140,9 @@ void apply_override(Config& config, const std::string& assignment) {
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
     refuse_derived_key(config, section, key, where);
     if (section == "integrator" && key == "dt") config.choose_dt = false;
+    // Members of an ensemble that varies the body branch from seeds counted from workflow.seed.
+    if (section == "workflow" && key == "seed" && config.ensemble && config.ensemble->members != 0)
+      expand_ensemble_of(config, where);
     resolve_material(config, where);
     return;
   }
@@ -1109,7 +1163,7 @@ void apply_override(Config& config, const std::string& assignment) {
     const auto base = std::find_if(config.ensemble_bases.begin(), config.ensemble_bases.end(), named);
     if (base != config.ensemble_bases.end()) {
       set_encounter_key(*base);
-      config.encounters = expand_ensemble(config.ensemble_bases, *config.ensemble);
+      expand_ensemble_of(config, where);
       return;
     }
   }
@@ -1200,7 +1254,8 @@ std::string to_toml(const Config& config) {
   // The bases and [ensemble] while the encounters are exactly their members (else, after a --set
   // of one member, every member as a table), each list with [sweep] standing for its expansion.
   const bool as_ensemble =
-      config.ensemble && config.encounters == expand_ensemble(config.ensemble_bases, *config.ensemble);
+      config.ensemble &&
+      config.encounters == expand_ensemble(config.ensemble_bases, *config.ensemble, config.workflow.seed);
   const std::vector<Encounter>& encounters = as_ensemble ? config.ensemble_bases : config.encounters;
   const std::size_t listed = listed_encounter_count(encounters, config.sweep);
   for (std::size_t i = 0; i < listed; ++i) out += "\n" + encounter_toml(encounters[i]);

@@ -197,16 +197,22 @@ std::vector<Encounter> expand_sweep(const SweepConfig& sweep);
 /// stratified offsets, symmetric about q, so the members' mean q is q to first order.
 struct EnsembleConfig {
   std::int64_t members = 0;                 ///< n, 3 .. max_ensemble_members (a trend and its scatter need 3)
-  double pericenter_perturbation = 5e-3;    ///< delta, relative, (0, 0.05]
+  double pericenter_perturbation = 5e-3;    ///< delta, relative, (0, 0.05]; read when vary is pericenter or both
+  EnsembleVariation vary = EnsembleVariation::pericenter;  ///< what differs between the members
   bool operator==(const EnsembleConfig&) const = default;
 };
 inline constexpr std::int64_t max_ensemble_members = 1000;
 
 /// The one expansion of [ensemble]: each of `encounters` in order becomes its n members in
-/// member order (A_m0, A_m1, ..., B_m0, ...).
-std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble);
-/// The relative pericenter offset delta u_k of member k of `ensemble` (k in [0, members)).
+/// member order (A_m0, A_m1, ..., B_m0, ...). When the ensemble varies the body, member k branches
+/// from the body of seed s + k, s = the encounter's body_seed or else `workflow_seed` (member 0:
+/// the encounter's own body), so that member k of every encounter shares one body.
+std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters, const EnsembleConfig& ensemble,
+                                       std::uint64_t workflow_seed);
+/// The relative pericenter offset delta u_k of member k of `ensemble` (k in [0, members)); 0 when
+/// the ensemble varies only the body.
 double ensemble_pericenter_offset(const EnsembleConfig& ensemble, std::int64_t member);
+
 
 struct Config {
   WorkflowConfig workflow;
@@ -242,6 +248,12 @@ struct Config {
   /// The encounter with this name; InputError listing the known names otherwise.
   const Encounter& find_encounter(const std::string& name) const;
 };
+
+/// The seed of the body `encounter` branches from: its body_seed, or workflow.seed.
+std::uint64_t body_seed_of(const Config& config, const Encounter& encounter);
+/// The configuration of the body chain `encounter` branches from: `config` with workflow.seed =
+/// body_seed_of (the same configuration when the encounter is on the workflow's body).
+Config body_config_of(const Config& config, const Encounter& encounter);
 
 /// Parses TOML text. `origin` (a file name) prefixes every error message.
 Config parse_config(const std::string& toml_text, const std::string& origin);

@@ -3,6 +3,7 @@
 // is a [[encounters]] table of the configuration, what an encounter checkpoint records
 // (stage_records.hpp), and the input of the impulse estimates (physics/encounter_estimates.hpp).
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -26,6 +27,10 @@ struct Encounter {
   /// Relaxation interval of the local failure rule for this encounter (L_S/V_SP); none:
   /// encounter.relaxation_crossings.
   std::optional<double> relaxation_crossings;
+  /// Seed of the body this encounter branches from (workflow.seed of its own body chain, in the
+  /// output folder's body-seed<N>/); none: the workflow's body (body/, workflow.seed). An
+  /// [ensemble] that varies the body sets it for its members (docs/ensembles.md).
+  std::optional<std::uint64_t> body_seed;
   bool operator==(const Encounter&) const = default;
 };
 

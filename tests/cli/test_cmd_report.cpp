@@ -108,7 +108,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
     EXPECT_EQ(row[1], statuses[i]);
     EXPECT_EQ(entry["name"], names[i]);
     EXPECT_EQ(entry["status"], statuses[i]);
-    const Encounter spec{names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8, {}, {}};
+    const Encounter spec{names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8, {}, {}, {}};
     EXPECT_EQ(row[5], "0.002");
     EXPECT_EQ(row[6], fmt::format("{}", estimate_encounter(spec, youngs).strain)) << names[i];
     if (statuses[i] != "finished") {

@@ -3,6 +3,7 @@
 // interval code (ensembles.csv / .json) from exactly the members' rows.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +48,24 @@ std::string member_hash(const fs::path& out, int k) {
   return state_hash(read_checkpoint(out / fmt::format("T_m{}", k) / "encounter.h5").state);
 }
 
+/// Runs `workflow` into `killed`, each process killed at step first + spacing * attempt (steps
+/// counted from its start) until one finishes, then once more: every member T_m<k> must end with
+/// the bits of `hashes` (the uninterrupted run's), after at least three kills.
+void expect_resumed_members_bitwise(const fs::path& workflow, const fs::path& killed, int first, int spacing,
+                                    const std::vector<std::string>& hashes) {
+  int kills = 0;
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    const auto r = run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet",
+                           fmt::format("TIDALCRUST_TEST_KILL_AT=step:{}", first + spacing * attempt));
+    if (r.exit_code == 0) break;
+    ++kills;
+  }
+  EXPECT_GE(kills, 3);
+  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet").exit_code, 0);
+  for (std::size_t k = 0; k < hashes.size(); ++k)
+    EXPECT_EQ(member_hash(killed, static_cast<int>(k)), hashes[k]) << k;
+}
+
 }  // namespace
 
 TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
@@ -65,17 +84,7 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
   EXPECT_DOUBLE_EQ(m0.stage.as<EncounterRecord>().encounter.pericenter, 1.6 * (1 - 0.005 * 2.0 / 3.0));
 
   // Killed at steps counted from the start of each process, and resumed: the same bits per member.
-  const auto killed = scratch.path / "killed";
-  int kills = 0;
-  for (int attempt = 0; attempt < 30; ++attempt) {
-    const auto r = run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet",
-                           fmt::format("TIDALCRUST_TEST_KILL_AT=step:{}", 150 + 90 * attempt));
-    if (r.exit_code == 0) break;
-    ++kills;
-  }
-  EXPECT_GE(kills, 3);
-  ASSERT_EQ(run_cli("run " + quoted(workflow) + " --out " + quoted(killed) + " --quiet").exit_code, 0);
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(member_hash(killed, k), hashes[static_cast<std::size_t>(k)]) << k;
+  expect_resumed_members_bitwise(workflow, scratch.path / "killed", 150, 90, hashes);
 
   // The report: one ensemble row whose statistics are those of the members' rows.
   const auto report = run_cli("report " + quoted(workflow) + " --out " + quoted(straight));
@@ -128,4 +137,97 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find(sweep_file.string() + ": not an ensemble table"), std::string::npos) << bad.err;
   EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
+}
+
+// Issue 24 item 1: an ensemble that varies the body. Member k of every encounter branches from the
+// body of seed workflow.seed + k, built, stretched and relaxed once in its own folder
+// (body-seed<N>/) and shared by the encounters of that member; each member resumes bitwise; the
+// report summarises the members without a trend (n - 1).
+TEST(Ensemble, MembersOnBodiesOfTheirOwnSeedShareThemAndResumeBitwise) {
+  const ScratchFolder scratch("ensemble-seeds");
+  const auto workflow = scratch.path / "seeds.toml";
+  std::ofstream(workflow) << small_body_toml("seeds", "failure_strain = 0.002\n") << R"([encounter]
+failure_rule = "paper"
+start_distance = 2.5
+end_distance = 2.5
+[[encounters]]
+name = "T"
+perturber_mass = 1.0
+pericenter = 1.6
+pericenter_speed = 1.8
+[[encounters]]
+name = "U"
+perturber_mass = 0.5
+pericenter = 1.7
+pericenter_speed = 1.8
+[ensemble]
+members = 3
+vary = "body_seed"
+)";
+  const auto straight = scratch.path / "straight";
+  const auto ran = run_cli("run " + quoted(workflow) + " --out " + quoted(straight) + " --quiet --jobs 2");
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  // small_body_toml's seed is 3: bodies 3 (body/), 4 and 5, and no other body folder.
+  std::vector<std::string> bodies;
+  for (const auto& entry : fs::directory_iterator(straight))
+    if (entry.path().filename().string().starts_with("body")) bodies.push_back(entry.path().filename().string());
+  std::sort(bodies.begin(), bodies.end());
+  EXPECT_EQ(bodies, (std::vector<std::string>{"body", "body-seed4", "body-seed5"}));
+  const auto relaxed_hash = [&](const std::string& dir) {
+    return state_hash(read_checkpoint(straight / dir / "relax.h5").state);
+  };
+  const auto parent_of = [&](const fs::path& out, const std::string& name) {
+    return read_checkpoint(out / name / "encounter.h5").stage.parent_hash;
+  };
+  const std::string body_dirs[] = {"body", "body-seed4", "body-seed5"};
+  std::vector<std::string> hashes;
+  for (int k = 0; k < 3; ++k) {
+    const std::string& dir = body_dirs[k];
+    EXPECT_EQ(parent_of(straight, fmt::format("T_m{}", k)), relaxed_hash(dir)) << k;
+    EXPECT_EQ(parent_of(straight, fmt::format("U_m{}", k)), relaxed_hash(dir)) << k;  // one body per member
+    // The body's own seed is what built it; every member flies its encounter's own orbit.
+    EXPECT_NE(read_checkpoint(straight / dir / "build.h5").config_toml.find(fmt::format("\nseed = {}  #", 3 + k)),
+              std::string::npos)
+        << dir;
+    EXPECT_EQ(read_checkpoint(straight / fmt::format("T_m{}", k) / "encounter.h5")
+                  .stage.as<EncounterRecord>()
+                  .encounter.pericenter,
+              1.6);
+    hashes.push_back(member_hash(straight, k));
+  }
+  EXPECT_NE(relaxed_hash("body"), relaxed_hash("body-seed4"));
+  EXPECT_NE(relaxed_hash("body-seed4"), relaxed_hash("body-seed5"));
+
+  // Killed at steps counted from the start of each process (in the body chains of the other seeds
+  // too), and resumed: the same bits per member.
+  expect_resumed_members_bitwise(workflow, scratch.path / "killed", 200, 250, hashes);
+
+  // The report: every member finished and judged current against its own body; plain statistics.
+  const auto report = run_cli("report " + quoted(workflow) + " --out " + quoted(straight));
+  ASSERT_EQ(report.exit_code, 0) << report.err;
+  EXPECT_NE(report.out.find("ensemble T: 3 of 3 members finished"), std::string::npos) << report.out;
+  EXPECT_NE(report.out.find("ensemble U: 3 of 3 members finished"), std::string::npos) << report.out;
+  const Json sweep = Json::parse(read_file(straight / "report" / "sweep.json"));
+  std::vector<double> failures;
+  for (const auto& e : sweep["encounters"]) {
+    EXPECT_EQ(e["status"], "finished") << e;
+    if (e["name"].get<std::string>().starts_with("T_")) failures.push_back(e["failures"].get<double>());
+  }
+  ASSERT_EQ(failures.size(), 3u);
+  const Json ensembles = Json::parse(read_file(straight / "report" / "ensembles.json"));
+  EXPECT_EQ(ensembles["vary"], "body_seed");
+  EXPECT_NE(ensembles["method"].get<std::string>().find("n - 1 degrees of freedom"), std::string::npos);
+  const Json& row = ensembles["ensembles"][0];
+  const SampleSummary expected = summarize_sample(failures);
+  EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["mean"].get<double>(), expected.mean);
+  EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["sd"].get<double>(), expected.standard_deviation);
+  EXPECT_EQ(row["statistics"]["failures"]["degrees_of_freedom"].get<double>(), 2.0);
+
+  // A member's body changed under it (here: removed and rebuilt from another seed's files) makes
+  // that member's encounters stale in the report, the others stay finished.
+  fs::copy_file(straight / "body-seed5" / "relax.h5", straight / "body-seed4" / "relax.h5",
+                fs::copy_options::overwrite_existing);
+  const auto stale = run_cli("report " + quoted(workflow) + " --out " + quoted(straight));
+  ASSERT_EQ(stale.exit_code, 0) << stale.err;
+  EXPECT_NE(stale.out.find("stale: 2: T_m1 (branched from another relaxed body"), std::string::npos) << stale.out;
 }

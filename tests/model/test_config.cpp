@@ -156,7 +156,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
         << key.section << "." << key.name;
   }
   EXPECT_NE(text.find("\n[integrator]\ndt = "), std::string::npos);
-  EXPECT_EQ(describe_keys(Encounter{}, config).size(), 6u);
+  EXPECT_EQ(describe_keys(Encounter{}, config).size(), 7u);
   EXPECT_EQ(integer_key_value(config, "relax", "checkpoint_interval"), config.relax.checkpoint_interval);
   EXPECT_THROW(integer_key_value(config, "relax", "damping"), InternalError);  // not an integer key
 }
@@ -469,6 +469,64 @@ TEST(Config, EnsembleOverridesReexpandTheMembers) {
   EXPECT_EQ(stored.find("[ensemble]"), std::string::npos) << stored;
   EXPECT_EQ(parse_config(stored, "stored").encounters, config.encounters);
   validate(config, "e.toml");
+}
+
+TEST(Config, AnEnsembleThatVariesTheBodyGivesMemberKTheSeedPlusK) {
+  const Config config = parse_config(R"(
+[workflow]
+name = "seeds"
+seed = 7
+[[encounters]]
+name = "T5"
+pericenter = 2.0
+[[encounters]]
+name = "own"
+pericenter = 2.0
+body_seed = 40
+[ensemble]
+members = 3
+vary = "body_seed"
+)",
+                                     "seeds.toml");
+  ASSERT_EQ(config.encounters.size(), 6u);
+  // Member 0 stays on the encounter's own body; member k on seed s + k; the pericenter is the base's.
+  EXPECT_EQ(config.encounters[0].body_seed, std::nullopt);
+  EXPECT_EQ(config.encounters[1].body_seed, 8u);
+  EXPECT_EQ(config.encounters[2].body_seed, 9u);
+  EXPECT_EQ(config.encounters[3].body_seed, 40u);
+  EXPECT_EQ(config.encounters[5].body_seed, 42u);
+  for (const auto& e : config.encounters) EXPECT_EQ(e.pericenter, 2.0) << e.name;
+  EXPECT_EQ(body_seed_of(config, config.encounters[0]), 7u);
+  EXPECT_EQ(body_config_of(config, config.encounters[2]).workflow.seed, 9u);
+  EXPECT_EQ(body_config_of(config, config.encounters[0]).workflow.seed, 7u);
+  const std::string stored = to_toml(config);
+  EXPECT_NE(stored.find("vary = \"body_seed\""), std::string::npos) << stored;
+  EXPECT_EQ(parse_config(stored, "stored").encounters, config.encounters);
+
+  // "both": its own body and its own pericenter.
+  Config both = parse_config("[workflow]\nseed = 1\n[[encounters]]\nname = \"T\"\npericenter = 2.0\n", "b.toml");
+  apply_override(both, "ensemble.vary=both");
+  apply_override(both, "ensemble.members=4");
+  ASSERT_EQ(both.encounters.size(), 4u);
+  EXPECT_EQ(both.encounters[3].body_seed, 4u);
+  EXPECT_DOUBLE_EQ(both.encounters[3].pericenter, 2.0 * (1 + 0.005 * 0.75));
+  // A later --set workflow.seed moves every member's body with it.
+  apply_override(both, "workflow.seed=100");
+  EXPECT_EQ(both.encounters[1].body_seed, 101u);
+  EXPECT_EQ(both.encounters[0].body_seed, std::nullopt);
+  validate(both, "b.toml");
+
+  // Errors: an unknown variation, a seed past the largest, a name that is a body folder.
+  EXPECT_NE(one_line_error("[ensemble]\nmembers = 3\nvary = \"seeds\"\n")
+                .find("ensemble.vary = \"seeds\" is not one of: pericenter, body_seed, both"),
+            std::string::npos);
+  EXPECT_NE(one_line_error("[workflow]\nseed = 9223372036854775807\n[[encounters]]\nname = \"T\"\n[ensemble]\nmembers = "
+                           "3\nvary = \"both\"\n")
+                .find("past the largest seed"),
+            std::string::npos);
+  EXPECT_NE(one_line_error("[[encounters]]\nname = \"body-seed3\"\n").find("is reserved"), std::string::npos);
+  EXPECT_NE(one_line_error("[[encounters]]\nname = \"T\"\nbody_seed = -1\n").find("'body_seed' must be >= 0"),
+            std::string::npos);
 }
 
 TEST(Config, BadEnsemblesAreOneLineErrorsNamingTheFileAndKey) {
