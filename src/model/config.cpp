@@ -603,8 +603,13 @@ std::vector<double> sweep_axis(const toml::table& sweep, std::string_view key, c
       throw InputError(where + ": a range needs numbers from, to and an integer count");
     const std::int64_t count = count_node->value<std::int64_t>().value_or(0);
     if (count < 1 || count > 1000) throw InputError(fmt::format("{}: count = {} is out of range [1, 1000]", where, count));
-    for (std::int64_t i = 0; i < count; ++i)
-      values.push_back(count == 1 ? from : from + (to - from) * static_cast<double>(i) / static_cast<double>(count - 1));
+    // Each value is the double of the decimal it stands for (1.9 .. 2.4 in 6 steps gives 2.2, not
+    // 2.1999999999999997, which would also name its folder): rounded to 15 significant digits,
+    // which every decimal of at most 15 digits survives; the ends are from and to themselves.
+    for (std::int64_t i = 0; i < count; ++i) {
+      const double v = from + (to - from) * static_cast<double>(i) / static_cast<double>(count - 1);
+      values.push_back(count == 1 || i == 0 ? from : i == count - 1 ? to : std::strtod(fmt::format("{:.15g}", v).c_str(), nullptr));
+    }
   } else {
     throw InputError(where + ": must be a list of numbers or a range {from, to, count}");
   }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 #include "model/config.hpp"
@@ -229,6 +230,27 @@ std::string sweep_of(int masses, int pericenters, bool listed = true) {
 // Issue 28, item 9: every checkpoint stores the resolved configuration (to_toml); of a sweep it
 // holds the [sweep] table, so its size does not grow with the number of encounters (it grew by
 // ~250 bytes per encounter: 2.5 MB at 10,000).
+// A range {from, to, count} stands for decimals: every value is the double of the decimal it names
+// (and so is every folder name), also where from + i (to - from)/(count - 1) rounds off it.
+TEST(Config, ASweepRangeGivesTheDecimalsItNames) {
+  const Config config = parse_config(R"(
+[sweep]
+perturber_mass = [0.5]
+pericenter = { from = 1.9, to = 2.4, count = 6 }
+pericenter_speed = { from = 0.3, to = 1.2, count = 10 }
+)",
+                                     "range.toml");
+  ASSERT_EQ(config.encounters.size(), 60u);
+  std::set<double> qs, speeds;
+  for (const auto& e : config.encounters) {
+    qs.insert(e.pericenter), speeds.insert(e.pericenter_speed);
+    EXPECT_EQ(e.name, fmt::format("M0.5_q{}_V{}", e.pericenter, e.pericenter_speed));
+    EXPECT_LE(e.name.size(), 16u) << e.name;  // no 2.1999999999999997
+  }
+  EXPECT_EQ(qs, (std::set<double>{1.9, 2.0, 2.1, 2.2, 2.3, 2.4}));
+  EXPECT_EQ(speeds, (std::set<double>{0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2}));
+}
+
 TEST(Config, StoredConfigurationOfASweepDoesNotGrowWithItsSize) {
   std::vector<std::size_t> sizes;
   for (const auto& [masses, pericenters] : {std::pair{1, 10}, std::pair{10, 100}, std::pair{100, 100}}) {
