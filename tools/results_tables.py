@@ -816,10 +816,70 @@ def resolution(p):
 
 @full_table("resolution-welded")
 def resolution_welded(p):
-    """T5 on the welded bodies of levels 3-5 (issue 23 item 5)."""
-    return resolution_lines(p, ["welded-L3", "welded-L4", "welded-L5"], [
-        "tidalcrust run workflows/welded-L3.toml   (and -L4, -L5)",
-        "tidalcrust compare --resolution checkpoints/welded-L{3,4,5}/T5/encounter.h5 --json"])
+    """T5 on the welded bodies of levels 3-6 (issue 23 item 5)."""
+    return resolution_lines(p, ["welded-L3", "welded-L4", "welded-L5", "welded-L6"], [
+        "tidalcrust run workflows/welded-L3.toml   (and -L4, -L5, -L6)",
+        "tidalcrust compare --resolution checkpoints/welded-L{3,4,5,6}/T5/encounter.h5 --json"])
+
+
+def ensemble_line_lines(p, folder, label):
+    """One (M2, V_q, eps_S) line of an ensemble sweep from report/ensembles.json and sweep.json: per q
+    the members that cracked (Wilson 95% interval of the share) and the failed springs (mean +- sd),
+    then where half the members crack and where eq. 5 puts strain = eps_S."""
+    e = p.load(Path(folder) / "report" / "ensembles.json")
+    d = p.load(Path(folder) / "report" / "sweep.json")
+    rows = []
+    for r in sorted(e["ensembles"], key=lambda r: r["pericenter"]):
+        c, f = r["cracked"], r["statistics"]["failures"]
+        rows.append([f"{short(r['pericenter'])} R", f"{c['members']} of {r['finished']} [{fixed(c['low'], 2)}, {fixed(c['high'], 2)}]",
+                     f"{fixed(f['mean'], 1)} +- {fixed(f['sd'], 1)}", sig(r["strain_eq5"], 2)])
+    b = d["crack_boundaries"][0]
+    lo, hi = b.get("half_probability_q_low"), b.get("half_probability_q_high")
+    return ([f"{label} (E_I = {fixed(d['youngs_modulus_E_I'], 2)} e_g):", ""]
+            + table(["q", "members cracked (95% interval of the share)", "failed springs (mean +- sd)",
+                     "eq. 5 strain"], rows)
+            + ["", f"Half the members crack at q = {fixed(b['half_probability_q'], 3)} R (95% range "
+               f"{'-' if lo is None else short(lo)} to {'-' if hi is None else short(hi)} R); "
+               f"eq. 5 puts strain = eps_S at q = {fixed(b['eq5_q'], 2)} R.", ""])
+
+
+@full_table("sweep-welded")
+def sweep_welded(p):
+    """sweep-T's M2 = 0.5 line (V_q = 1.6) on material-L4 (paper coupling) and welded-L4, 5 members a point."""
+    folders = [("sweep-material-L4", "material-L4, the paper's coupling"), ("sweep-welded-L4", "welded-L4, welded")]
+    present = [(p.work / f, label) for f, label in folders if (p.work / f / "report" / "ensembles.json").is_file()]
+    first = [sorted(f.glob("M*_m0/encounter.h5"))[0] for f, _ in present]
+    lines = (commands(*[f"tidalcrust run workflows/{f.name}.toml && tidalcrust report workflows/{f.name}.toml"
+                        for f, _ in present])
+             + measured_line(p, *first))
+    for f, label in present:
+        lines += ensemble_line_lines(p, f, label)
+    return lines
+
+
+@full_table("crust-coupling-seeds")
+def crust_coupling_seeds(p):
+    """welded-L4's tide and 0S2 on three body seeds: the spread of each line between bodies."""
+    columns = [(f"seed {k}", p.work / f"welded-L4-s{k}") for k in (1, 2, 3)
+               if (p.work / f"welded-L4-s{k}" / "validate" / "validation.json").is_file()]
+    docs = [p.load(folder / "validate" / "validation.json") for _, folder in columns]
+    rows = []
+    for key, label in COUPLING_ROWS:
+        ratios = [d["comparisons"][key]["ratio"] for d in docs if key in d["comparisons"]]
+        if not ratios:
+            continue
+        mean = sum(ratios) / len(ratios)
+        sd = (sum((x - mean) ** 2 for x in ratios) / (len(ratios) - 1)) ** 0.5 if len(ratios) > 1 else float("nan")
+        tol = docs[0]["comparisons"][key]["tolerance"]
+        rows.append([label] + [fixed(x, 3) + "x" for x in ratios] + [f"{fixed(mean, 3)} +- {fixed(sd, 3)}",
+                                                                     f"{round(tol * 100):d}%"])
+    return (commands(*[f"tidalcrust validate workflows/welded-L4.toml --out {folder.name} --measure tide,ringdown"
+                       + ("" if label == "seed 1" else f" --set workflow.seed={label.split()[1]}")
+                       for label, folder in columns])
+            + measured_line(p, *[folder / "body" / "relax.h5" for _, folder in columns])
+            + ["Each cell: measured / theory (the homogeneous sphere of that body's measured network moduli); "
+               "last columns: mean +- sd over the seeds, and the issue's tolerance.", ""]
+            + table(["", *[label for label, _ in columns], "mean +- sd", "tolerance"], rows))
 
 
 @full_table("sweep-T")
