@@ -142,6 +142,23 @@ TEST(Config, EncounterTablesUseTheSameDescription) {
   EXPECT_THROW(apply_override(config, "encounters.T5.pericenter=true"), InputError);
 }
 
+// Every workflow the project ships reads, validates and keeps its resolved configuration through a
+// write and a read (what each checkpoint stores): none is found broken only when someone runs it.
+TEST(Config, EveryShippedWorkflowReadsAndKeepsItsResolvedConfiguration) {
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(TIDALCRUST_SOURCE_DIR) / "workflows")) {
+    if (entry.path().extension() != ".toml") continue;
+    ++files;
+    const Config config = load_config(entry.path());
+    const std::string stored = to_toml(config);
+    const Config again = parse_config(stored, "stored " + entry.path().filename().string());
+    EXPECT_EQ(to_toml(again), stored) << entry.path();
+    EXPECT_EQ(again.encounters, config.encounters) << entry.path();
+    EXPECT_FALSE(config.encounters.empty()) << entry.path();
+  }
+  EXPECT_GE(files, 21u);
+}
+
 TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
