@@ -105,8 +105,10 @@ std::string checked_against(const fs::path& body_dir) {
   return hash;
 }
 
-/// Encounter folders below `root` (also in dt<factor>/) of the body in `body_dir` (`of_this_body`
-/// of the folder's name) whose first per-encounter stage (`files`: the per-encounter stages' file
+/// Encounter folders below `root` (also in dt<factor>/) of the body of seed `seed` in `body_dir`
+/// (`seed_of_folder` of the folder's name; for a name the workflow does not know, the seed its
+/// checkpoint was computed with, so that a member dropped from a body-seed ensemble is not taken
+/// for the workflow's body's) whose first per-encounter stage (`files`: the per-encounter stages' file
 /// names, in chain order) branched from another relaxed body (that body chain changed) are
 /// superseded: their checkpoints, snapshots and analysis are removed, unless another process holds
 /// the first stage's lock. Unreadable ones are left alone (run reports them when it reaches them).
@@ -114,7 +116,8 @@ std::string checked_against(const fs::path& body_dir) {
 /// `relaxed_hash`, and later runs on the same relaxed body skip the scan: each task of a sweep then
 /// reads no other encounter's files (O(1), not O(N)).
 void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, const fs::path& body_dir,
-                                  const std::function<bool(const std::string&)>& of_this_body,
+                                  std::uint64_t seed,
+                                  const std::function<std::optional<std::uint64_t>(const std::string&)>& seed_of_folder,
                                   const std::vector<fs::path>& files, const std::string& relaxed_hash) {
   if (checked_against(body_dir) == relaxed_hash) return;
   bool every_folder_checked = true;
@@ -128,14 +131,18 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
         if (inner.is_directory(ec)) folders.push_back(inner.path());
   }
   for (const auto& dir : folders) {
-    if (!of_this_body(dir.filename().string())) continue;
+    const std::optional<std::uint64_t> known = seed_of_folder(dir.filename().string());
+    if (known && *known != seed) continue;
     const fs::path file = dir / files.front();
     const fs::path found = fs::exists(file) ? file : sibling_checkpoint(file, "mid");
     if (!fs::exists(found)) continue;
     try {
       const LockAttempt attempt = try_lock_stage(file, "");
       if (!attempt.lock) every_folder_checked = false;
-      if (!attempt.lock || read_checkpoint(found).stage.parent_hash == relaxed_hash) continue;
+      if (!attempt.lock) continue;
+      const Checkpoint first = read_checkpoint(found);
+      if (first.stage.parent_hash == relaxed_hash) continue;
+      if (!known && parse_config(first.config_toml, found.string()).workflow.seed != seed) continue;
       for (const auto& name : files) remove_stage_outputs(dir / name, false);
       fs::remove_all(dir / "analysis", ec);
       say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
@@ -230,12 +237,12 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
 
   // Each body chain once, when its first encounter needs it (the workflow's own body also with
   // no encounter: --body-only); an encounter folder belongs to the body of the workflow's
-  // encounter of that name, an unknown folder to the workflow's own body.
+  // encounter of that name, an unknown one to the body whose seed its checkpoint names.
   std::map<std::uint64_t, BodyChain> chains;
-  const auto body_seed_of_folder = [&](const std::string& name) {
+  const auto body_seed_of_folder = [&](const std::string& name) -> std::optional<std::uint64_t> {
     for (const Encounter& e : config.encounters)
       if (e.name == name) return body_seed_of(config, e);
-    return config.workflow.seed;
+    return std::nullopt;
   };
   const auto chain_for = [&](const Encounter* spec) -> const BodyChain* {
     const std::uint64_t seed = spec ? body_seed_of(config, *spec) : config.workflow.seed;
@@ -245,9 +252,8 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
     if (!chain) return nullptr;
     if (chains.empty())
       if (const auto* relaxed = std::get_if<RelaxRecord>(&chain->relaxed.stage.record)) result.relaxed = *relaxed;
-    remove_superseded_encounters(
-        ctx, options.root, body_dir, [&](const std::string& name) { return body_seed_of_folder(name) == seed; },
-        per_encounter_files, state_hash(chain->relaxed.state));
+    remove_superseded_encounters(ctx, options.root, body_dir, seed, body_seed_of_folder, per_encounter_files,
+                                 state_hash(chain->relaxed.state));
     return &chains.emplace(seed, std::move(*chain)).first->second;
   };
   if (options.encounters.empty() && !chain_for(nullptr)) return interrupted(result);

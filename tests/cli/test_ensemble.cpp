@@ -223,6 +223,16 @@ vary = "body_seed"
   EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["sd"].get<double>(), expected.standard_deviation);
   EXPECT_EQ(row["statistics"]["failures"]["degrees_of_freedom"].get<double>(), 2.0);
 
+  // A folder the workflow does not name (a member dropped from the ensemble, here a copy of T_m1)
+  // that branched from another seed's body is that body's: the scan of the workflow's own body
+  // leaves it alone.
+  fs::copy(straight / "T_m1", straight / "X_m1", fs::copy_options::recursive);
+  fs::remove(straight / "body" / "encounters-checked");
+  const auto again = run_cli("run " + quoted(workflow) + " --out " + quoted(straight) + " --only T_m0");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_TRUE(fs::exists(straight / "X_m1" / "encounter.h5")) << again.out;
+  EXPECT_EQ(again.out.find("removed the encounter"), std::string::npos) << again.out;
+
   // A member's body changed under it (here: removed and rebuilt from another seed's files) makes
   // that member's encounters stale in the report, the others stay finished.
   fs::copy_file(straight / "body-seed5" / "relax.h5", straight / "body-seed4" / "relax.h5",
