@@ -25,8 +25,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The small body and one encounter strong enough to crack it, as a 3-member ensemble.
-fs::path ensemble_workflow(const fs::path& dir) {
+/// The small body and one encounter T strong enough to crack it (then the [[encounters]] tables of
+/// `more`), as a 3-member ensemble whose [ensemble] table ends with `variation`.
+fs::path ensemble_workflow(const fs::path& dir, const std::string& more = "",
+                           const std::string& variation = "pericenter_perturbation = 0.005\n") {
   const auto file = dir / "ensemble.toml";
   std::ofstream(file) << small_body_toml("ens", "failure_strain = 0.002\n") << R"([encounter]
 failure_rule = "paper"
@@ -37,10 +39,8 @@ name = "T"
 perturber_mass = 1.0
 pericenter = 1.6
 pericenter_speed = 1.8
-[ensemble]
-members = 3
-pericenter_perturbation = 0.005
-)";
+)" << more << "[ensemble]\nmembers = 3\n"
+                      << variation;
   return file;
 }
 
@@ -145,25 +145,9 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
 // report summarises the members without a trend (n - 1).
 TEST(Ensemble, MembersOnBodiesOfTheirOwnSeedShareThemAndResumeBitwise) {
   const ScratchFolder scratch("ensemble-seeds");
-  const auto workflow = scratch.path / "seeds.toml";
-  std::ofstream(workflow) << small_body_toml("seeds", "failure_strain = 0.002\n") << R"([encounter]
-failure_rule = "paper"
-start_distance = 2.5
-end_distance = 2.5
-[[encounters]]
-name = "T"
-perturber_mass = 1.0
-pericenter = 1.6
-pericenter_speed = 1.8
-[[encounters]]
-name = "U"
-perturber_mass = 0.5
-pericenter = 1.7
-pericenter_speed = 1.8
-[ensemble]
-members = 3
-vary = "body_seed"
-)";
+  const auto workflow = ensemble_workflow(scratch.path, "[[encounters]]\nname = \"U\"\nperturber_mass = 0.5\npericenter = "
+                                                        "1.7\npericenter_speed = 1.8\n",
+                                          "vary = \"body_seed\"\n");
   const auto straight = scratch.path / "straight";
   const auto ran = run_cli("run " + quoted(workflow) + " --out " + quoted(straight) + " --quiet --jobs 2");
   ASSERT_EQ(ran.exit_code, 0) << ran.err;
