@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <unordered_map>
 
 #include "analysis/fracture_analysis.hpp"
 #include "base/errors.hpp"
@@ -178,11 +179,13 @@ Config body_chain_config(const Config& config, const fs::path& root, const Encou
 namespace {
 
 /// A finished body chain: the configuration its prepare steps left (the relax's time step) and
-/// its last checkpoint, the relaxed body the encounters branch from.
+/// its last checkpoint, the relaxed body the encounters branch from; `encounter_config` is
+/// `config` at the run's dt * dt_factor, what its encounters run with.
 struct BodyChain {
   Config config;
   Checkpoint relaxed;
   fs::path file;
+  Config encounter_config;
 };
 
 /// Runs (or reuses) the body chain of `config` (the stages that are not per encounter, in table
@@ -195,7 +198,7 @@ std::optional<BodyChain> run_body_chain(const RunContext& ctx, const Config& con
   check_same_body(first_file, config);
   test_point_after_body_check();
   fs::create_directories(body_dir);
-  BodyChain chain{config, {}, {}};
+  BodyChain chain{config, {}, {}, {}};
   std::optional<Checkpoint> body;
   for (const StageKind& kind : stage_kinds()) {
     if (kind.per_encounter) continue;
@@ -239,10 +242,11 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   // no encounter: --body-only); an encounter folder belongs to the body of the workflow's
   // encounter of that name, an unknown one to the body whose seed its checkpoint names.
   std::map<std::uint64_t, BodyChain> chains;
+  std::unordered_map<std::string, std::uint64_t> seed_of_encounter;
+  for (const Encounter& e : config.encounters) seed_of_encounter.emplace(e.name, body_seed_of(config, e));
   const auto body_seed_of_folder = [&](const std::string& name) -> std::optional<std::uint64_t> {
-    for (const Encounter& e : config.encounters)
-      if (e.name == name) return body_seed_of(config, e);
-    return std::nullopt;
+    const auto found = seed_of_encounter.find(name);
+    return found == seed_of_encounter.end() ? std::nullopt : std::optional<std::uint64_t>(found->second);
   };
   const auto chain_for = [&](const Encounter* spec) -> const BodyChain* {
     const std::uint64_t seed = spec ? body_seed_of(config, *spec) : config.workflow.seed;
@@ -250,6 +254,8 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
     const fs::path body_dir = body_folder(options.root, config, spec);
     std::optional<BodyChain> chain = run_body_chain(ctx, spec ? body_config_of(config, *spec) : config, body_dir);
     if (!chain) return nullptr;
+    chain->encounter_config = chain->config;
+    if (options.dt_factor != 1.0) scale_time_step(chain->encounter_config, options.dt_factor);
     if (chains.empty())
       if (const auto* relaxed = std::get_if<RelaxRecord>(&chain->relaxed.stage.record)) result.relaxed = *relaxed;
     remove_superseded_encounters(ctx, options.root, body_dir, seed, body_seed_of_folder, per_encounter_files,
@@ -261,8 +267,6 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   for (const auto& spec : options.encounters) {
     const BodyChain* chain = chain_for(&spec);
     if (!chain) return interrupted(result);
-    Config encounter_config = chain->config;
-    if (options.dt_factor != 1.0) scale_time_step(encounter_config, options.dt_factor);
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);
     std::optional<Checkpoint> parent;
@@ -277,7 +281,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
           analyze_if_stale(ctx, job.file, done, dir / "analysis", spec.name);
         };
       }
-      StageResult done = run_stage(job, encounter_config, std::move(stage_options));
+      StageResult done = run_stage(job, chain->encounter_config, std::move(stage_options));
       if (done.outcome == LoopOutcome::interrupted) return interrupted(result);
       parent = std::move(done.checkpoint);
       parent_file = job.file;

@@ -256,14 +256,18 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
   report.dt_factor = dt_factor;
   report.folder = dt_factor == 1.0 ? root : root / fmt::format("dt{}", dt_factor);
   report.youngs_modulus = derive_quantities(relaxed.body, relaxed.state, config.interior.radius).E_I;
-  // Per body seed: the configuration its encounters ran with and its relaxed state's hash ("" while
-  // that body is not relaxed: its encounters cannot be current).
+  // Per body seed: the configuration its encounters ran with (at dt * dt_factor) and its relaxed
+  // state's hash ("" while that body is not relaxed: its encounters cannot be current).
   struct BodyOfEncounters {
     Config config;
     std::string relaxed_hash;
   };
+  const auto at_dt_factor = [&](Config c) {
+    if (dt_factor != 1.0) scale_time_step(c, dt_factor);
+    return c;
+  };
   std::map<std::uint64_t, BodyOfEncounters> bodies;
-  bodies.emplace(config.workflow.seed, BodyOfEncounters{prepared(nullptr), state_hash(relaxed.state)});
+  bodies.emplace(config.workflow.seed, BodyOfEncounters{at_dt_factor(prepared(nullptr)), state_hash(relaxed.state)});
   for (const auto& spec : config.encounters) {
     const std::uint64_t seed = body_seed_of(config, spec);
     auto body = bodies.find(seed);
@@ -275,11 +279,9 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
           if (const Checkpoint c = read_checkpoint(own_relax); c.stage.complete) hash = state_hash(c.state);
       } catch (const InputError&) {  // its encounters are then stale or missing rows, as of an unrun body
       }
-      body = bodies.emplace(seed, BodyOfEncounters{prepared(&spec), hash}).first;
+      body = bodies.emplace(seed, BodyOfEncounters{at_dt_factor(prepared(&spec)), hash}).first;
     }
-    Config encounter_config = body->second.config;
-    if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
-    report.rows.push_back(encounter_row(encounter_config, spec, body->second.relaxed_hash, report.youngs_modulus,
+    report.rows.push_back(encounter_row(body->second.config, spec, body->second.relaxed_hash, report.youngs_modulus,
                                         report.folder / spec.name));
   }
   report.ensembles = ensemble_rows(config, report.rows, report.youngs_modulus);
