@@ -113,6 +113,16 @@ void layout_3_to_4(hid_t root) {
   if (h5::exists(root, "/observables")) h5::check(H5Ldelete(root, "/observables", H5P_DEFAULT), "cannot remove /observables");
 }
 
+/// 4 -> 5 (2026-12-06, the shadow failure rule): an encounter's record gains `shadow_distance`
+/// (R), 0 for the rules before it, which have no stress shadow.
+void layout_4_to_5(hid_t root) {
+  if (!h5::exists(root, "/checkpoint/record")) return;
+  h5::Group g = h5::open_group(root, "/checkpoint");
+  if (!has_attribute(g.get(), "stage") || h5::read_string_attribute(g.get(), "stage") != "encounter") return;
+  h5::Group record = h5::open_group(root, "/checkpoint/record");
+  if (!has_attribute(record.get(), "shadow_distance")) h5::write_attribute<double>(record.get(), "shadow_distance", 0.0);
+}
+
 /// One upgrade step, from format `from` to `from + 1`.
 struct UpgradeStep {
   std::int64_t from;
@@ -124,6 +134,7 @@ struct UpgradeStep {
 /// step here (e.g. a fingerprint scheme: {4, nullptr, recompute_fingerprint}).
 constexpr UpgradeStep upgrade_steps[] = {
     {3, layout_3_to_4, nullptr},
+    {4, layout_4_to_5, nullptr},
 };
 constexpr bool steps_are_consecutive() {
   for (std::size_t i = 0; i < std::size(upgrade_steps); ++i)

@@ -84,12 +84,14 @@ struct ChoiceTable<HydrostaticSupport> {
 enum class FailureRuleKind {
   paper,  ///< section 2.6: the single most strained spring fails, one check every t_fail steps
   local,  ///< every over-strained spring may fail, at most one per crack neighbourhood per relaxation interval
+  shadow, ///< local, and a new crack does not start within shadow_distance of an existing one
 };
 template <>
 struct ChoiceTable<FailureRuleKind> {
   static constexpr std::array rows{
       ChoiceRow<FailureRuleKind>{FailureRuleKind::paper, "paper", "one spring per fail_interval"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::local, "local", "one per neighbourhood per relaxation interval"},
+      ChoiceRow<FailureRuleKind>{FailureRuleKind::shadow, "shadow", "local, no new crack in a crack's stress shadow"},
   };
 };
 

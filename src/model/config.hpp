@@ -114,11 +114,13 @@ struct EncounterDefaults {
   double snapshot_interval = 0.0;
   /// Which springs fail when (model/choices.hpp; docs/failure-rule.md): paper, the single most
   /// strained spring every fail_interval steps (section 2.6); local, every over-strained spring,
-  /// most strained first, at most one per crack neighbourhood per relaxation interval.
+  /// most strained first, at most one per crack neighbourhood per relaxation interval; shadow,
+  /// local with no new crack within shadow_distance of a crack.
   /// Default local (its statistics converge with dt); the paper's workflows name "paper".
   FailureRuleKind failure_rule = FailureRuleKind::local;
   double exclusion_radius = 2.0;           ///< local: neighbourhood radius, in mean shell spacings L_S
   double relaxation_crossings = 2.0;       ///< local: relaxation interval, in shell crossing times L_S/V_SP
+  double shadow_distance = 0.2;            ///< shadow: stress-shadow radius of a crack, R (physical, not in L_S)
 };
 
 /// How self-gravity is computed.

@@ -32,37 +32,57 @@ struct LocalFailureRule {
   bool operator==(const LocalFailureRule&) const = default;
 };
 
+/// "shadow" (docs/failure-rule.md, "A physical crack spacing"): the local rule, and a spring with
+/// no failed shell spring within the local rule's exclusion_distance (it would start a new crack)
+/// fails only if no failed shell spring lies within shadow_distance of it (midpoints, current
+/// positions): a crack unloads the crust beside it, so cracks start at least that far apart at
+/// every resolution, and grow from their tips.
+struct ShadowFailureRule {
+  LocalFailureRule local;       ///< relaxation interval and neighbourhood, as the local rule
+  double shadow_distance = 0;   ///< stress-shadow radius, R (a physical length, not in L_S)
+  bool operator==(const ShadowFailureRule&) const = default;
+};
+
 /// The rule; its alternatives in FailureRuleKind order (a new kind: its struct here, its row in
 /// the choice table, and its code in physics/shell_failure.cpp).
-using FailureRule = std::variant<PaperFailureRule, LocalFailureRule>;
+using FailureRule = std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule>;
 static_assert(std::variant_size_v<FailureRule> == ChoiceTable<FailureRuleKind>::rows.size());
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::local), FailureRule>,
                              LocalFailureRule>);
+static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::shadow), FailureRule>,
+                             ShadowFailureRule>);
 
 /// Which kind `rule` is.
 inline FailureRuleKind kind_of(const FailureRule& rule) { return static_cast<FailureRuleKind>(rule.index()); }
 
 /// The rule as the encounter record stores it (/checkpoint/record: fail_interval, failure_rule,
-/// relaxation_steps, exclusion_distance; docs/checkpoint-layout.md): the parameters of every
-/// kind, 0 for those of another kind (fail_interval: the configured one).
+/// relaxation_steps, exclusion_distance, shadow_distance; docs/checkpoint-layout.md): the
+/// parameters of every kind, 0 for those of another kind (fail_interval: the configured one).
 struct StoredFailureRule {
   std::int64_t fail_interval = 1;
   FailureRuleKind kind = FailureRuleKind::paper;
   std::int64_t relaxation_steps = 0;
   double exclusion_distance = 0;
+  double shadow_distance = 0;
 };
 
 inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
   if (const auto* local = std::get_if<LocalFailureRule>(&rule))
     return {local->configured_fail_interval, FailureRuleKind::local, local->relaxation_steps,
-            local->exclusion_distance};
-  return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0};
+            local->exclusion_distance, 0.0};
+  if (const auto* shadow = std::get_if<ShadowFailureRule>(&rule))
+    return {shadow->local.configured_fail_interval, FailureRuleKind::shadow, shadow->local.relaxation_steps,
+            shadow->local.exclusion_distance, shadow->shadow_distance};
+  return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0};
 }
 
 inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
+  const LocalFailureRule local{stored.relaxation_steps, stored.exclusion_distance, stored.fail_interval};
   switch (stored.kind) {
     case FailureRuleKind::local:
-      return LocalFailureRule{stored.relaxation_steps, stored.exclusion_distance, stored.fail_interval};
+      return local;
+    case FailureRuleKind::shadow:
+      return ShadowFailureRule{local, stored.shadow_distance};
     case FailureRuleKind::paper:
       break;
   }
@@ -79,6 +99,7 @@ void visit_failure_rule(Rule& rule, Visit&& visit) {
   visit("failure_rule", stored.kind, "", "failure rule (model/choices.hpp)");
   visit("relaxation_steps", stored.relaxation_steps, "steps", "local rule: relaxation interval of a crack neighbourhood");
   visit("exclusion_distance", stored.exclusion_distance, "R", "local rule: crack neighbourhood radius");
+  visit("shadow_distance", stored.shadow_distance, "R", "shadow rule: no new crack this close to a crack");
   if constexpr (!std::is_const_v<Rule>) rule = failure_rule_of(stored);
 }
 

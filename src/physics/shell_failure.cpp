@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -10,6 +11,7 @@
 
 #include "base/errors.hpp"
 #include "base/vec3.hpp"
+#include "bodies/neighbor_grid.hpp"
 #include "forces/spring_force.hpp"
 #include "model/derived_quantities.hpp"
 
@@ -76,11 +78,48 @@ FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double s
   return event;
 }
 
+/// Where the failed shell springs are, for the shadow rule: a grid of their midpoints. A candidate
+/// with a failed spring within the crack neighbourhood (the exclusion distance) extends that crack;
+/// one without, but with a failed spring within the shadow distance, would start a new crack in its
+/// stress shadow.
+class CrackMap {
+ public:
+  CrackMap(const Body& body, const State& state, double shadow_distance)
+      : shadow_distance_(shadow_distance), grid_(grid_over(state, shadow_distance)) {
+    for (std::size_t n = 0; n < body.spring_count(); ++n)
+      if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell) && state.springs.failed[n])
+        add(spring_midpoint(body, state, n));
+  }
+  /// True if a candidate at `mid` would start a new crack within the shadow distance of a failed
+  /// spring (none within `neighbourhood`, one within the shadow distance).
+  bool shadowed(const Vec3& mid, double neighbourhood) const {
+    return !grid_.any_closer_than(mid, neighbourhood) && grid_.any_closer_than(mid, shadow_distance_);
+  }
+  void add(const Vec3& mid) { grid_.insert(mid); }
+
+ private:
+  /// A grid over the particles' bounding box, cells of the shadow distance (at most 64 a side).
+  static NeighborGrid grid_over(const State& state, double shadow_distance) {
+    Vec3 lo = vec3_at(state.position, 0), hi = lo;
+    for (std::size_t i = 1; i < state.position.size() / 3; ++i) {
+      const Vec3 p = vec3_at(state.position, i);
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    return NeighborGrid(lo, hi, std::max(shadow_distance, (hi - lo).maxCoeff() / 64));
+  }
+
+  double shadow_distance_;
+  NeighborGrid grid_;  // points outside its box are found too, only more slowly
+};
+
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
 /// fails unless a failure of the last relaxation_steps steps (or of this check) lies within
-/// exclusion_distance of it (midpoints, current positions).
-std::size_t fail_local(const LocalFailureRule& rule, const FailureThreshold& threshold, const Body& body, State& state,
-                       std::vector<FailureEvent>& log) {
+/// exclusion_distance of it (midpoints, current positions). With a shadow distance (> 0, the
+/// shadow rule) a candidate with no failed shell spring within exclusion_distance (it would start a
+/// new crack) also waits while any failed shell spring lies within the shadow distance.
+std::size_t fail_local(const LocalFailureRule& rule, double shadow_distance, const FailureThreshold& threshold,
+                       const Body& body, State& state, std::vector<FailureEvent>& log) {
   std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     if (!is_unfailed_shell(body, state, n)) continue;
@@ -94,15 +133,18 @@ std::size_t fail_local(const LocalFailureRule& rule, const FailureThreshold& thr
   std::vector<Vec3> relaxing;
   for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.relaxation_steps; ++e)
     relaxing.push_back(spring_midpoint(body, state, static_cast<std::size_t>(e->spring)));
+  std::optional<CrackMap> cracks;
+  if (shadow_distance > 0) cracks.emplace(body, state, shadow_distance);
   const double r2 = rule.exclusion_distance * rule.exclusion_distance;
   std::size_t failed = 0;
   for (const auto& [strain, n] : candidates) {
     const Vec3 mid = spring_midpoint(body, state, n);
     const bool excluded =
         std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
-    if (excluded) continue;
+    if (excluded || (cracks && cracks->shadowed(mid, rule.exclusion_distance))) continue;
     log.push_back(fail_spring(body, state, n, strain, threshold.failed_stiffness_factor));
     relaxing.push_back(mid);
+    if (cracks) cracks->add(mid);
     ++failed;
   }
   return failed;
@@ -115,19 +157,22 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
   switch (config.encounter.failure_rule) {
     case FailureRuleKind::paper:
       break;
-    case FailureRuleKind::local: {
+    case FailureRuleKind::local:
+    case FailureRuleKind::shadow: {
       // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
       if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
       if (!(q.L_S > 0) || !(q.V_SP > 0))
         throw InputError(fmt::format("encounter.failure_rule = \"{}\" needs a shell (no shell springs in this body)",
-                                     choice_name(FailureRuleKind::local)));
+                                     choice_name(config.encounter.failure_rule)));
       const double crossing_time = q.L_S / q.V_SP;
       LocalFailureRule rule;
       rule.relaxation_steps = std::max<std::int64_t>(
           1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
       rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
       rule.configured_fail_interval = config.encounter.fail_interval;
+      if (config.encounter.failure_rule == FailureRuleKind::shadow)
+        return ShadowFailureRule{rule, config.encounter.shadow_distance};
       return rule;
     }
   }
@@ -136,7 +181,9 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
 
 std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,
                                State& state, std::int64_t start_step, std::vector<FailureEvent>& log) {
-  if (const auto* local = std::get_if<LocalFailureRule>(&rule)) return fail_local(*local, threshold, body, state, log);
+  if (const auto* local = std::get_if<LocalFailureRule>(&rule)) return fail_local(*local, 0.0, threshold, body, state, log);
+  if (const auto* shadow = std::get_if<ShadowFailureRule>(&rule))
+    return fail_local(shadow->local, shadow->shadow_distance, threshold, body, state, log);
   if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);
   if (!event) return 0;

@@ -478,13 +478,13 @@ TEST(RunWorkflow, AnUnreadableCheckpointIsRetriedThenReportedNeverTakenForAbsent
   // replaced by a stage begun again.
   const fs::path newer = copy_of_base("newer");
   edit_in_place(newer / "body" / "relax.mid.h5",
-                [](hid_t f) { overwrite_attribute<std::int64_t>(f, "/checkpoint", "format_version", 5); });
+                [](hid_t f) { overwrite_attribute<std::int64_t>(f, "/checkpoint", "format_version", checkpoint_format_version + 1); });
   const std::string newer_bytes = read_file(newer / "body" / "relax.mid.h5");
   const auto refused = run_cli("run " + quoted(workflow) + " --body-only --out " + quoted(newer));
   EXPECT_EQ(refused.exit_code, 2) << refused.err;
   // One error line (after the note that the killed run's lock was taken over).
   EXPECT_EQ(count_lines(refused.err.substr(refused.err.find("error:"))), 1) << refused.err;
-  EXPECT_NE(refused.err.find("relax.mid.h5: written by a newer tidalcrust (format 5)"), std::string::npos)
+  EXPECT_NE(refused.err.find(fmt::format("relax.mid.h5: written by a newer tidalcrust (format {})", checkpoint_format_version + 1)), std::string::npos)
       << refused.err;
   EXPECT_NE(refused.err.find("kept; remove it to begin relax again"), std::string::npos) << refused.err;
   EXPECT_EQ(read_file(newer / "body" / "relax.mid.h5"), newer_bytes);

@@ -183,3 +183,90 @@ TEST(FailureRuleSchedule, LocalIntervalIsCrossingTimesInStepsConvertedOnce) {
   config.encounter.fail_interval = 3;
   EXPECT_EQ(make_failure_rule(config, std::nullopt, r.body, r.state, 0.001), FailureRule(PaperFailureRule{3}));
 }
+
+namespace {
+
+/// The shadow rule's scene, shell springs on the x axis (length 0.1): a crack (spring 0, failed,
+/// particles 0-1 at x = 0, 0.1) and, all strained beyond eps_S, spring 1 joined to it (particles 1-2,
+/// midpoints 0.1 apart), spring 2 beside it (x = 0.3-0.4, midpoints 0.3 apart), spring 3 far away
+/// (x = 3.0-3.1) and spring 4 near spring 3 (x = 3.2-3.3, 0.2 from it).
+struct CrackScene {
+  Body body;
+  State state;
+  CrackScene() {
+    const double x[] = {0.0, 0.1, 0.2, 0.3, 0.4, 3.0, 3.1, 3.2, 3.3};
+    for (double xi : x) {
+      body.mass.push_back(0.1);
+      body.species.push_back(1);
+      state.position.insert(state.position.end(), {xi, 0, 0});
+    }
+    body.springs = {{0, 1}, {1, 2}, {3, 4}, {5, 6}, {7, 8}};
+    body.spring_kind.assign(5, 1);
+    state.springs.stiffness.assign(5, 1.0);
+    state.springs.failed = {1, 0, 0, 0, 0};
+    // Strains: the crack 5%, then 1%, 4%, 3%, 2%.
+    for (double strain : {0.05, 0.01, 0.04, 0.03, 0.02}) state.springs.rest_length.push_back(0.1 / (1 + strain));
+    state.velocity.assign(state.position.size(), 0.0);
+    state.step = 10;
+  }
+  /// Relaxation interval 1 step: only the exclusion and the shadow hold a candidate back.
+  static FailureRule shadow(double neighbourhood, double distance) {
+    return ShadowFailureRule{LocalFailureRule{1, neighbourhood, 1}, distance};
+  }
+  static constexpr FailureThreshold threshold{0.001, 0.005};
+};
+
+std::vector<std::int32_t> failed_springs(const std::vector<FailureEvent>& log) {
+  std::vector<std::int32_t> springs;
+  for (const auto& e : log) springs.push_back(e.spring);
+  return springs;
+}
+
+}  // namespace
+
+TEST(ShadowFailureRule, ACrackGrowsButNoNewCrackStartsInItsShadow) {
+  CrackScene s;
+  std::vector<FailureEvent> log;
+  // Neighbourhood 0.15, shadow 0.5, most strained first: spring 2 (0.3 from the crack) would start
+  // a new crack in its shadow and waits; spring 3 starts one far away; spring 4 (0.2 from it) then
+  // waits in that one's shadow; spring 1 (0.1 from the crack) extends it.
+  EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.5), CrackScene::threshold, s.body, s.state, 0, log), 2u);
+  EXPECT_EQ(failed_springs(log), (std::vector<std::int32_t>{3, 1}));
+  EXPECT_EQ(s.state.springs.failed, (std::vector<std::uint8_t>{1, 1, 0, 1, 0}));
+  // Later checks: spring 2 is 0.2 from the crack's new end, spring 4 0.2 from spring 3: a shadow
+  // does not expire.
+  s.state.step = 1000;
+  EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.5), CrackScene::threshold, s.body, s.state, 0, log), 0u);
+
+  // Within the neighbourhood a spring extends the crack without sharing a node with it.
+  CrackScene wide;
+  std::vector<FailureEvent> wide_log;
+  EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.35, 0.5), CrackScene::threshold, wide.body, wide.state, 0, wide_log),
+            2u);
+  EXPECT_EQ(failed_springs(wide_log), (std::vector<std::int32_t>{2, 3}));  // 1 and 4 then wait (local rule)
+
+  // A shadow no longer than the neighbourhood changes nothing: the local rule's failures.
+  CrackScene short_shadow, local;
+  std::vector<FailureEvent> short_log, local_log;
+  EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.15), CrackScene::threshold, short_shadow.body,
+                               short_shadow.state, 0, short_log),
+            4u);
+  EXPECT_EQ(apply_failure_rule(LocalFailureRule{1, 0.15, 1}, CrackScene::threshold, local.body, local.state, 0, local_log),
+            4u);
+  EXPECT_EQ(failed_springs(local_log), failed_springs(short_log));
+}
+
+TEST(ShadowFailureRule, ScheduleIsTheLocalRulesWithTheShadowInR) {
+  Config config;
+  config.encounter.failure_rule = FailureRuleKind::shadow;
+  config.encounter.shadow_distance = 0.3;
+  Row r;
+  const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, 0.001);
+  ASSERT_EQ(kind_of(rule), FailureRuleKind::shadow);
+  config.encounter.failure_rule = FailureRuleKind::local;
+  EXPECT_EQ(std::get<ShadowFailureRule>(rule).local, std::get<LocalFailureRule>(make_failure_rule(config, std::nullopt, r.body, r.state, 0.001)));
+  EXPECT_EQ(std::get<ShadowFailureRule>(rule).shadow_distance, 0.3);  // a length in R, whatever L_S is
+  // Every kind is stored and read back as it was.
+  for (const FailureRule& each : {rule, FailureRule(PaperFailureRule{4}), FailureRule(LocalFailureRule{7, 0.25, 2})})
+    EXPECT_EQ(failure_rule_of(stored_failure_rule(each)), each);
+}

@@ -85,7 +85,8 @@ const char* const variant_sets[] = {"gravity.method=tree",    "encounter.failure
                                     "core.radius=0.4",        "core.density_ratio=2.0",       "core.modulus_ratio=3.0",
                                     "encounters.A.relaxation_crossings=1.5"};
 
-/// A tiny [material] body with a core, the balanced crust and its own dt (chosen by relax's prepare).
+/// A tiny [material] body with a core, the balanced crust, the shadow failure rule and its own dt
+/// (chosen by relax's prepare).
 const char* const material_toml = R"(
 [workflow]
 name = "tiny-material"
@@ -115,7 +116,8 @@ crust_support = "balanced"
 start_distance = 1.35
 end_distance = 1.35
 sample_interval = 5
-failure_rule = "local"
+failure_rule = "shadow"
+shadow_distance = 0.6
 [[encounters]]
 name = "A"
 perturber_mass = 1.0
@@ -275,7 +277,7 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
       }
     }
   }
-  EXPECT_EQ(tried.size(), 75u);  // every key got a valid other value in some base
+  EXPECT_EQ(tried.size(), 76u);  // every key got a valid other value in some base
   // Every declared key shows its effect on some tiny body, but those listed (with the reason).
   for (const std::string& key : tried) {
     const bool listed = declared_without_visible_effect.contains(key);
