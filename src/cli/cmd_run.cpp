@@ -124,7 +124,7 @@ int command_run(int argc, char** argv) {
       "threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))(
       "dt-factor", "run the encounters at dt times this factor, into a separate folder",
       cxxopts::value<double>()->default_value("1.0"))(
-      "only", "run only this encounter (repeatable)", cxxopts::value<std::vector<std::string>>())(
+      "only", "run only this encounter, or every member of this ensemble encounter (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "body-only", "run only the body chain (build, stretch, relax), no encounter")(
       "jobs", "run this many encounters at once, each in a process of its own, the threads split among them",
       cxxopts::value<int>()->default_value("1"))(
@@ -163,7 +163,7 @@ int command_run(int argc, char** argv) {
   } else if (parsed.count("only")) {
     encounters.clear();
     for (const auto& name : parsed["only"].as<std::vector<std::string>>())
-      encounters.push_back(config.find_encounter(name));
+      for (Encounter& e : config.encounters_named(name)) encounters.push_back(std::move(e));
   }
   // Every encounter to run must be resolved by its time step (dt times --dt-factor), checked
   // here too so that an unresolvable one is refused before the body is built.

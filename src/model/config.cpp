@@ -881,6 +881,15 @@ const Encounter& Config::find_encounter(const std::string& name) const {
                                known.empty() ? "none" : known));
 }
 
+std::vector<Encounter> Config::encounters_named(const std::string& name) const {
+  const bool is_base = ensemble && std::any_of(ensemble_bases.begin(), ensemble_bases.end(),
+                                               [&](const Encounter& b) { return b.name == name; });
+  if (!is_base) return {find_encounter(name)};
+  std::vector<Encounter> members;
+  for (std::int64_t k = 0; k < ensemble->members; ++k) members.push_back(find_encounter(fmt::format("{}_m{}", name, k)));
+  return members;
+}
+
 void scale_time_step(Config& config, double factor) {
   config.integrator.dt *= factor;
   visit_keys(config, [factor](auto& steps, const auto& key) {

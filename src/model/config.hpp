@@ -249,6 +249,10 @@ struct Config {
 
   /// The encounter with this name; InputError listing the known names otherwise.
   const Encounter& find_encounter(const std::string& name) const;
+  /// The encounters `run --only NAME` means: the encounter of that name, or, for the name of an
+  /// [ensemble]'s base encounter, all its members (NAME_m0, NAME_m1, ...) in order. InputError as
+  /// find_encounter when there is neither.
+  std::vector<Encounter> encounters_named(const std::string& name) const;
 };
 
 /// The seed of the body `encounter` branches from: its body_seed, or workflow.seed.

@@ -163,7 +163,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
   const auto keys = describe_keys(config);
-  EXPECT_EQ(keys.size(), 68u);  // every key of Config, [workflow] to [core]
+  EXPECT_EQ(keys.size(), 69u);  // every key of Config, [workflow] to [core]
   for (const KeyInfo& key : keys) {
     if (!key.value) {  // an unset optional key: to_toml leaves it out
       EXPECT_TRUE(key.optional) << key.section << "." << key.name;
@@ -541,6 +541,13 @@ vary = "body_seed"
   const std::string stored = to_toml(config);
   EXPECT_NE(stored.find("vary = \"body_seed\""), std::string::npos) << stored;
   EXPECT_EQ(parse_config(stored, "stored").encounters, config.encounters);
+  // run --only: a base's name means its members in order, a member's name that member alone.
+  std::vector<std::string> named;
+  for (const auto& e : config.encounters_named("own")) named.push_back(e.name);
+  EXPECT_EQ(named, (std::vector<std::string>{"own_m0", "own_m1", "own_m2"}));
+  ASSERT_EQ(config.encounters_named("T5_m1").size(), 1u);
+  EXPECT_EQ(config.encounters_named("T5_m1")[0].body_seed, 8u);
+  EXPECT_THROW(config.encounters_named("T6"), InputError);
 
   // "both": its own body and its own pericenter.
   Config both = parse_config("[workflow]\nseed = 1\n[[encounters]]\nname = \"T\"\npericenter = 2.0\n", "b.toml");
