@@ -822,6 +822,14 @@ def resolution_welded(p):
         "tidalcrust compare --resolution checkpoints/welded-L{3,4,5,6}/T5/encounter.h5 --json"])
 
 
+@full_table("resolution-welded-shadow")
+def resolution_welded_shadow(p):
+    """T5 on the welded bodies of levels 3-5 with the shadow failure rule (issue 24 item 4)."""
+    return resolution_lines(p, ["shadow-welded-L3", "shadow-welded-L4", "shadow-welded-L5"], [
+        "tidalcrust run workflows/welded-L3.toml --set encounter.failure_rule=shadow --out shadow-welded-L3   (and -L4, -L5)",
+        "tidalcrust compare --resolution shadow-welded-L{3,4,5}/T5/encounter.h5 --json"])
+
+
 def ensemble_line_lines(p, folder, label):
     """One (M2, V_q, eps_S) line of an ensemble sweep from report/ensembles.json and sweep.json: per q
     the members that cracked (Wilson 95% interval of the share) and the failed springs (mean +- sd),
@@ -854,6 +862,55 @@ def sweep_welded(p):
              + measured_line(p, *first))
     for f, label in present:
         lines += ensemble_line_lines(p, f, label)
+    return lines
+
+
+ENSEMBLE_COLUMNS = [("failures", "failed shell springs", 1), ("total_crack_length", "total crack length [R]", 2),
+                    ("largest_network_length", "largest connected crack [R]", 2), ("cracks", "cracks (clusters)", 1),
+                    ("hemisphere_fraction", "on the pericenter hemisphere", 3), ("median_angle", "median angle [deg]", 1),
+                    ("concentricity", "concentricity", 3), ("median_arc_radius", "median arc radius [deg]", 1)]
+
+
+def ensemble_cell(stat, digits):
+    """mean +- sd [95% interval of the mean] of one statistic of ensembles.json."""
+    if not stat or stat.get("count", 0) < 2:
+        return "-"
+    return (f"{fixed(stat['mean'], digits)} +- {fixed(stat['sd'], digits)} "
+            f"[{fixed(stat['low'], digits)}, {fixed(stat['high'], digits)}]")
+
+
+def ensemble_rows(p, runs, encounter):
+    """One row per (run folder, label): the ensemble `encounter` of its report/ensembles.json."""
+    rows = []
+    for folder, label in runs:
+        e = p.load(p.work / folder / "report" / "ensembles.json")
+        r = next(x for x in e["ensembles"] if x["name"] == encounter)
+        rows.append([f"{label} ({r['finished']} of {r['members']}, {e['vary']})"]
+                    + [ensemble_cell(r["statistics"].get(key), digits) for key, _, digits in ENSEMBLE_COLUMNS])
+    return rows
+
+
+@full_table("ensembles-T5")
+def ensembles_t5(p):
+    """crust-T T5 and material-L4 T5 as 10-member ensembles, members at perturbed pericenters and on
+    bodies of their own seed (issue 24)."""
+    runs = [("ens-crust-T", "crust-T"), ("ens-crust-T-seeds", "crust-T"),
+            ("ens-material-L4", "material-L4"), ("ens-material-L4-seeds", "material-L4")]
+    lines = commands(
+        "tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --only T5 --out ens-crust-T",
+        "tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --set ensemble.vary=body_seed --only T5 --out ens-crust-T-seeds",
+        "(the same with workflows/material-L4.toml into ens-material-L4, ens-material-L4-seeds)",
+        "tidalcrust report WORKFLOW (the same --set and --out)",
+        "tidalcrust compare --ensembles ens-crust-T/report/ensembles.json ens-crust-T-seeds/report/ensembles.json")
+    lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f, _ in runs])
+    lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
+                   ensemble_rows(p, runs, "T5"))
+    for a, b in (runs[0:2], runs[2:4]):
+        text = p("compare", "--ensembles", p.work / a[0] / "report" / "ensembles.json",
+                 p.work / b[0] / "report" / "ensembles.json")
+        wanted = [l for l in text.splitlines() if l.startswith("ensemble T5")
+                  or l.split()[:1] and l.split()[0] in [k for k, _, _ in ENSEMBLE_COLUMNS]]
+        lines += ["", f"{a[1]}: A pericenter, B body seeds", "", "```"] + wanted + ["```"]
     return lines
 
 

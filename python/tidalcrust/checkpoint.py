@@ -19,7 +19,7 @@ UNITS_NOTE = ("model units G = M = R = 1: lengths in R (the body's radius), mass
               "t_grav = sqrt(R^3/(G M)), velocities in sqrt(G M/R), energies in G M^2/R; the file's H5MD "
               "unit strings (nm, ps, 14983000 kg) stand for R, t_grav and M and are not converted")
 
-READABLE_FORMATS = (4,)
+READABLE_FORMATS = (4, 5)
 
 # Units of the timeseries columns (docs/checkpoint-layout.md).
 _TIMESERIES_UNITS = {
@@ -96,7 +96,8 @@ def _open_h5(path: Path) -> h5py.File:
     version = int(handle["checkpoint"].attrs["format_version"])
     if version not in READABLE_FORMATS:
         handle.close()
-        raise CheckpointError(f"{path}: checkpoint format {version}; this package reads format 4 "
+        raise CheckpointError(f"{path}: checkpoint format {version}; this package reads formats "
+                              f"{', '.join(map(str, READABLE_FORMATS))} "
                               f"(`tidalcrust inspect` reads older ones)")
     return handle
 

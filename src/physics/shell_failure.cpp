@@ -78,24 +78,39 @@ FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double s
   return event;
 }
 
-/// Where the failed shell springs are, for the shadow rule: a grid of their midpoints. A candidate
-/// with a failed spring within the crack neighbourhood (the exclusion distance) extends that crack;
-/// one without, but with a failed spring within the shadow distance, would start a new crack in its
-/// stress shadow.
+/// Where the failed shell springs are, for the shadow rule: their midpoints (in a grid) and axes.
+/// A failed spring's crack runs across it, so a candidate extends that crack when its midpoint lies
+/// within the crack neighbourhood (the exclusion distance) and at least 45 degrees off the failed
+/// spring's axis (ahead of the crack, not on its flanks, which the opening unloads). A candidate
+/// that extends no crack but has a failed spring within the shadow distance would start a new crack
+/// in that crack's stress shadow.
 class CrackMap {
  public:
   CrackMap(const Body& body, const State& state, double shadow_distance)
       : shadow_distance_(shadow_distance), grid_(grid_over(state, shadow_distance)) {
     for (std::size_t n = 0; n < body.spring_count(); ++n)
       if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell) && state.springs.failed[n])
-        add(spring_midpoint(body, state, n));
+        add(body, state, n);
   }
-  /// True if a candidate at `mid` would start a new crack within the shadow distance of a failed
-  /// spring (none within `neighbourhood`, one within the shadow distance).
+  /// True if a candidate at `mid` extends no crack (see above) and has a failed spring within the
+  /// shadow distance.
   bool shadowed(const Vec3& mid, double neighbourhood) const {
-    return !grid_.any_closer_than(mid, neighbourhood) && grid_.any_closer_than(mid, shadow_distance_);
+    const std::vector<std::int32_t> near = grid_.closer_than(mid, shadow_distance_);
+    for (const std::int32_t id : near) {
+      const Vec3 offset = mid - grid_.point(id);
+      const double distance = offset.norm();
+      // cos 45 deg = 1/sqrt(2): |offset . axis| <= |offset| / sqrt(2), squared to avoid the root.
+      const double along = offset.dot(axis_[static_cast<std::size_t>(id)]);
+      if (distance < neighbourhood && 2 * along * along <= distance * distance) return false;
+    }
+    return !near.empty();
   }
-  void add(const Vec3& mid) { grid_.insert(mid); }
+  void add(const Body& body, const State& state, std::size_t n) {
+    const auto i = static_cast<std::size_t>(body.springs[n][0]);
+    const auto j = static_cast<std::size_t>(body.springs[n][1]);
+    grid_.insert(spring_midpoint(body, state, n));
+    axis_.push_back((vec3_at(state.position, j) - vec3_at(state.position, i)).normalized());
+  }
 
  private:
   /// A grid over the particles' bounding box, cells of the shadow distance (at most 64 a side).
@@ -110,14 +125,15 @@ class CrackMap {
   }
 
   double shadow_distance_;
-  NeighborGrid grid_;  // points outside its box are found too, only more slowly
+  NeighborGrid grid_;        // midpoints; points outside its box are found too, only more slowly
+  std::vector<Vec3> axis_;   // unit axis of each failed spring, by grid id
 };
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
 /// fails unless a failure of the last relaxation_steps steps (or of this check) lies within
 /// exclusion_distance of it (midpoints, current positions). With a shadow distance (> 0, the
-/// shadow rule) a candidate with no failed shell spring within exclusion_distance (it would start a
-/// new crack) also waits while any failed shell spring lies within the shadow distance.
+/// shadow rule) a candidate that extends no crack (CrackMap) also waits while any failed shell
+/// spring lies within the shadow distance.
 std::size_t fail_local(const LocalFailureRule& rule, double shadow_distance, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
   std::vector<std::pair<double, std::size_t>> candidates;
@@ -144,7 +160,7 @@ std::size_t fail_local(const LocalFailureRule& rule, double shadow_distance, con
     if (excluded || (cracks && cracks->shadowed(mid, rule.exclusion_distance))) continue;
     log.push_back(fail_spring(body, state, n, strain, threshold.failed_stiffness_factor));
     relaxing.push_back(mid);
-    if (cracks) cracks->add(mid);
+    if (cracks) cracks->add(body, state, n);
     ++failed;
   }
   return failed;

@@ -56,5 +56,5 @@ TEST(StageRecord, EveryFieldIsVisitedOnceWithAUnit) {
   check(BuildRecord{}, 3);
   check(StretchRecord{}, 9);
   check(RelaxRecord{}, 13);
-  check(EncounterRecord{}, 24);  // 18 + the energy budget's three accumulators + the local rule's three
+  check(EncounterRecord{}, 25);  // 18 + the energy budget's three accumulators + the local rule's three + shadow_distance
 }

@@ -186,21 +186,23 @@ TEST(FailureRuleSchedule, LocalIntervalIsCrossingTimesInStepsConvertedOnce) {
 
 namespace {
 
-/// The shadow rule's scene, shell springs on the x axis (length 0.1): a crack (spring 0, failed,
-/// particles 0-1 at x = 0, 0.1) and, all strained beyond eps_S, spring 1 joined to it (particles 1-2,
-/// midpoints 0.1 apart), spring 2 beside it (x = 0.3-0.4, midpoints 0.3 apart), spring 3 far away
-/// (x = 3.0-3.1) and spring 4 near spring 3 (x = 3.2-3.3, 0.2 from it).
+/// The shadow rule's scene, shell springs of length 0.1 along x: a crack (spring 0, failed, from
+/// (0, 0) to (0.1, 0)) and, all strained beyond eps_S, spring 1 in the next lattice row ahead of the
+/// crack (from (0.05, 0.0866): its midpoint 0.1 away at 60 degrees from the crack spring's axis,
+/// sharing no node with it), spring 2 on the crack's flank (x = 0.2-0.3, on its axis, 0.2 away),
+/// spring 3 far away (x = 3.0-3.1) and spring 4 on its axis 0.2 from it (x = 3.2-3.3).
 struct CrackScene {
   Body body;
   State state;
   CrackScene() {
-    const double x[] = {0.0, 0.1, 0.2, 0.3, 0.4, 3.0, 3.1, 3.2, 3.3};
-    for (double xi : x) {
+    const double xy[][2] = {{0.0, 0}, {0.1, 0}, {0.05, 0.0866}, {0.15, 0.0866}, {0.2, 0},
+                            {0.3, 0}, {3.0, 0}, {3.1, 0},       {3.2, 0},       {3.3, 0}};
+    for (const auto& p : xy) {
       body.mass.push_back(0.1);
       body.species.push_back(1);
-      state.position.insert(state.position.end(), {xi, 0, 0});
+      state.position.insert(state.position.end(), {p[0], p[1], 0});
     }
-    body.springs = {{0, 1}, {1, 2}, {3, 4}, {5, 6}, {7, 8}};
+    body.springs = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {8, 9}};
     body.spring_kind.assign(5, 1);
     state.springs.stiffness.assign(5, 1.0);
     state.springs.failed = {1, 0, 0, 0, 0};
@@ -224,26 +226,27 @@ std::vector<std::int32_t> failed_springs(const std::vector<FailureEvent>& log) {
 
 }  // namespace
 
-TEST(ShadowFailureRule, ACrackGrowsButNoNewCrackStartsInItsShadow) {
+TEST(ShadowFailureRule, ACrackGrowsAheadButNoNewCrackStartsInItsShadow) {
   CrackScene s;
   std::vector<FailureEvent> log;
-  // Neighbourhood 0.15, shadow 0.5, most strained first: spring 2 (0.3 from the crack) would start
-  // a new crack in its shadow and waits; spring 3 starts one far away; spring 4 (0.2 from it) then
-  // waits in that one's shadow; spring 1 (0.1 from the crack) extends it.
+  // Neighbourhood 0.15, shadow 0.5, most strained first: spring 2 (0.2 from the crack, on its flank)
+  // would start a new crack in its shadow and waits; spring 3 starts one far away; spring 4 then
+  // waits in that one's shadow; spring 1 (0.1 ahead of the crack) extends it.
   EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.5), CrackScene::threshold, s.body, s.state, 0, log), 2u);
   EXPECT_EQ(failed_springs(log), (std::vector<std::int32_t>{3, 1}));
   EXPECT_EQ(s.state.springs.failed, (std::vector<std::uint8_t>{1, 1, 0, 1, 0}));
-  // Later checks: spring 2 is 0.2 from the crack's new end, spring 4 0.2 from spring 3: a shadow
+  // Later checks: spring 2 is 0.17 from the crack's new end, spring 4 0.2 from spring 3: a shadow
   // does not expire.
   s.state.step = 1000;
   EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.5), CrackScene::threshold, s.body, s.state, 0, log), 0u);
 
-  // Within the neighbourhood a spring extends the crack without sharing a node with it.
+  // A spring on a crack's flank does not extend it, however close: with a neighbourhood of 0.35
+  // spring 2 (0.2 away, along the crack spring's axis) still waits in the shadow.
   CrackScene wide;
   std::vector<FailureEvent> wide_log;
   EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.35, 0.5), CrackScene::threshold, wide.body, wide.state, 0, wide_log),
             2u);
-  EXPECT_EQ(failed_springs(wide_log), (std::vector<std::int32_t>{2, 3}));  // 1 and 4 then wait (local rule)
+  EXPECT_EQ(failed_springs(wide_log), (std::vector<std::int32_t>{3, 1}));  // 4 waits for spring 3 (local rule)
 
   // A shadow no longer than the neighbourhood changes nothing: the local rule's failures.
   CrackScene short_shadow, local;
