@@ -914,6 +914,43 @@ def ensembles_t5(p):
     return lines
 
 
+@full_table("sweep-T-ensemble")
+def sweep_t_ensemble(p):
+    """sweep-T's M2 = 0.5 grid with 5 members a point (issue 24): members cracked per (V_q, q) with
+    the Wilson interval of the share, and per V_q where half the members crack against eq. 5."""
+    folder = p.work / "ens-sweep-T"
+    e = p.load(folder / "report" / "ensembles.json")
+    d = p.load(folder / "report" / "sweep.json")
+    points = [r for r in e["ensembles"] if r["perturber_mass"] == 0.5 and r["finished"] > 0]
+    qs = sorted({r["pericenter"] for r in points})
+    vs = sorted({r["pericenter_speed"] for r in points})
+    at = {(r["pericenter_speed"], r["pericenter"]): r for r in points}
+
+    def cell(v, q):
+        r = at.get((v, q))
+        if r is None:
+            return "-"
+        c = r["cracked"]
+        return f"{c['members']} of {r['finished']} [{fixed(c['low'], 2)}, {fixed(c['high'], 2)}]"
+
+    rows = [[f"V_q = {short(v)}"] + [cell(v, q) for q in qs] for v in vs]
+    bounds = []
+    for b in sorted((b for b in d["crack_boundaries"] if b["perturber_mass"] == 0.5), key=lambda b: b["pericenter_speed"]):
+        h, lo, hi = b.get("half_probability_q"), b.get("half_probability_q_low"), b.get("half_probability_q_high")
+        bounds.append([f"V_q = {short(b['pericenter_speed'])}", "-" if h is None else fixed(h, 2) + " R",
+                       f"{'-' if lo is None else short(lo)} to {'-' if hi is None else short(hi)} R",
+                       fixed(b["eq5_q"], 2) + " R"])
+    first = sorted(folder.glob("M0.5_*_m0/encounter.h5"))[:1]
+    return (commands("tidalcrust run workflows/sweep-T.toml --set ensemble.members=5 --only M0.5_q1.5_V1.4 ... "
+                     "--only M0.5_q2.75_V2.2 --out ens-sweep-T   (the 30 points of M2 = 0.5)",
+                     "tidalcrust report workflows/sweep-T.toml --set ensemble.members=5 --out ens-sweep-T")
+            + measured_line(p, *first)
+            + ["M2 = 0.5, eps_S = 0.003: members cracked (Wilson 95% interval of the share)", ""]
+            + table([""] + [f"q = {short(q)} R" for q in qs], rows)
+            + ["", "Where half the members crack, with the 95% range of the grid, and where eq. 5 puts strain = eps_S:", ""]
+            + table(["", "half the members crack at", "95% range", "eq. 5"], bounds))
+
+
 @full_table("crust-coupling-seeds")
 def crust_coupling_seeds(p):
     """welded-L4's tide and 0S2 on three body seeds: the spread of each line between bodies."""
