@@ -1,7 +1,7 @@
 // tidalcrust compare A.h5 B.h5 [--json]: how alike the fractures of two encounters of one body are.
 // tidalcrust compare --resolution A.h5 B.h5 [C.h5 ...] [--out DIR] [--json]: one encounter at
 // several shell levels, the convergence table (analysis/resolution_study.hpp) and fracture maps.
-// tidalcrust compare --ensembles A/report/ensembles.json B/report/ensembles.json [--json]: whether
+// tidalcrust compare --ensembles A/report/ensembles.json B/report/ensembles.json [--pair NA:NB] [--json]: whether
 // two ensembles' statistics differ beyond their spread (Welch, analysis/ensemble_statistics.hpp).
 #include <fmt/format.h>
 
@@ -111,7 +111,15 @@ int compare_resolutions(const cxxopts::ParseResult& parsed, const std::vector<st
   return exit_ok;
 }
 
-/// Every ensemble of A also in B (by name), statistic by statistic.
+/// The ensemble named `name` of the table read from `file`; InputError naming both otherwise.
+const StoredEnsemble& ensemble_named(const std::vector<StoredEnsemble>& table, const std::string& file,
+                                     const std::string& name) {
+  const auto e = std::find_if(table.begin(), table.end(), [&](const StoredEnsemble& x) { return x.name == name; });
+  if (e == table.end()) throw InputError(fmt::format("{}: no ensemble named '{}'", file, name));
+  return *e;
+}
+
+/// Every ensemble of A also in B (by name), or the pairs --pair names, statistic by statistic.
 int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std::string>& files) {
   if (files.size() != 2)
     throw InputError(fmt::format("compare --ensembles: expected two ensemble tables A.json B.json, got {}", files.size()));
@@ -120,12 +128,26 @@ int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std:
               {"method", "Welch's t test (unequal variances, Welch-Satterthwaite degrees of freedom) on the members"},
               {"ensembles", Json::array()}};
   const auto json_number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
-  for (const StoredEnsemble& ea : a) {
-    const auto eb = std::find_if(b.begin(), b.end(), [&](const StoredEnsemble& e) { return e.name == ea.name; });
-    if (eb == b.end()) continue;
+  std::vector<std::pair<const StoredEnsemble*, const StoredEnsemble*>> pairs;
+  if (parsed.count("pair")) {
+    for (const std::string& pair : parsed["pair"].as<std::vector<std::string>>()) {
+      const auto colon = pair.find(':');
+      if (colon == std::string::npos || colon == 0 || colon + 1 == pair.size())
+        throw InputError(fmt::format("--pair '{}': expected NAME_IN_A:NAME_IN_B", pair));
+      pairs.emplace_back(&ensemble_named(a, files[0], pair.substr(0, colon)),
+                         &ensemble_named(b, files[1], pair.substr(colon + 1)));
+    }
+  } else {
+    for (const StoredEnsemble& ea : a)
+      for (const StoredEnsemble& eb : b)
+        if (eb.name == ea.name) pairs.emplace_back(&ea, &eb);
+  }
+  for (const auto& [pa, eb] : pairs) {
+    const StoredEnsemble& ea = *pa;
+    const std::string name = ea.name == eb->name ? ea.name : ea.name + " vs " + eb->name;
     Json rows = Json::array();
     if (!parsed.count("json"))
-      fmt::print("ensemble {} ({} members in A, {} in B): mean +- sd; B - A with its 95% interval\n", ea.name, ea.finished,
+      fmt::print("ensemble {} ({} members in A, {} in B): mean +- sd; B - A with its 95% interval\n", name, ea.finished,
                  eb->finished);
     for (std::size_t i = 0; i < ensemble_statistics().size(); ++i) {
       const SampleSummary &sa = ea.statistics[i], &sb = eb->statistics[i];
@@ -144,7 +166,7 @@ int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std:
                    number(sb.standard_deviation, "{:.2g}"), number(d.difference, "{:+.4g}"), number(d.low), number(d.high),
                    number(d.p_value, "{:.2g}"), verdict);
     }
-    out["ensembles"].push_back({{"name", ea.name}, {"a_members", ea.finished}, {"b_members", eb->finished},
+    out["ensembles"].push_back({{"name", name}, {"a_members", ea.finished}, {"b_members", eb->finished},
                                 {"statistics", rows}});
   }
   if (out["ensembles"].empty())
@@ -163,13 +185,16 @@ int command_compare(int argc, char** argv) {
                       "With --resolution: the same encounter at several shell levels (two or more\n"
                       "checkpoints, any order), a convergence table and, with --out, its files.\n"
                       "With --ensembles: two report/ensembles.json files, whether each statistic of the\n"
-                      "ensembles of the same name differs beyond the members' spread (Welch's t test).");
+                      "ensembles of the same name (or the pairs --pair names) differs beyond the members'\n"
+                      "spread (Welch's t test).");
   options.add_options()
       ("json", "print one JSON object")
       ("resolution", "compare one encounter at several resolutions: rows sorted by shell node count")
       ("ensembles", "compare two ensemble tables (report/ensembles.json): every statistic, Welch's t test")
       ("out", "with --resolution: write DIR/convergence.json, convergence.csv, convergence_maps.png/.svg",
        cxxopts::value<std::string>())
+      ("pair", "with --ensembles: compare ensemble NAME_A of A with NAME_B of B (NAME_A:NAME_B, repeatable)",
+       cxxopts::value<std::vector<std::string>>())
       ("h,help", "show this help")
       ("files", "A.h5 B.h5", cxxopts::value<std::vector<std::string>>());
   options.parse_positional({"files"});
@@ -182,12 +207,16 @@ int command_compare(int argc, char** argv) {
   const auto files = parsed.count("files") ? parsed["files"].as<std::vector<std::string>>() : std::vector<std::string>{};
   if (parsed.count("resolution") && parsed.count("ensembles"))
     throw InputError("compare: --resolution and --ensembles exclude each other");
-  if (parsed.count("resolution")) return compare_resolutions(parsed, files);
+  if (parsed.count("resolution")) {
+    if (parsed.count("pair")) throw InputError("compare: --pair is for --ensembles only (see --help)");
+    return compare_resolutions(parsed, files);
+  }
   if (parsed.count("ensembles")) {
     if (parsed.count("out")) throw InputError("compare: --out is for --resolution only (see --help)");
     return compare_ensembles(parsed, files);
   }
   if (parsed.count("out")) throw InputError("compare: --out is for --resolution only (see --help)");
+  if (parsed.count("pair")) throw InputError("compare: --pair is for --ensembles only (see --help)");
   if (files.size() != 2) throw InputError(fmt::format("expected two checkpoint files A.h5 B.h5, got {} (see --help)", files.size()));
 
   const Checkpoint a = read_checkpoint(files[0]);

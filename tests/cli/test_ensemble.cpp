@@ -132,6 +132,18 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
       EXPECT_EQ(s["difference"].get<double>(), 0) << s;
     }
   }
+  // --pair names the two ensembles (here the same one); a name neither table has is a one-line error.
+  const auto paired = run_cli("compare --ensembles " + quoted(table) + " " + quoted(table) + " --pair T:T --json");
+  ASSERT_EQ(paired.exit_code, 0) << paired.err;
+  EXPECT_EQ(Json::parse(paired.out)["ensembles"], compared["ensembles"]);
+  for (const std::string pair : {"T:V", "T", ":T"}) {
+    const auto unknown = run_cli("compare --ensembles " + quoted(table) + " " + quoted(table) + " --pair " + pair);
+    EXPECT_EQ(unknown.exit_code, 2) << pair;
+    EXPECT_EQ(count_lines(unknown.err), 1) << unknown.err;
+    EXPECT_NE(unknown.err.find(pair == "T:V" ? table.string() + ": no ensemble named 'V'" : "expected NAME_IN_A:NAME_IN_B"),
+              std::string::npos)
+        << unknown.err;
+  }
   const auto sweep_file = straight / "report" / "sweep.json";
   const auto bad = run_cli("compare --ensembles " + quoted(table) + " " + quoted(sweep_file));
   EXPECT_EQ(bad.exit_code, 2);
