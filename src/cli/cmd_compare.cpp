@@ -119,7 +119,8 @@ const StoredEnsemble& ensemble_named(const std::vector<StoredEnsemble>& table, c
   return *e;
 }
 
-/// Every ensemble of A also in B (by name), or the pairs --pair names, statistic by statistic.
+/// Every ensemble of A also in B (by name, finished members on both sides), or the pairs --pair
+/// names, statistic by statistic.
 int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std::string>& files) {
   if (files.size() != 2)
     throw InputError(fmt::format("compare --ensembles: expected two ensemble tables A.json B.json, got {}", files.size()));
@@ -138,9 +139,11 @@ int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std:
                          &ensemble_named(b, files[1], pair.substr(colon + 1)));
     }
   } else {
+    // An ensemble with no finished member on one side has nothing to compare (a workflow run with
+    // --only leaves its other encounters' ensembles empty).
     for (const StoredEnsemble& ea : a)
       for (const StoredEnsemble& eb : b)
-        if (eb.name == ea.name) pairs.emplace_back(&ea, &eb);
+        if (eb.name == ea.name && ea.finished > 0 && eb.finished > 0) pairs.emplace_back(&ea, &eb);
   }
   for (const auto& [pa, eb] : pairs) {
     const StoredEnsemble& ea = *pa;
@@ -170,7 +173,8 @@ int compare_ensembles(const cxxopts::ParseResult& parsed, const std::vector<std:
                                 {"statistics", rows}});
   }
   if (out["ensembles"].empty())
-    throw InputError(fmt::format("{} and {} have no ensemble of the same name", files[0], files[1]));
+    throw InputError(fmt::format("{} and {} have no ensemble of the same name with finished members on both sides",
+                                 files[0], files[1]));
   if (parsed.count("json")) fmt::print("{}", json_text(out));
   return exit_ok;
 }

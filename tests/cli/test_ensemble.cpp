@@ -132,6 +132,17 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
       EXPECT_EQ(s["difference"].get<double>(), 0) << s;
     }
   }
+  // An ensemble no member of which finished (a workflow run with --only) is left out.
+  Json with_empty = Json::parse(read_file(table));
+  Json empty = with_empty["ensembles"][0];
+  empty["name"] = "E";
+  empty["finished"] = 0;
+  with_empty["ensembles"].push_back(empty);
+  const auto table_with_empty = scratch.path / "with-empty.json";
+  write_file(table_with_empty, with_empty.dump());
+  const auto skipped = run_cli("compare --ensembles " + quoted(table_with_empty) + " " + quoted(table_with_empty) + " --json");
+  ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_EQ(Json::parse(skipped.out)["ensembles"], compared["ensembles"]);
   // --pair names the two ensembles (here the same one); a name neither table has is a one-line error.
   const auto paired = run_cli("compare --ensembles " + quoted(table) + " " + quoted(table) + " --pair T:T --json");
   ASSERT_EQ(paired.exit_code, 0) << paired.err;
