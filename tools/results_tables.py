@@ -906,11 +906,41 @@ def ensembles_t5(p):
     lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
                    ensemble_rows(p, runs, "T5"))
     for a, b in (runs[0:2], runs[2:4]):
-        text = p("compare", "--ensembles", p.work / a[0] / "report" / "ensembles.json",
-                 p.work / b[0] / "report" / "ensembles.json")
-        wanted = [l for l in text.splitlines() if l.startswith("ensemble T5")
-                  or l.split()[:1] and l.split()[0] in [k for k, _, _ in ENSEMBLE_COLUMNS]]
-        lines += ["", f"{a[1]}: A pericenter, B body seeds", "", "```"] + wanted + ["```"]
+        lines += compare_ensembles_lines(p, p.work / a[0] / "report" / "ensembles.json",
+                                         p.work / b[0] / "report" / "ensembles.json",
+                                         f"{a[1]}: A members at perturbed pericenters, B members on bodies of seeds 1-10:")
+    return lines
+
+
+def compare_ensembles_lines(p, a, b, title, *pair):
+    """The statistics of ENSEMBLE_COLUMNS from `compare --ensembles A B [--pair ...]`, as a code block."""
+    args = ["compare", "--ensembles", a, b] + [x for n in pair for x in ("--pair", n)]
+    text = p(*args)
+    keys = [k for k, _, _ in ENSEMBLE_COLUMNS]
+    wanted = [l for l in text.splitlines() if l.startswith("ensemble ") or (l.split() and l.split()[0] in keys)]
+    return ["", title, "", "```"] + wanted + ["```"]
+
+
+@full_table("crust-T-convergence-ensembles")
+def crust_t_convergence_ensembles(p):
+    """crust-T T5 at dt, dt/2 and t_r/2, t_r/4 as 10-member ensembles (issue 24: the convergence
+    statements on the ensemble footing)."""
+    root = p.work / "ens-crust-T2"
+    at_dt, at_half = root / "report" / "ensembles.json", root / "dt0.5" / "report" / "ensembles.json"
+    rows = []
+    for table_file, name, label in ((at_dt, "T5", "T5, dt = 0.002"), (at_half, "T5", "T5, dt/2"),
+                                    (at_dt, "T5-tr2", "T5, t_r/2"), (at_dt, "T5-tr4", "T5, t_r/4")):
+        r = next(x for x in p.load(table_file)["ensembles"] if x["name"] == name)
+        rows.append([f"{label} ({r['finished']} of {r['members']})"]
+                    + [ensemble_cell(r["statistics"].get(k), d) for k, _, d in ENSEMBLE_COLUMNS])
+    lines = commands("tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --only T5 --only T5-tr2 --only T5-tr4 --out ens-crust-T2",
+                     "tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --only T5 --out ens-crust-T2 --dt-factor 0.5",
+                     "tidalcrust report workflows/crust-T.toml --set ensemble.members=10 --out ens-crust-T2 [--dt-factor 0.5]")
+    lines += measured_line(p, root / "T5_m0" / "encounter.h5", root / "dt0.5" / "T5_m0" / "encounter.h5")
+    lines += table(["ensemble (members finished)"] + [c for _, c, _ in ENSEMBLE_COLUMNS], rows)
+    lines += compare_ensembles_lines(p, at_dt, at_half, "dt to dt/2 (`compare --ensembles` of the two reports):")
+    lines += compare_ensembles_lines(p, at_dt, at_dt, "t_r to t_r/2 and t_r/2 to t_r/4 (`--pair T5:T5-tr2 --pair T5-tr2:T5-tr4`):",
+                                     "T5:T5-tr2", "T5-tr2:T5-tr4")
     return lines
 
 
