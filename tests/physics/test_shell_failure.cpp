@@ -248,7 +248,8 @@ TEST(ShadowFailureRule, ACrackGrowsAheadButNoNewCrackStartsInItsShadow) {
             2u);
   EXPECT_EQ(failed_springs(wide_log), (std::vector<std::int32_t>{3, 1}));  // 4 waits for spring 3 (local rule)
 
-  // A shadow no longer than the neighbourhood changes nothing: the local rule's failures.
+  // A shadow of 0.15: every candidate lies farther than that from a failed spring, or extends a
+  // crack, so the rule fails what the local rule fails.
   CrackScene short_shadow, local;
   std::vector<FailureEvent> short_log, local_log;
   EXPECT_EQ(apply_failure_rule(CrackScene::shadow(0.15, 0.15), CrackScene::threshold, short_shadow.body,
