@@ -879,15 +879,18 @@ def ensemble_cell(stat, digits):
             f"[{fixed(stat['low'], digits)}, {fixed(stat['high'], digits)}]")
 
 
+def ensemble_row(p, table_file, encounter, label):
+    """One table row: `label` and the ENSEMBLE_COLUMNS cells of ensemble `encounter` in `table_file`."""
+    e = p.load(table_file)
+    r = next(x for x in e["ensembles"] if x["name"] == encounter)
+    return ([label.format(finished=r["finished"], members=r["members"], vary=e["vary"])]
+            + [ensemble_cell(r["statistics"].get(key), digits) for key, _, digits in ENSEMBLE_COLUMNS])
+
+
 def ensemble_rows(p, runs, encounter):
     """One row per (run folder, label): the ensemble `encounter` of its report/ensembles.json."""
-    rows = []
-    for folder, label in runs:
-        e = p.load(p.work / folder / "report" / "ensembles.json")
-        r = next(x for x in e["ensembles"] if x["name"] == encounter)
-        rows.append([f"{label} ({r['finished']} of {r['members']}, {e['vary']})"]
-                    + [ensemble_cell(r["statistics"].get(key), digits) for key, _, digits in ENSEMBLE_COLUMNS])
-    return rows
+    return [ensemble_row(p, p.work / folder / "report" / "ensembles.json", encounter,
+                         label + " ({finished} of {members}, {vary})") for folder, label in runs]
 
 
 @full_table("ensembles-T5")
@@ -927,12 +930,9 @@ def crust_t_convergence_ensembles(p):
     statements on the ensemble footing)."""
     root = p.work / "ens-crust-T2"
     at_dt, at_half = root / "report" / "ensembles.json", root / "dt0.5" / "report" / "ensembles.json"
-    rows = []
-    for table_file, name, label in ((at_dt, "T5", "T5, dt = 0.002"), (at_half, "T5", "T5, dt/2"),
-                                    (at_dt, "T5-tr2", "T5, t_r/2"), (at_dt, "T5-tr4", "T5, t_r/4")):
-        r = next(x for x in p.load(table_file)["ensembles"] if x["name"] == name)
-        rows.append([f"{label} ({r['finished']} of {r['members']})"]
-                    + [ensemble_cell(r["statistics"].get(k), d) for k, _, d in ENSEMBLE_COLUMNS])
+    rows = [ensemble_row(p, table_file, name, label + " ({finished} of {members})")
+            for table_file, name, label in ((at_dt, "T5", "T5, dt = 0.002"), (at_half, "T5", "T5, dt/2"),
+                                            (at_dt, "T5-tr2", "T5, t_r/2"), (at_dt, "T5-tr4", "T5, t_r/4"))]
     lines = commands("tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --only T5 --only T5-tr2 --only T5-tr4 --out ens-crust-T2",
                      "tidalcrust run workflows/crust-T.toml --set ensemble.members=10 --only T5 --out ens-crust-T2 --dt-factor 0.5",
                      "tidalcrust report workflows/crust-T.toml --set ensemble.members=10 --out ens-crust-T2 [--dt-factor 0.5]")
