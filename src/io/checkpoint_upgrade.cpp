@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -113,15 +114,24 @@ void layout_3_to_4(hid_t root) {
   if (h5::exists(root, "/observables")) h5::check(H5Ldelete(root, "/observables", H5P_DEFAULT), "cannot remove /observables");
 }
 
-/// 4 -> 5 (2026-12-06, the shadow failure rule): an encounter's record gains `shadow_distance`
-/// (R), 0 for the rules before it, which have no stress shadow.
-void layout_4_to_5(hid_t root) {
+/// Adds the double attributes `names` = 0 to an encounter's record where it lacks them (the
+/// failure rules before them had no such parameter).
+void add_zero_encounter_record_attributes(hid_t root, std::initializer_list<const char*> names) {
   if (!h5::exists(root, "/checkpoint/record")) return;
   h5::Group g = h5::open_group(root, "/checkpoint");
   if (!has_attribute(g.get(), "stage") || h5::read_string_attribute(g.get(), "stage") != "encounter") return;
   h5::Group record = h5::open_group(root, "/checkpoint/record");
-  if (!has_attribute(record.get(), "shadow_distance")) h5::write_attribute<double>(record.get(), "shadow_distance", 0.0);
+  for (const char* name : names)
+    if (!has_attribute(record.get(), name)) h5::write_attribute<double>(record.get(), name, 0.0);
 }
+
+/// 4 -> 5 (2026-12-06, the shadow failure rule): an encounter's record gains `shadow_distance`
+/// (R), 0 for the rules before it, which have no stress shadow.
+void layout_4_to_5(hid_t root) { add_zero_encounter_record_attributes(root, {"shadow_distance"}); }
+
+/// 5 -> 6 (2026-12-06, the griffith failure rule): an encounter's record gains `flaw_length` (R)
+/// and `growth_strain_factor`, 0 for the rules before it, which open no flaws.
+void layout_5_to_6(hid_t root) { add_zero_encounter_record_attributes(root, {"flaw_length", "growth_strain_factor"}); }
 
 /// One upgrade step, from format `from` to `from + 1`.
 struct UpgradeStep {
@@ -135,6 +145,7 @@ struct UpgradeStep {
 constexpr UpgradeStep upgrade_steps[] = {
     {3, layout_3_to_4, nullptr},
     {4, layout_4_to_5, nullptr},
+    {5, layout_5_to_6, nullptr},
 };
 constexpr bool steps_are_consecutive() {
   for (std::size_t i = 0; i < std::size(upgrade_steps); ++i)

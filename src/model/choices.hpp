@@ -85,6 +85,7 @@ enum class FailureRuleKind {
   paper,  ///< section 2.6: the single most strained spring fails, one check every t_fail steps
   local,  ///< every over-strained spring may fail, at most one per crack neighbourhood per relaxation interval
   shadow, ///< local, and a new crack does not start within shadow_distance of an existing one
+  griffith, ///< shadow, a new crack opens as a flaw of flaw_length and grows at the Griffith tip strain
 };
 template <>
 struct ChoiceTable<FailureRuleKind> {
@@ -92,6 +93,8 @@ struct ChoiceTable<FailureRuleKind> {
       ChoiceRow<FailureRuleKind>{FailureRuleKind::paper, "paper", "one spring per fail_interval"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::local, "local", "one per neighbourhood per relaxation interval"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::shadow, "shadow", "local, no new crack in a crack's stress shadow"},
+      ChoiceRow<FailureRuleKind>{FailureRuleKind::griffith, "griffith",
+                                 "shadow, cracks open as flaws of flaw_length and grow at a fixed toughness"},
   };
 };
 

@@ -65,9 +65,14 @@ constexpr Condition welded_crust{"cross.coupling = \"welded\"",
 /// Snapshots at a chosen interval: an encounter without them keeps the fingerprint it had before the key.
 constexpr Condition snapshot_series{"encounter.snapshot_interval > 0",
                                     [](const Config& c) { return c.encounter.snapshot_interval > 0; }};
-/// The shadow rule's length: the local rule's fingerprints stay what they were before the key.
-constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\"",
-                                [](const Config& c) { return c.encounter.failure_rule == FailureRuleKind::shadow; }};
+/// The shadow rule's length (the griffith rule's too): the local rule's fingerprints stay what
+/// they were before the key.
+constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\" or \"griffith\"", [](const Config& c) {
+  return c.encounter.failure_rule == FailureRuleKind::shadow || c.encounter.failure_rule == FailureRuleKind::griffith;
+}};
+/// The griffith rule's flaw: the other rules' fingerprints stay what they were before the key.
+constexpr Condition griffith_rule{"encounter.failure_rule = \"griffith\"",
+                                  [](const Config& c) { return c.encounter.failure_rule == FailureRuleKind::griffith; }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
@@ -238,6 +243,10 @@ void visit_keys(C& c, V&& visit) {
   key(c.encounter.shadow_distance,
       {"encounter", "shadow_distance", changes_no_result.and_when(shadow_rule, relax, encounter), "R",
        "shadow rule: a new crack starts no closer than this to a failed spring (resolve it: >= 3 L_S)", 0, 2, true});
+  key(c.encounter.flaw_length,
+      {"encounter", "flaw_length", changes_no_result.and_when(griffith_rule, relax, encounter), "R",
+       "griffith rule: a new crack opens as a flaw this long; it sets the toughness (resolve it: >= 3 L_S)", 0, 2,
+       true});
 
   // The kernel gives other bits but the same physics: it is recorded and checked on its own
   // (stages/gravity_kernel_check.hpp), not a fingerprint key.

@@ -43,20 +43,36 @@ struct ShadowFailureRule {
   bool operator==(const ShadowFailureRule&) const = default;
 };
 
+/// "griffith" (docs/failure-rule.md, "A fixed fracture toughness"): the shadow rule, where a new
+/// crack opens as a flaw: every unfailed shell spring crossing the great-circle segment of length
+/// flaw_length centred on the candidate's midpoint, perpendicular to its axis, fails at once; and a
+/// spring that extends a crack fails only beyond growth_strain_factor * eps_S, the tip strain at
+/// which a crack of flaw_length under the far-field strain eps_S is critical (a toughness
+/// K_c = E eps_S sqrt(pi flaw_length / 2) at every resolution).
+struct GriffithFailureRule {
+  ShadowFailureRule shadow;           ///< relaxation interval, neighbourhood and stress shadow
+  double flaw_length = 0;             ///< a_0, length of a new crack's flaw, R
+  double growth_strain_factor = 1;    ///< eps_tip / eps_S = max(1, sqrt(a_0 / (2 L_S))) (dimensionless)
+  bool operator==(const GriffithFailureRule&) const = default;
+};
+
 /// The rule; its alternatives in FailureRuleKind order (a new kind: its struct here, its row in
 /// the choice table, and its code in physics/shell_failure.cpp).
-using FailureRule = std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule>;
+using FailureRule = std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule>;
 static_assert(std::variant_size_v<FailureRule> == ChoiceTable<FailureRuleKind>::rows.size());
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::local), FailureRule>,
                              LocalFailureRule>);
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::shadow), FailureRule>,
                              ShadowFailureRule>);
+static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::griffith), FailureRule>,
+                             GriffithFailureRule>);
 
 /// Which kind `rule` is.
 inline FailureRuleKind kind_of(const FailureRule& rule) { return static_cast<FailureRuleKind>(rule.index()); }
 
 /// The rule as the encounter record stores it (/checkpoint/record: fail_interval, failure_rule,
-/// relaxation_steps, exclusion_distance, shadow_distance; docs/checkpoint-layout.md): the
+/// relaxation_steps, exclusion_distance, shadow_distance, flaw_length, growth_strain_factor;
+/// docs/checkpoint-layout.md): the
 /// parameters of every kind, 0 for those of another kind (fail_interval: the configured one).
 struct StoredFailureRule {
   std::int64_t fail_interval = 1;
@@ -64,16 +80,26 @@ struct StoredFailureRule {
   std::int64_t relaxation_steps = 0;
   double exclusion_distance = 0;
   double shadow_distance = 0;
+  double flaw_length = 0;
+  double growth_strain_factor = 0;
 };
 
 inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
   if (const auto* local = std::get_if<LocalFailureRule>(&rule))
     return {local->configured_fail_interval, FailureRuleKind::local, local->relaxation_steps,
-            local->exclusion_distance, 0.0};
-  if (const auto* shadow = std::get_if<ShadowFailureRule>(&rule))
-    return {shadow->local.configured_fail_interval, FailureRuleKind::shadow, shadow->local.relaxation_steps,
-            shadow->local.exclusion_distance, shadow->shadow_distance};
-  return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0};
+            local->exclusion_distance, 0.0, 0.0, 0.0};
+  auto shadow_fields = [](const ShadowFailureRule& shadow, FailureRuleKind kind) {
+    return StoredFailureRule{shadow.local.configured_fail_interval, kind, shadow.local.relaxation_steps,
+                             shadow.local.exclusion_distance, shadow.shadow_distance, 0.0, 0.0};
+  };
+  if (const auto* shadow = std::get_if<ShadowFailureRule>(&rule)) return shadow_fields(*shadow, FailureRuleKind::shadow);
+  if (const auto* griffith = std::get_if<GriffithFailureRule>(&rule)) {
+    StoredFailureRule stored = shadow_fields(griffith->shadow, FailureRuleKind::griffith);
+    stored.flaw_length = griffith->flaw_length;
+    stored.growth_strain_factor = griffith->growth_strain_factor;
+    return stored;
+  }
+  return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0, 0.0, 0.0};
 }
 
 inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
@@ -83,6 +109,8 @@ inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
       return local;
     case FailureRuleKind::shadow:
       return ShadowFailureRule{local, stored.shadow_distance};
+    case FailureRuleKind::griffith:
+      return GriffithFailureRule{{local, stored.shadow_distance}, stored.flaw_length, stored.growth_strain_factor};
     case FailureRuleKind::paper:
       break;
   }
@@ -100,6 +128,8 @@ void visit_failure_rule(Rule& rule, Visit&& visit) {
   visit("relaxation_steps", stored.relaxation_steps, "steps", "local rule: relaxation interval of a crack neighbourhood");
   visit("exclusion_distance", stored.exclusion_distance, "R", "local rule: crack neighbourhood radius");
   visit("shadow_distance", stored.shadow_distance, "R", "shadow rule: no new crack this close to a crack");
+  visit("flaw_length", stored.flaw_length, "R", "griffith rule: length of a new crack's flaw");
+  visit("growth_strain_factor", stored.growth_strain_factor, "1", "griffith rule: crack-tip failure strain / eps_S");
   if constexpr (!std::is_const_v<Rule>) rule = failure_rule_of(stored);
 }
 

@@ -157,7 +157,8 @@ void visit_fields(Record& r, Visit&& visit) {
   visit("failure_strain", r.failure_strain, "1", "eps_S");
   visit("failed_stiffness_factor", r.failed_stiffness_factor, "1", "F_Sk");
   visit("damping", r.damping, "1/t_grav", "gamma");
-  visit_failure_rule(r.failure_rule, visit);  // fail_interval, failure_rule, relaxation_steps, exclusion_distance, shadow_distance
+  visit_failure_rule(r.failure_rule, visit);  // fail_interval, failure_rule, relaxation_steps, exclusion_distance, shadow_distance,
+                                              // flaw_length, growth_strain_factor
   visit("sample_interval", r.sample_interval, "steps", "between timeseries samples");
   visit("start_distance", r.start_distance, "R", "perturber distance at the start");
   visit("end_distance", r.end_distance, "R", "perturber distance at the end");

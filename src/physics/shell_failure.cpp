@@ -13,6 +13,7 @@
 #include "base/vec3.hpp"
 #include "bodies/neighbor_grid.hpp"
 #include "forces/spring_force.hpp"
+#include "model/center_of_mass.hpp"
 #include "model/derived_quantities.hpp"
 
 namespace tidalcrust {
@@ -78,32 +79,44 @@ FailureEvent fail_spring(const Body& body, State& state, std::size_t n, double s
   return event;
 }
 
-/// Where the failed shell springs are, for the shadow rule: their midpoints (in a grid) and axes.
-/// A failed spring's crack runs across it, so a candidate extends that crack when its midpoint lies
-/// within the crack neighbourhood (the exclusion distance) and at least 45 degrees off the failed
-/// spring's axis (ahead of the crack, not on its flanks, which the opening unloads). A candidate
-/// that extends no crack but has a failed spring within the shadow distance would start a new crack
-/// in that crack's stress shadow.
+/// What a candidate would do to the cracks (CrackMap::role).
+enum class CrackRole {
+  extends,   ///< a failed spring within the crack neighbourhood, the candidate ahead of it
+  starts,    ///< no failed spring within the shadow distance: a new crack
+  shadowed,  ///< extends no crack but lies in a crack's stress shadow
+};
+
+/// Where the failed shell springs are, for the shadow and griffith rules: their midpoints (in a
+/// grid) and axes. A failed spring's crack runs across it, so a candidate extends that crack when
+/// its midpoint lies within the crack neighbourhood (the exclusion distance) and at least 45
+/// degrees off the failed spring's axis (ahead of the crack, not on its flanks, which the opening
+/// unloads). A candidate that extends no crack but has a failed spring within the shadow distance
+/// would start a new crack in that crack's stress shadow. The crack a candidate extends is looked
+/// for within `search_radius`: the shadow rule's is its shadow distance (as measured in
+/// docs/results, though a neighbourhood wider than the shadow then sees less), the griffith
+/// rule's the larger of the two.
 class CrackMap {
  public:
-  CrackMap(const Body& body, const State& state, double shadow_distance)
-      : shadow_distance_(shadow_distance), grid_(grid_over(state, shadow_distance)) {
+  CrackMap(const Body& body, const State& state, double shadow_distance, double neighbourhood, double search_radius)
+      : shadow_distance_(shadow_distance),
+        neighbourhood_(neighbourhood),
+        search_radius_(search_radius),
+        grid_(grid_over(state, shadow_distance)) {
     for (std::size_t n = 0; n < body.spring_count(); ++n)
       if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell) && state.springs.failed[n])
         add(body, state, n);
   }
-  /// True if a candidate at `mid` extends no crack (see above) and has a failed spring within the
-  /// shadow distance.
-  bool shadowed(const Vec3& mid, double neighbourhood) const {
-    const std::vector<std::int32_t> near = grid_.closer_than(mid, shadow_distance_);
-    for (const std::int32_t id : near) {
+  CrackRole role(const Vec3& mid) const {
+    bool in_shadow = false;
+    for (const std::int32_t id : grid_.closer_than(mid, search_radius_)) {
       const Vec3 offset = mid - grid_.point(id);
       const double distance = offset.norm();
       // cos 45 deg = 1/sqrt(2): |offset . axis| <= |offset| / sqrt(2), squared to avoid the root.
       const double along = offset.dot(axis_[static_cast<std::size_t>(id)]);
-      if (distance < neighbourhood && 2 * along * along <= distance * distance) return false;
+      if (distance < neighbourhood_ && 2 * along * along <= distance * distance) return CrackRole::extends;
+      in_shadow = in_shadow || distance < shadow_distance_;
     }
-    return !near.empty();
+    return in_shadow ? CrackRole::shadowed : CrackRole::starts;
   }
   void add(const Body& body, const State& state, std::size_t n) {
     const auto i = static_cast<std::size_t>(body.springs[n][0]);
@@ -125,16 +138,58 @@ class CrackMap {
   }
 
   double shadow_distance_;
+  double neighbourhood_;
+  double search_radius_;
   NeighborGrid grid_;        // midpoints; points outside its box are found too, only more slowly
   std::vector<Vec3> axis_;   // unit axis of each failed spring, by grid id
+};
+
+/// The unfailed shell springs, in index order, that cross the flaw a new crack opens at spring n:
+/// the arc of the great circle (about `center`) through n's midpoint m, perpendicular to n's
+/// axis, whose points r lie within flaw_length / 2 of m as rho |sin theta| (rho = |m - center|,
+/// theta the angle from m; no transcendental function, so the same bits on every CPU). Spring n
+/// itself crosses it.
+std::vector<std::size_t> springs_across_flaw(const Body& body, const State& state, std::size_t n, const Vec3& center,
+                                             double flaw_length) {
+  const Vec3 a = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0]));
+  const Vec3 b = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1]));
+  const Vec3 m = 0.5 * (a + b) - center;
+  const double rho = m.norm();
+  const Vec3 up = m / rho;
+  Vec3 normal = (b - a) - (b - a).dot(up) * up;  // the circle's plane normal: the axis, tangential part
+  normal.normalize();
+  const Vec3 along = normal.cross(up);
+  std::vector<std::size_t> across;
+  for (std::size_t k = 0; k < body.spring_count(); ++k) {
+    if (!is_unfailed_shell(body, state, k)) continue;
+    const Vec3 p = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][0])) - center;
+    const Vec3 q = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][1])) - center;
+    const double sp = p.dot(normal), sq = q.dot(normal);
+    if (!(sp * sq < 0)) continue;
+    const Vec3 r = p + (q - p) * (sp / (sp - sq));
+    if (!(r.dot(up) > 0)) continue;
+    const double sideways = rho * r.dot(along);  // rho sin(theta) |r|
+    if (4 * sideways * sideways <= flaw_length * flaw_length * r.squaredNorm()) across.push_back(k);
+  }
+  return across;
+}
+
+/// The crack rules' parameters beyond the local rule's: 0 shadow distance for the local rule;
+/// flaw_length > 0 only for the griffith rule.
+struct CrackGrowth {
+  double shadow_distance = 0;
+  double flaw_length = 0;
+  double growth_strain_factor = 1;
 };
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
 /// fails unless a failure of the last relaxation_steps steps (or of this check) lies within
 /// exclusion_distance of it (midpoints, current positions). With a shadow distance (> 0, the
-/// shadow rule) a candidate that extends no crack (CrackMap) also waits while any failed shell
-/// spring lies within the shadow distance.
-std::size_t fail_local(const LocalFailureRule& rule, double shadow_distance, const FailureThreshold& threshold,
+/// shadow and griffith rules) a candidate that extends no crack (CrackMap) also waits while any
+/// failed shell spring lies within the shadow distance. With a flaw length (the griffith rule) a
+/// candidate that extends a crack fails only beyond growth_strain_factor eps_S, and one that starts
+/// a crack fails with every spring across its flaw (springs_across_flaw).
+std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
   std::vector<std::pair<double, std::size_t>> candidates;
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
@@ -150,18 +205,38 @@ std::size_t fail_local(const LocalFailureRule& rule, double shadow_distance, con
   for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.relaxation_steps; ++e)
     relaxing.push_back(spring_midpoint(body, state, static_cast<std::size_t>(e->spring)));
   std::optional<CrackMap> cracks;
-  if (shadow_distance > 0) cracks.emplace(body, state, shadow_distance);
+  if (growth.shadow_distance > 0)
+    cracks.emplace(body, state, growth.shadow_distance, rule.exclusion_distance,
+                   growth.flaw_length > 0 ? std::max(growth.shadow_distance, rule.exclusion_distance)
+                                          : growth.shadow_distance);
+  std::optional<Vec3> center;  // the flaws' great circles are about the body's centre of mass
   const double r2 = rule.exclusion_distance * rule.exclusion_distance;
+  const double growth_strain = growth.growth_strain_factor * threshold.failure_strain;
   std::size_t failed = 0;
+  auto fail = [&](std::size_t n, double strain) {
+    log.push_back(fail_spring(body, state, n, strain, threshold.failed_stiffness_factor));
+    relaxing.push_back(spring_midpoint(body, state, n));
+    if (cracks) cracks->add(body, state, n);
+    ++failed;
+  };
   for (const auto& [strain, n] : candidates) {
+    if (state.springs.failed[n]) continue;  // across an earlier flaw of this check
     const Vec3 mid = spring_midpoint(body, state, n);
     const bool excluded =
         std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
-    if (excluded || (cracks && cracks->shadowed(mid, rule.exclusion_distance))) continue;
-    log.push_back(fail_spring(body, state, n, strain, threshold.failed_stiffness_factor));
-    relaxing.push_back(mid);
-    if (cracks) cracks->add(body, state, n);
-    ++failed;
+    if (excluded) continue;
+    const CrackRole role = cracks ? cracks->role(mid) : CrackRole::starts;
+    if (role == CrackRole::shadowed) continue;
+    if (growth.flaw_length > 0 && role == CrackRole::extends && !(strain > growth_strain)) continue;
+    if (growth.flaw_length > 0 && role == CrackRole::starts) {
+      if (!center) center = body_center_of_mass(body, state);
+      const std::vector<std::size_t> flaw = springs_across_flaw(body, state, n, *center, growth.flaw_length);
+      fail(n, strain);  // the log names the spring that opened the flaw first, then the rest in index order
+      for (const std::size_t k : flaw)
+        if (k != n) fail(k, spring_strain(body, state, k));
+      continue;
+    }
+    fail(n, strain);
   }
   return failed;
 }
@@ -174,7 +249,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
     case FailureRuleKind::paper:
       break;
     case FailureRuleKind::local:
-    case FailureRuleKind::shadow: {
+    case FailureRuleKind::shadow:
+    case FailureRuleKind::griffith: {
       // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
       if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
@@ -189,6 +265,13 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
       rule.configured_fail_interval = config.encounter.fail_interval;
       if (config.encounter.failure_rule == FailureRuleKind::shadow)
         return ShadowFailureRule{rule, config.encounter.shadow_distance};
+      if (config.encounter.failure_rule == FailureRuleKind::griffith)
+        // The tip strain of a crack of length a_0 under the far-field strain eps_S: LEFM's
+        // sigma_yy = K / sqrt(2 pi r), K = sigma sqrt(pi a_0 / 2), at the first spring ahead of the
+        // tip (r ~ L_S / 2) gives sqrt(a_0 / (2 L_S)) (docs/failure-rule.md).
+        return GriffithFailureRule{{rule, config.encounter.shadow_distance},
+                                   config.encounter.flaw_length,
+                                   std::max(1.0, std::sqrt(config.encounter.flaw_length / (2 * q.L_S)))};
       return rule;
     }
   }
@@ -197,9 +280,13 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
 
 std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,
                                State& state, std::int64_t start_step, std::vector<FailureEvent>& log) {
-  if (const auto* local = std::get_if<LocalFailureRule>(&rule)) return fail_local(*local, 0.0, threshold, body, state, log);
+  if (const auto* local = std::get_if<LocalFailureRule>(&rule)) return fail_local(*local, {}, threshold, body, state, log);
   if (const auto* shadow = std::get_if<ShadowFailureRule>(&rule))
-    return fail_local(shadow->local, shadow->shadow_distance, threshold, body, state, log);
+    return fail_local(shadow->local, {shadow->shadow_distance}, threshold, body, state, log);
+  if (const auto* griffith = std::get_if<GriffithFailureRule>(&rule))
+    return fail_local(griffith->shadow.local,
+                      {griffith->shadow.shadow_distance, griffith->flaw_length, griffith->growth_strain_factor},
+                      threshold, body, state, log);
   if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);
   if (!event) return 0;

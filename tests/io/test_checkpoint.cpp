@@ -295,7 +295,7 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
       else
         EXPECT_GT(H5Aexists(record.get(), name), 0) << name;
     });
-    EXPECT_EQ(fields, 25u);  // 18 + the energy budget's three accumulators + the local failure rule's three + shadow_distance
+    EXPECT_EQ(fields, 27u);  // 18 + the energy budget's three accumulators + the local failure rule's three + shadow_distance + the griffith rule's two
   }
   EXPECT_EQ(h5::read_string_dataset(root, "/parameters/config"), c.config_toml);
   {

@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "base/errors.hpp"
+#include "base/vec3.hpp"
 #include "model/config.hpp"
 #include "physics/shell_failure.hpp"
 
@@ -273,4 +276,139 @@ TEST(ShadowFailureRule, ScheduleIsTheLocalRulesWithTheShadowInR) {
   // Every kind is stored and read back as it was.
   for (const FailureRule& each : {rule, FailureRule(PaperFailureRule{4}), FailureRule(LocalFailureRule{7, 0.25, 2})})
     EXPECT_EQ(failure_rule_of(stored_failure_rule(each)), each);
+}
+
+namespace {
+
+/// The griffith rule's scene: a square lattice of shell springs (spacing h = 0.05 along x and y,
+/// 25 x 13 nodes at |x| <= 0.6, |y| <= 0.3) on the unit sphere about a heavy interior particle at the
+/// origin (the centre of mass to 1e-7), every spring at its rest length. strain(n, e) stretches
+/// spring n to strain e.
+struct FlawScene {
+  static constexpr double h = 0.05;
+  static constexpr int columns = 25, rows = 13;
+  Body body;
+  State state;
+  FlawScene() {
+    body.mass = {1e6};
+    body.species = {0};
+    state.position = {0, 0, 0};
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < columns; ++i) {
+        const double x = (i - 12) * h, y = (j - 6) * h;
+        body.mass.push_back(1e-3);
+        body.species.push_back(1);
+        state.position.insert(state.position.end(), {x, y, std::sqrt(1 - x * x - y * y)});
+      }
+    for (int j = 0; j < rows; ++j)
+      for (int i = 0; i < columns; ++i) {
+        if (i + 1 < columns) body.springs.push_back({node(i, j), node(i + 1, j)});
+        if (j + 1 < rows) body.springs.push_back({node(i, j), node(i, j + 1)});
+      }
+    body.spring_kind.assign(body.springs.size(), 1);
+    state.springs.stiffness.assign(body.springs.size(), 1.0);
+    state.springs.failed.assign(body.springs.size(), 0);
+    for (std::size_t n = 0; n < body.springs.size(); ++n) state.springs.rest_length.push_back(length(n));
+    state.velocity.assign(state.position.size(), 0.0);
+    state.step = 10;
+  }
+  static std::int32_t node(int i, int j) { return 1 + j * columns + i; }
+  /// The spring from column i to i + 1 in row j (x in [(i - 12) h, (i - 11) h], y = (j - 6) h).
+  std::size_t x_spring(int i, int j) const {
+    for (std::size_t n = 0; n < body.springs.size(); ++n)
+      if (body.springs[n][0] == node(i, j) && body.springs[n][1] == node(i + 1, j)) return n;
+    throw std::logic_error("no such spring");
+  }
+  double length(std::size_t n) const {
+    const auto a = static_cast<std::size_t>(body.springs[n][0]), b = static_cast<std::size_t>(body.springs[n][1]);
+    return (vec3_at(state.position, a) - vec3_at(state.position, b)).norm();
+  }
+  void strain(std::size_t n, double e) { state.springs.rest_length[n] = length(n) / (1 + e); }
+  /// Neighbourhood 0.06 (just over h), relaxation 1 step, shadow 0.3, flaw 0.22, tip strain 1.5 eps_S.
+  static FailureRule griffith() { return GriffithFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22, 1.5}; }
+  static constexpr FailureThreshold threshold{0.01, 0.005};
+};
+
+std::vector<std::int32_t> sorted_failed_springs(const std::vector<FailureEvent>& log) {
+  std::vector<std::int32_t> springs = failed_springs(log);
+  std::sort(springs.begin(), springs.end());
+  return springs;
+}
+
+}  // namespace
+
+TEST(GriffithFailureRule, ANewCrackOpensAsItsWholeFlawPerpendicularToTheTension) {
+  FlawScene s;
+  s.strain(s.x_spring(12, 6), 0.02);  // the centre column's spring in the middle row, along x
+  std::vector<FailureEvent> log;
+  // The flaw: the great circle through its midpoint perpendicular to x, 0.22 long: the x springs
+  // of column 12 in rows 4-8 (|y| <= 0.1 < 0.11; rows 3 and 9 at 0.15 are beyond it). No y spring
+  // crosses it.
+  EXPECT_EQ(apply_failure_rule(FlawScene::griffith(), FlawScene::threshold, s.body, s.state, 0, log), 5u);
+  std::vector<std::int32_t> expected;
+  for (int j = 4; j <= 8; ++j) expected.push_back(static_cast<std::int32_t>(s.x_spring(12, j)));
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(sorted_failed_springs(log), expected);
+  EXPECT_EQ(log.front().spring, static_cast<std::int32_t>(s.x_spring(12, 6)));  // the candidate first
+  for (const auto& e : log) EXPECT_EQ(e.step, 10);
+  // The shadow rule with the same neighbourhood and shadow fails the candidate alone.
+  FlawScene shadow;
+  shadow.strain(shadow.x_spring(12, 6), 0.02);
+  std::vector<FailureEvent> shadow_log;
+  EXPECT_EQ(apply_failure_rule(ShadowFailureRule{{1, 0.06, 1}, 0.3}, FlawScene::threshold, shadow.body, shadow.state,
+                               0, shadow_log),
+            1u);
+}
+
+TEST(GriffithFailureRule, ACrackGrowsOnlyBeyondTheTipStrainWhileANewOneOpensAtEpsS) {
+  FlawScene s;
+  s.strain(s.x_spring(12, 6), 0.02);
+  std::vector<FailureEvent> log;
+  ASSERT_EQ(apply_failure_rule(FlawScene::griffith(), FlawScene::threshold, s.body, s.state, 0, log), 5u);
+  // Next step: the spring ahead of the crack's tip (row 9, 0.05 beyond row 8's failed spring, 90
+  // degrees off its axis) at 1.2 eps_S extends the crack and needs 1.5 eps_S: it waits. A spring
+  // 0.45 away (column 21, row 6) at 1.2 eps_S starts a new crack: its flaw opens.
+  s.state.step = 11;
+  const std::size_t tip = s.x_spring(12, 9), far = s.x_spring(21, 6);
+  s.strain(tip, 0.012);
+  s.strain(far, 0.012);
+  std::vector<FailureEvent> second;
+  EXPECT_EQ(apply_failure_rule(FlawScene::griffith(), FlawScene::threshold, s.body, s.state, 0, second), 5u);
+  EXPECT_EQ(s.state.springs.failed[tip], 0);
+  EXPECT_EQ(second.front().spring, static_cast<std::int32_t>(far));
+  // Beyond the tip strain it grows by that one spring, not by a flaw.
+  s.state.step = 12;
+  s.strain(tip, 0.016);
+  std::vector<FailureEvent> third;
+  EXPECT_EQ(apply_failure_rule(FlawScene::griffith(), FlawScene::threshold, s.body, s.state, 0, third), 1u);
+  EXPECT_EQ(failed_springs(third), (std::vector<std::int32_t>{static_cast<std::int32_t>(tip)}));
+  // A candidate in a crack's shadow (column 14, row 6: 0.1 beside the first flaw, on no tip) waits
+  // at any strain.
+  s.state.step = 13;
+  const std::size_t beside = s.x_spring(14, 6);
+  s.strain(beside, 0.05);
+  std::vector<FailureEvent> fourth;
+  EXPECT_EQ(apply_failure_rule(FlawScene::griffith(), FlawScene::threshold, s.body, s.state, 0, fourth), 0u);
+}
+
+TEST(GriffithFailureRule, TipStrainFactorIsTheCriticalFlawsInTheMeanSpacing) {
+  Config config;
+  config.encounter.failure_rule = FailureRuleKind::griffith;
+  config.encounter.shadow_distance = 0.3;
+  Row r;
+  double L_S = 0;
+  for (double l : r.state.springs.rest_length) L_S += l / 4;
+  for (const double flaw : {0.5, 2.0, 5.0}) {
+    config.encounter.flaw_length = flaw * L_S;
+    const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, 0.001);
+    ASSERT_EQ(kind_of(rule), FailureRuleKind::griffith);
+    const auto& griffith = std::get<GriffithFailureRule>(rule);
+    EXPECT_EQ(griffith.flaw_length, flaw * L_S);  // a length in R
+    // sqrt(a_0 / (2 L_S)), and never below 1 (a flaw shorter than 2 L_S: the local threshold).
+    EXPECT_NEAR(griffith.growth_strain_factor, std::max(1.0, std::sqrt(flaw / 2)), 1e-14);
+    config.encounter.failure_rule = FailureRuleKind::shadow;
+    EXPECT_EQ(griffith.shadow, std::get<ShadowFailureRule>(make_failure_rule(config, std::nullopt, r.body, r.state, 0.001)));
+    config.encounter.failure_rule = FailureRuleKind::griffith;
+    EXPECT_EQ(failure_rule_of(stored_failure_rule(rule)), rule);
+  }
 }

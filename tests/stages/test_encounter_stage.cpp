@@ -513,5 +513,38 @@ TEST(EncounterStage, ShadowRuleResumesBitIdenticallyAndFailsFewerThanLocal) {
       << "shadow " << failures.size() << ", local " << local.observables.failures.size();
 }
 
+TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
+  Config config = quick_config();
+  config.encounter.failure_rule = FailureRuleKind::griffith;
+  config.encounter.shadow_distance = 0.8;
+  config.encounter.flaw_length = 0.8;  // ~ 3 L_S on the quick body (level 3)
+  const Encounter spec = config.find_encounter("strong");
+  const ScratchFolder scratch("encounter_griffith");
+  Checkpoint straight = begin_encounter(quick_parent(), config, spec);
+  const auto* rule = std::get_if<GriffithFailureRule>(&straight.stage.as<EncounterRecord>().failure_rule);
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->flaw_length, 0.8);
+  EXPECT_GT(rule->growth_strain_factor, 1.0);
+  Checkpoint resumed = straight;
+  ASSERT_EQ(run_encounter(straight, config, quiet_loop()), LoopOutcome::finished);
+  const auto& failures = straight.observables.failures;
+  ASSERT_GT(failures.size(), 5u);
+  // The first failure opens a whole flaw: several springs in its step, the first beyond eps_S.
+  std::size_t first_step = 0;
+  for (const auto& e : failures) first_step += e.step == failures.front().step ? 1 : 0;
+  EXPECT_GE(first_step, 3u);
+  EXPECT_GT(failures.front().strain, straight.stage.as<EncounterRecord>().failure_strain);
+
+  StepLoopOptions options = quiet_loop();
+  options.stop_after_step = failures[failures.size() / 2].step;
+  options.mid_checkpoint = scratch.path / "strong.mid.h5";
+  ASSERT_EQ(run_encounter(resumed, config, options), LoopOutcome::interrupted);
+  resumed = read_checkpoint(options.mid_checkpoint);
+  EXPECT_EQ(resumed.stage.as<EncounterRecord>().failure_rule, straight.stage.as<EncounterRecord>().failure_rule);
+  ASSERT_EQ(run_encounter(resumed, config, quiet_loop()), LoopOutcome::finished);
+  EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state));
+  expect_same_failures(resumed.observables.failures, failures);
+}
+
 }  // namespace
 }  // namespace tidalcrust

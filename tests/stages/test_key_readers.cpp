@@ -85,7 +85,7 @@ const char* const variant_sets[] = {"gravity.method=tree",    "encounter.failure
                                     "core.radius=0.4",        "core.density_ratio=2.0",       "core.modulus_ratio=3.0",
                                     "encounters.A.relaxation_crossings=1.5"};
 
-/// A tiny [material] body with a core, the balanced crust, the shadow failure rule and its own dt
+/// A tiny [material] body with a core, the balanced crust, the griffith failure rule and its own dt
 /// (chosen by relax's prepare).
 const char* const material_toml = R"(
 [workflow]
@@ -116,8 +116,9 @@ crust_support = "balanced"
 start_distance = 1.35
 end_distance = 1.35
 sample_interval = 5
-failure_rule = "shadow"
+failure_rule = "griffith"
 shadow_distance = 0.6
+flaw_length = 0.6
 [[encounters]]
 name = "A"
 perturber_mass = 1.0
@@ -277,7 +278,7 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
       }
     }
   }
-  EXPECT_EQ(tried.size(), 76u);  // every key got a valid other value in some base
+  EXPECT_EQ(tried.size(), 77u);  // every key got a valid other value in some base
   // Every declared key shows its effect on some tiny body, but those listed (with the reason).
   for (const std::string& key : tried) {
     const bool listed = declared_without_visible_effect.contains(key);
