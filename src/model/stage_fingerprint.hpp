@@ -23,8 +23,10 @@ std::string stage_fingerprint(const Config& config, StageId stage, const Encount
 
 /// Whether two fingerprints name the same values: the same lines in any order, each without its
 /// trailing comment ("  # ..."). Fingerprints written before they were derived from the key
-/// descriptions (sections in another order, the [[encounters]] table with unit comments) equal
-/// today's when the values are equal.
+/// descriptions (sections in another order, the [[encounters]] table with unit comments), and
+/// body-stage fingerprints that named the encounter holding a value ("encounters.T1.failure_strain",
+/// before 2026-12-06; now "encounters.*.failure_strain", once per distinct value), equal today's
+/// when the values are equal.
 bool same_fingerprint(const std::string& a, const std::string& b);
 
 /// The first line of `new_text` that `old_text` lacks, as "'old line of that key' -> 'new line'"
