@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include "physics/shell_failure.hpp"
 #include "stages/build_stage.hpp"
 #include "stages/encounter_stage.hpp"
 #include "stages/relax_stage.hpp"
@@ -64,8 +65,12 @@ constexpr std::array<StageKind, stage_count> kinds = {{
      .checkpoint_interval_key = "relax.checkpoint_interval",
      // dt checked against (or, for a [material] body without one, chosen from) the stretched
      // body's stability bound; the encounters run with it too.
-     .prepare = [](Config& config, const Checkpoint& stretched,
-                   const std::string& parent_file) { return settle_time_step(config, stretched, parent_file); },
+     // The failure rule's physical lengths are checked against this body's lattice once, here.
+     .prepare = [](Config& config, const Checkpoint& stretched, const std::string& parent_file) {
+       const std::string dt_note = settle_time_step(config, stretched, parent_file);
+       const std::string lengths = unresolved_rule_lengths(config, stretched.body, stretched.state);
+       return dt_note.empty() || lengths.empty() ? dt_note + lengths : dt_note + "\n" + lengths;
+     },
      .doing = nullptr,
      .written = nullptr},
     {.id = encounter,

@@ -6,8 +6,11 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "base/errors.hpp"
 #include "base/vec3.hpp"
@@ -276,6 +279,23 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
     }
   }
   return PaperFailureRule{config.encounter.fail_interval};
+}
+
+std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state) {
+  const FailureRuleKind kind = config.encounter.failure_rule;
+  if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith) return "";
+  if (body.count_species(Species::shell) == 0) return "";
+  const double L_S = derive_quantities(body, state, config.interior.radius).L_S;
+  std::vector<std::string> short_ones;
+  auto check = [&](const char* name, double length) {
+    if (length < 3 * L_S) short_ones.push_back(fmt::format("encounter.{} = {:g} R is {:.1f} L_S", name, length, length / L_S));
+  };
+  check("shadow_distance", config.encounter.shadow_distance);
+  if (kind == FailureRuleKind::griffith) check("flaw_length", config.encounter.flaw_length);
+  if (short_ones.empty()) return "";
+  return fmt::format("warning: {} (L_S = {:.3g} R): the {} rule's lengths are drawn by the lattice from 3 L_S on "
+                     "(docs/failure-rule.md)",
+                     fmt::join(short_ones, ", "), L_S, choice_name(kind));
 }
 
 std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,

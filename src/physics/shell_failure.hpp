@@ -55,6 +55,11 @@ struct FailureThreshold {
 FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
                               const State& state, double dt);
 
+/// "warning: ..." naming each length of the configured rule (shadow_distance, flaw_length) shorter
+/// than 3 L_S on this body, where the lattice cannot draw it (docs/failure-rule.md); "" when all
+/// are resolved, for the other rules, or without a shell.
+std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state);
+
 /// Applies `rule` after a step: whether this step checks (paper: (step - start_step) %
 /// fail_interval == 0; local: every step), and which springs fail. `log` is the stage's failure
 /// log so far (step order); the new events are appended to it. Returns the number of new failures.

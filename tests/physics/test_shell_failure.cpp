@@ -412,3 +412,27 @@ TEST(GriffithFailureRule, TipStrainFactorIsTheCriticalFlawsInTheMeanSpacing) {
     EXPECT_EQ(failure_rule_of(stored_failure_rule(rule)), rule);
   }
 }
+
+TEST(GriffithFailureRule, LengthsTheLatticeCannotDrawAreNamedInOneWarning) {
+  Config config;
+  Row r;  // L_S = 0.0985 R
+  config.encounter.failure_rule = FailureRuleKind::griffith;
+  config.encounter.shadow_distance = 0.5;
+  config.encounter.flaw_length = 0.2;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state),
+            "warning: encounter.flaw_length = 0.2 R is 2.0 L_S (L_S = 0.0985 R): the griffith rule's lengths are drawn "
+            "by the lattice from 3 L_S on (docs/failure-rule.md)");
+  config.encounter.shadow_distance = 0.1;
+  EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("shadow_distance = 0.1 R is 1.0 L_S, encounter.flaw_length"),
+            std::string::npos);
+  config.encounter.flaw_length = 0.3;
+  config.encounter.shadow_distance = 0.3;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
+  config.encounter.failure_rule = FailureRuleKind::shadow;  // the flaw is not the shadow rule's
+  config.encounter.flaw_length = 0.01;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
+  config.encounter.shadow_distance = 0.2;
+  EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("the shadow rule's"), std::string::npos);
+  config.encounter.failure_rule = FailureRuleKind::local;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
+}
