@@ -477,6 +477,30 @@ TEST(FractureSummaryLine, FailuresGiveTheirStatistics) {
   EXPECT_NE(line.find("largest network 0.25 R"), std::string::npos) << line;
 }
 
+/// Runs the quick body's "strong" encounter under `config` straight through, and again interrupted
+/// at its middle failure's step (a mid-stage file written right at a failure) and resumed from
+/// that file: the two must end in the same state and failure log. Returns the straight run.
+Checkpoint run_and_check_resume(const Config& config, const std::string& scratch_name) {
+  const Encounter spec = config.find_encounter("strong");
+  const ScratchFolder scratch(scratch_name);
+  Checkpoint straight = begin_encounter(quick_parent(), config, spec);
+  Checkpoint resumed = straight;
+  EXPECT_EQ(run_encounter(straight, config, quiet_loop()), LoopOutcome::finished);
+  const auto& failures = straight.observables.failures;
+  EXPECT_GT(failures.size(), 5u);
+  if (failures.empty()) return straight;
+  StepLoopOptions options = quiet_loop();
+  options.stop_after_step = failures[failures.size() / 2].step;
+  options.mid_checkpoint = scratch.path / "strong.mid.h5";
+  EXPECT_EQ(run_encounter(resumed, config, options), LoopOutcome::interrupted);
+  resumed = read_checkpoint(options.mid_checkpoint);
+  EXPECT_EQ(resumed.stage.as<EncounterRecord>().failure_rule, straight.stage.as<EncounterRecord>().failure_rule);
+  EXPECT_EQ(run_encounter(resumed, config, quiet_loop()), LoopOutcome::finished);
+  EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state));
+  expect_same_failures(resumed.observables.failures, failures);
+  return straight;
+}
+
 // The shadow failure rule in a whole encounter: its record holds it, the run resumes bit for bit
 // from a mid-stage file written right at a failure, and new cracks are held apart (fewer failures
 // than the local rule of the same neighbourhood on the same body and orbit).
@@ -484,66 +508,40 @@ TEST(EncounterStage, ShadowRuleResumesBitIdenticallyAndFailsFewerThanLocal) {
   Config config = quick_config();
   config.encounter.failure_rule = FailureRuleKind::shadow;
   config.encounter.shadow_distance = 0.8;  // > r_ex = 2 L_S on the quick body (level 3)
-  const Encounter spec = config.find_encounter("strong");
-  const ScratchFolder scratch("encounter_shadow");
-  Checkpoint straight = begin_encounter(quick_parent(), config, spec);
-  const auto* rule = std::get_if<ShadowFailureRule>(&straight.stage.as<EncounterRecord>().failure_rule);
+  const Checkpoint shadow = run_and_check_resume(config, "encounter_shadow");
+  const auto* rule = std::get_if<ShadowFailureRule>(&shadow.stage.as<EncounterRecord>().failure_rule);
   ASSERT_NE(rule, nullptr);
   EXPECT_EQ(rule->shadow_distance, 0.8);
   EXPECT_LT(rule->local.exclusion_distance, 0.8);
-  Checkpoint resumed = straight;
-  ASSERT_EQ(run_encounter(straight, config, quiet_loop()), LoopOutcome::finished);
-  const auto& failures = straight.observables.failures;
-  ASSERT_GT(failures.size(), 5u);
-
-  StepLoopOptions options = quiet_loop();
-  options.stop_after_step = failures[failures.size() / 2].step;
-  options.mid_checkpoint = scratch.path / "strong.mid.h5";
-  ASSERT_EQ(run_encounter(resumed, config, options), LoopOutcome::interrupted);
-  resumed = read_checkpoint(options.mid_checkpoint);
-  ASSERT_EQ(run_encounter(resumed, config, quiet_loop()), LoopOutcome::finished);
-  EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state));
-  expect_same_failures(resumed.observables.failures, failures);
 
   config.encounter.failure_rule = FailureRuleKind::local;
-  Checkpoint local = begin_encounter(quick_parent(), config, spec);
+  Checkpoint local = begin_encounter(quick_parent(), config, config.find_encounter("strong"));
   ASSERT_EQ(run_encounter(local, config, quiet_loop()), LoopOutcome::finished);
   // 290 against 339 when written; one run's spread is about 3% (docs/results/ensembles.md).
-  EXPECT_LT(static_cast<double>(failures.size()), 0.95 * static_cast<double>(local.observables.failures.size()))
-      << "shadow " << failures.size() << ", local " << local.observables.failures.size();
+  const std::size_t failures = shadow.observables.failures.size();
+  EXPECT_LT(static_cast<double>(failures), 0.95 * static_cast<double>(local.observables.failures.size()))
+      << "shadow " << failures << ", local " << local.observables.failures.size();
 }
 
+// The griffith rule in a whole encounter: its record holds the flaw and the tip strain factor,
+// the first failure opens a whole flaw at one step, and the run resumes bit for bit.
 TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
   Config config = quick_config();
   config.encounter.failure_rule = FailureRuleKind::griffith;
   config.encounter.shadow_distance = 0.8;
   config.encounter.flaw_length = 0.8;  // ~ 3 L_S on the quick body (level 3)
-  const Encounter spec = config.find_encounter("strong");
-  const ScratchFolder scratch("encounter_griffith");
-  Checkpoint straight = begin_encounter(quick_parent(), config, spec);
-  const auto* rule = std::get_if<GriffithFailureRule>(&straight.stage.as<EncounterRecord>().failure_rule);
+  const Checkpoint straight = run_and_check_resume(config, "encounter_griffith");
+  const auto& record = straight.stage.as<EncounterRecord>();
+  const auto* rule = std::get_if<GriffithFailureRule>(&record.failure_rule);
   ASSERT_NE(rule, nullptr);
   EXPECT_EQ(rule->flaw_length, 0.8);
   EXPECT_GT(rule->growth_strain_factor, 1.0);
-  Checkpoint resumed = straight;
-  ASSERT_EQ(run_encounter(straight, config, quiet_loop()), LoopOutcome::finished);
   const auto& failures = straight.observables.failures;
-  ASSERT_GT(failures.size(), 5u);
-  // The first failure opens a whole flaw: several springs in its step, the first beyond eps_S.
+  ASSERT_FALSE(failures.empty());
   std::size_t first_step = 0;
   for (const auto& e : failures) first_step += e.step == failures.front().step ? 1 : 0;
   EXPECT_GE(first_step, 3u);
-  EXPECT_GT(failures.front().strain, straight.stage.as<EncounterRecord>().failure_strain);
-
-  StepLoopOptions options = quiet_loop();
-  options.stop_after_step = failures[failures.size() / 2].step;
-  options.mid_checkpoint = scratch.path / "strong.mid.h5";
-  ASSERT_EQ(run_encounter(resumed, config, options), LoopOutcome::interrupted);
-  resumed = read_checkpoint(options.mid_checkpoint);
-  EXPECT_EQ(resumed.stage.as<EncounterRecord>().failure_rule, straight.stage.as<EncounterRecord>().failure_rule);
-  ASSERT_EQ(run_encounter(resumed, config, quiet_loop()), LoopOutcome::finished);
-  EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state));
-  expect_same_failures(resumed.observables.failures, failures);
+  EXPECT_GT(failures.front().strain, record.failure_strain);  // the candidate that opened it
 }
 
 }  // namespace
