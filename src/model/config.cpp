@@ -270,7 +270,7 @@ void visit_keys(C& c, V&& visit) {
        true});
   key(c.material.flexural_rigidity,
       {"material", "flexural_rigidity", reads(build), "e_g R^3",
-       "D_F, crust flexural rigidity (eq. 23); default E_I h_S^3/(12 (1 - nu^2)), nu = 1/4", 0, 1e6, true});
+       "D_F, crust flexural rigidity (eq. 23); default E_S h_S^3/(12 (1 - nu^2)), nu = 1/4, E_S = E_I or E_2D / h_S", 0, 1e6, true});
   key(c.material.crust_mass, {"material", "crust_mass", reads(build), "M", "M_S, crust mass", 0, 0.99, true});
   key(c.material.crust_density,
       {"material", "crust_density", reads(build), "M/R^3",

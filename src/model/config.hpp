@@ -147,7 +147,7 @@ struct MaterialConfig {
   std::optional<double> youngs_modulus;         ///< E_I, interior Young's modulus (eq. 15), e_g
   std::optional<double> crust_thickness;        ///< h_S (eq. 21: E_2D = E_S h_S, E_S = E_I), R
   std::optional<double> crust_modulus_2d;       ///< E_2D (instead of h_S, or with it: a crust of E_S = E_2D / h_S), e_g R
-  std::optional<double> flexural_rigidity;      ///< D_F (eq. 23), e_g R^3; default E_I h_S^3/(12 (1 - 1/16))
+  std::optional<double> flexural_rigidity;      ///< D_F (eq. 23), e_g R^3; default E_S h_S^3/(12 (1 - 1/16)), E_S = E_I or E_2D / h_S
   std::optional<double> crust_mass;             ///< M_S, M
   std::optional<double> crust_density;          ///< rho_S (instead of M_S: M_S = 4 pi R^2 h_S rho_S), M/R^3
   std::optional<double> coupling_speed_ratio;   ///< V_Co / V_IP (eqs. 25, 16); default 1
