@@ -266,10 +266,11 @@ void visit_keys(C& c, V&& visit) {
       {"material", "crust_thickness", reads(build), "R", "h_S, crust thickness: E_2D = E_I h_S (eq. 21)", 0, 0.5, true});
   key(c.material.crust_modulus_2d,
       {"material", "crust_modulus_2d", reads(build), "e_g R",
-       "E_2D, crust 2D Young's modulus (instead of crust_thickness)", 0, 1e6, true});
+       "E_2D, crust 2D Young's modulus (instead of crust_thickness, or with it: a crust of E_S = E_2D / h_S)", 0, 1e6,
+       true});
   key(c.material.flexural_rigidity,
       {"material", "flexural_rigidity", reads(build), "e_g R^3",
-       "D_F, crust flexural rigidity (eq. 23); default E_I h_S^3/(12 (1 - nu^2)), nu = 1/4", 0, 1e6, true});
+       "D_F, crust flexural rigidity (eq. 23); default E_S h_S^3/(12 (1 - nu^2)), nu = 1/4, E_S = E_I or E_2D / h_S", 0, 1e6, true});
   key(c.material.crust_mass, {"material", "crust_mass", reads(build), "M", "M_S, crust mass", 0, 0.99, true});
   key(c.material.crust_density,
       {"material", "crust_density", reads(build), "M/R^3",
@@ -297,6 +298,30 @@ void visit_keys(C& c, V&& visit) {
       {"core", "density_ratio", reads(build, stretch), "-", "rho_core / rho_mantle; default 1", 0, 100, true});
   key(c.core.modulus_ratio,
       {"core", "modulus_ratio", reads(build, stretch), "-", "E_core / E_mantle; default 1", 0, 1000, true});
+
+  // issue 25: [moon], the moon in SI (docs/moon.md); all optional. Quantities are strings with their
+  // unit (the key's unit is the SI unit they are converted to). They fill [material] and [core]
+  // (resolve_moon): each declares the stages that read the values it fills.
+  key(c.moon.preset, {"moon", "preset", reads(build, stretch, relax, encounter), "-",
+                      "a moon of docs/moon.md (any case: tethys, europa, ...): fills every [moon] value not given"});
+  key(c.moon.radius, {"moon", "radius", reads(build, stretch), "m", "R, the moon's radius, a length: \"531 km\""});
+  key(c.moon.mass, {"moon", "mass", reads(build, stretch), "kg", "M, the moon's mass: \"6.17e20 kg\" (or mean_density)"});
+  key(c.moon.mean_density, {"moon", "mean_density", reads(build, stretch), "kg/m^3",
+                            "3 M / (4 pi R^3), instead of mass: \"0.98 g/cm3\""});
+  key(c.moon.youngs_modulus, {"moon", "youngs_modulus", reads(build, stretch, relax, encounter), "Pa",
+                              "E_I, the interior's Young's modulus (nu = 1/4): \"9 GPa\""});
+  key(c.moon.crust_thickness, {"moon", "crust_thickness", reads(build, stretch), "m", "h_S, the crust's thickness: \"20 km\""});
+  key(c.moon.crust_density, {"moon", "crust_density", reads(build, stretch), "kg/m^3", "rho_S, the crust's density: \"0.93 g/cm3\""});
+  key(c.moon.crust_youngs_modulus, {"moon", "crust_youngs_modulus", reads(build, relax, encounter), "Pa",
+                                    "E_S, the crust's Young's modulus; default E_I: \"0.9 GPa\""});
+  key(c.moon.tensile_strength, {"moon", "tensile_strength", reads(build, relax, encounter), "Pa",
+                                "sigma_t, the crust's tensile strength: eps_S = sigma_t / E_S: \"1 MPa\""});
+  key(c.moon.failure_strain, {"moon", "failure_strain", reads(build, relax, encounter), "-",
+                              "eps_S, instead of tensile_strength", 0, 10, true});
+  key(c.moon.core_radius, {"moon", "core_radius", reads(build, stretch), "m", "r_c, radius of a denser, stiffer core: \"150 km\""});
+  key(c.moon.core_density, {"moon", "core_density", reads(build, stretch), "kg/m^3", "rho_c, the core's density (with core_radius)"});
+  key(c.moon.core_youngs_modulus, {"moon", "core_youngs_modulus", reads(build, stretch), "Pa",
+                                   "E_c, the core's Young's modulus; default E_I"});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4). The encounter stage reads its own table
@@ -410,6 +435,10 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
   } else {
     static_assert(std::is_same_v<T, std::string>);
     if (auto s = node.value_exact<std::string>()) return *s;
+    if (const auto dimension = dimension_of_si_unit(key.unit); dimension && node.is_number())
+      throw wrong(fmt::format("{} with its unit, as a string (e.g. \"{}\"): a plain number has no unit",
+                              dimension_name(*dimension), dimension_example(*dimension))
+                      .c_str());
     throw wrong("a string");
   }
 }
@@ -573,7 +602,25 @@ void make_parabolic(Encounter& e, const std::string& where) {
   e.pericenter_speed = v;
 }
 
-std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin) {
+/// An encounter value given in SI ("977 km"): converted with the moon's units once [moon] is read
+/// (convert_encounter_quantities).
+struct EncounterQuantity {
+  std::size_t encounter;  ///< index in the [[encounters]] tables
+  std::string key;        ///< perturber_mass, pericenter or pericenter_speed
+  std::string text;
+  std::string where;
+};
+
+/// The dimension of an [[encounters]] key that may be given in SI; none for the others.
+std::optional<Dimension> encounter_dimension(std::string_view key) {
+  if (key == "perturber_mass") return Dimension::mass;
+  if (key == "pericenter") return Dimension::length;
+  if (key == "pericenter_speed") return Dimension::speed;
+  return std::nullopt;
+}
+
+std::vector<Encounter> parse_encounters(const toml::node& node, const std::string& origin,
+                                        std::vector<EncounterQuantity>& in_si) {
   auto* array = node.as_array();
   if (!array) throw InputError(fmt::format("{}: 'encounters' must be an array of tables ([[encounters]])", origin));
   check_encounter_count(array->size(), 0, origin);
@@ -583,14 +630,45 @@ std::vector<Encounter> parse_encounters(const toml::node& node, const std::strin
     auto* table = element.as_table();
     if (!table) throw InputError(where + ": must be a table");
     Encounter& e = encounters.emplace_back();
-    for (auto&& [k, value] : *table)
+    bool given_in_si = false;
+    for (auto&& [k, value] : *table) {
+      if (value.is_string() && encounter_dimension(k.str())) {  // in SI: converted once [moon] is read
+        in_si.push_back({encounters.size() - 1, std::string(k.str()), *value.value<std::string>(), where});
+        given_in_si = true;
+        continue;
+      }
       if (!set_key(e, "encounters", k.str(), value, where, origin))
         throw InputError(fmt::format("{}: unknown key '{}' (known: {})", where, k.str(),
                                      known_keys<Encounter>("encounters")));
-    // The one default speed, as a [sweep]'s: parabolic for this table's M2 and q.
-    if (table->get("pericenter_speed") == nullptr) make_parabolic(e, where);
+    }
+    // The one default speed, as a [sweep]'s: parabolic for this table's M2 and q (of values in
+    // SI: once they are converted).
+    if (table->get("pericenter_speed") == nullptr && !given_in_si) make_parabolic(e, where);
   }
   return encounters;
+}
+
+/// Converts the [[encounters]] values given in SI to model units with the units of the moon of
+/// [moon] (M, R, v_c = sqrt(G M / R)); an encounter given in SI without its own speed gets the
+/// parabolic one. InputError naming the encounter and key when there is no [moon] or a bad quantity.
+void convert_encounter_quantities(std::vector<Encounter>& encounters, const std::vector<EncounterQuantity>& in_si,
+                                  const MoonConfig& moon, const std::string& origin) {
+  if (in_si.empty()) return;
+  if (!moon.given())
+    throw InputError(fmt::format("{}: {} = \"{}\": a string is a quantity with its unit, which needs the moon in SI "
+                                 "([moon]); without it give a number in model units",
+                                 in_si.front().where, in_si.front().key, in_si.front().text));
+  const ModelUnits units = moon_model_values(moon, origin).units;
+  std::set<std::size_t> with_speed;
+  for (const EncounterQuantity& q : in_si) {
+    const Dimension dimension = *encounter_dimension(q.key);
+    const double value = quantity_si(q.text, dimension, fmt::format("{}: {}", q.where, q.key)) / model_unit(units, dimension);
+    Encounter& e = encounters[q.encounter];
+    (q.key == "perturber_mass" ? e.perturber_mass : q.key == "pericenter" ? e.pericenter : e.pericenter_speed) = value;
+    if (q.key == "pericenter_speed") with_speed.insert(q.encounter);
+  }
+  for (const EncounterQuantity& q : in_si)
+    if (!with_speed.contains(q.encounter)) make_parabolic(encounters[q.encounter], q.where);
 }
 
 /// The values of one [sweep] axis: a list of numbers, or {from, to, count} (count values evenly
@@ -783,7 +861,46 @@ void refuse_derived_key(const Config& config, std::string_view section, std::str
                                  origin, section, name));
 }
 
+/// A [material] or [core] field a [moon] table fills, and the value it fills in (none: not filled).
+struct MoonField {
+  std::string_view key;     ///< "material.youngs_modulus"
+  std::string_view source;  ///< the [moon] keys it comes from
+  std::optional<double>* field;
+  std::optional<double> value;
+};
+
+/// The fields a [moon] table fills in `c`, with the values `v` of moon_model_values.
+std::vector<MoonField> moon_fields(Config& c, const MoonModelValues& v) {
+  return {{"material.youngs_modulus", "moon.youngs_modulus", &c.material.youngs_modulus, v.youngs_modulus},
+          {"material.crust_thickness", "moon.crust_thickness", &c.material.crust_thickness, v.crust_thickness},
+          {"material.crust_density", "moon.crust_density", &c.material.crust_density, v.crust_density},
+          {"material.crust_modulus_2d", "moon.crust_youngs_modulus", &c.material.crust_modulus_2d, v.crust_modulus_2d},
+          {"material.failure_strain", "moon.tensile_strength or moon.failure_strain", &c.material.failure_strain,
+           v.failure_strain},
+          {"core.radius", "moon.core_radius", &c.core.radius, v.core_radius},
+          {"core.density_ratio", "moon.core_density", &c.core.density_ratio, v.core_density_ratio},
+          {"core.modulus_ratio", "moon.core_youngs_modulus", &c.core.modulus_ratio, v.core_modulus_ratio}};
+}
+
+/// Unsets the [material] and [core] values the [moon] table of `c` filled (before it changes).
+void forget_moon_values(Config& c, const std::string& origin) {
+  if (!c.moon.given()) return;
+  for (MoonField& f : moon_fields(c, moon_model_values(c.moon, origin)))
+    if (f.value && *f.field == f.value) f.field->reset();
+}
+
 }  // namespace
+
+void resolve_moon(Config& c, const std::string& origin) {
+  if (!c.moon.given()) return;
+  for (MoonField& f : moon_fields(c, moon_model_values(c.moon, origin))) {
+    if (!f.value) continue;
+    if (*f.field && **f.field != *f.value)
+      throw InputError(fmt::format("{}: {} = {} and [moon] ({}, giving {}) both set it; give one of them", origin, f.key,
+                                   toml_text(**f.field), f.source, toml_text(*f.value)));
+    *f.field = f.value;
+  }
+}
 
 std::string path_name_problem(std::string_view name) {
   // Shown with control characters escaped, so that the message stays one line.
@@ -820,9 +937,13 @@ double material_crust_modulus_2d(const MaterialConfig& m) {
 
 double material_flexural_rigidity(const MaterialConfig& m) {
   if (m.flexural_rigidity) return *m.flexural_rigidity;
+  const double nu = material_poisson_ratio;
+  // A crust of its own modulus E_S = E_2D / h_S: D_F = E_S h_S^3 / (12 (1 - nu^2)); with E_S = E_I
+  // the same bits as below.
+  if (m.crust_modulus_2d && m.crust_thickness)
+    return *m.crust_modulus_2d * *m.crust_thickness * *m.crust_thickness / (12 * (1 - nu * nu));
   const double E = m.youngs_modulus.value_or(0);
   const double h = m.crust_thickness.value_or(E > 0 ? material_crust_modulus_2d(m) / E : 0.0);
-  const double nu = material_poisson_ratio;
   return E * h * h * h / (12 * (1 - nu * nu));
 }
 
@@ -840,8 +961,6 @@ void resolve_material(Config& c, const std::string& origin) {
   auto refuse_both = [&](bool a, bool b, const char* what) {
     if (a && b) throw InputError(fmt::format("{}: [material] takes {}, not both", origin, what));
   };
-  refuse_both(m.crust_thickness.has_value(), m.crust_modulus_2d.has_value(),
-              "material.crust_thickness or material.crust_modulus_2d");
   refuse_both(m.crust_mass.has_value(), m.crust_density.has_value(), "material.crust_mass or material.crust_density");
   if (c.shell.enabled) {
     need(m.crust_thickness || m.crust_modulus_2d, "material.crust_thickness or material.crust_modulus_2d");
@@ -1058,10 +1177,11 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
                                  err.description()));
   }
   Config config;
+  std::vector<EncounterQuantity> in_si;  // [[encounters]] values with units
   for (auto&& [sk, snode] : root) {
     const std::string section(sk.str());
     if (section == "encounters") {
-      auto listed = parse_encounters(snode, origin);
+      auto listed = parse_encounters(snode, origin, in_si);
       config.encounters.insert(config.encounters.begin(), listed.begin(), listed.end());
       continue;
     }
@@ -1078,11 +1198,18 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
                                    fmt::join(section_names(), ", ")));
     auto* table = snode.as_table();
     if (!table) throw InputError(fmt::format("{}: '{}' must be a table", origin, section));
-    for (auto&& [k, node] : *table)
+    for (auto&& [k, node] : *table) {
+      if (section == "moon" && k.str() == "poisson_ratio") {  // checked, not kept: the network's nu is 1/4
+        check_moon_poisson_ratio(node.value<double>().value_or(std::numeric_limits<double>::quiet_NaN()),
+                                 fmt::format("{}: moon.poisson_ratio", origin));
+        continue;
+      }
       if (!set_key(config, section, k.str(), node, fmt::format("{}: {}", origin, section), origin))
         throw InputError(fmt::format("{}: unknown key '{}.{}' (known: {})", origin, section, k.str(),
                                      known_keys<Config>(section)));
+    }
   }
+  convert_encounter_quantities(config.encounters, in_si, config.moon, origin);  // the tables come first
   if (config.sweep) {
     check_encounter_count(config.encounters.size(), sweep_size(*config.sweep), origin);
     const std::vector<Encounter> swept = expand_sweep(*config.sweep);
@@ -1092,6 +1219,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
     config.ensemble_bases = std::move(config.encounters);
     expand_ensemble_of(config, origin);
   }
+  resolve_moon(config, origin);  // [moon] fills [material] and [core]
   if (config.from_material())  // [material] derives these: giving them too is ambiguous
     for (auto&& [sk, snode] : root)
       if (auto* table = snode.as_table())
@@ -1164,10 +1292,23 @@ void apply_override(Config& config, const std::string& assignment) {
       config.encounters = config.ensemble_bases;
     return;
   }
+  if (section == "moon") {
+    if (key == "poisson_ratio")
+      return check_moon_poisson_ratio(node.value<double>().value_or(std::numeric_limits<double>::quiet_NaN()),
+                                      where + ": moon.poisson_ratio");
+    // The [material] and [core] values the old [moon] filled give way to the new ones.
+    forget_moon_values(config, where);
+    if (!set_key(config, section, key, node, "--set", "--set"))
+      throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
+    resolve_moon(config, where);
+    resolve_material(config, where);
+    return;
+  }
   if (section != "encounters") {
     if (!set_key(config, section, key, node, "--set", "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
     refuse_derived_key(config, section, key, where);
+    resolve_moon(config, where);  // a value [moon] filled: given again only with the same value
     if (section == "integrator" && key == "dt") config.choose_dt = false;
     // Members of an ensemble that varies the body branch from seeds counted from workflow.seed.
     if (section == "workflow" && key == "seed" && config.ensemble && config.ensemble->members != 0)

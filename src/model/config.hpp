@@ -15,6 +15,7 @@
 
 #include "model/choices.hpp"
 #include "model/encounter.hpp"
+#include "model/moon_units.hpp"
 #include "model/stage_records.hpp"
 
 namespace tidalcrust {
@@ -145,8 +146,8 @@ struct GravityConfig {
 struct MaterialConfig {
   std::optional<double> youngs_modulus;         ///< E_I, interior Young's modulus (eq. 15), e_g
   std::optional<double> crust_thickness;        ///< h_S (eq. 21: E_2D = E_S h_S, E_S = E_I), R
-  std::optional<double> crust_modulus_2d;       ///< E_2D (instead of h_S), e_g R
-  std::optional<double> flexural_rigidity;      ///< D_F (eq. 23), e_g R^3; default E_I h_S^3/(12 (1 - 1/16))
+  std::optional<double> crust_modulus_2d;       ///< E_2D (instead of h_S, or with it: a crust of E_S = E_2D / h_S), e_g R
+  std::optional<double> flexural_rigidity;      ///< D_F (eq. 23), e_g R^3; default E_S h_S^3/(12 (1 - 1/16)), E_S = E_I or E_2D / h_S
   std::optional<double> crust_mass;             ///< M_S, M
   std::optional<double> crust_density;          ///< rho_S (instead of M_S: M_S = 4 pi R^2 h_S rho_S), M/R^3
   std::optional<double> coupling_speed_ratio;   ///< V_Co / V_IP (eqs. 25, 16); default 1
@@ -242,6 +243,9 @@ struct Config {
   MaterialConfig material;
   ResolutionConfig resolution;
   CoreConfig core;
+  /// The [moon] table (docs/moon.md): the moon in SI. Given, it fills [material] and [core]
+  /// (resolve_moon); the resolved text keeps both.
+  MoonConfig moon;
   /// No integrator.dt given in a [material] workflow: dt is chosen from the stability bound of
   /// the stretched body (stages/time_step.hpp); to_toml leaves dt out while this is set.
   bool choose_dt = false;
@@ -335,6 +339,10 @@ bool derived_by_material(const Config& config, std::string_view section, std::st
 /// need the built network (k_I, k_e, k_C, d_C) are derived by the build stage (docs/material.md).
 /// InputError naming the key for a missing or inconsistent material value.
 void resolve_material(Config& config, const std::string& origin);
+/// Fills the [material] and [core] keys a [moon] table gives (moon_model_values), as a user
+/// could have written them; no-op without [moon]. A key given with another value is an
+/// InputError naming both (the resolved text carries the same value beside [moon], accepted).
+void resolve_moon(Config& config, const std::string& origin);
 /// Poisson ratio of the random isotropic network (Kot 2015), also taken for the crust's D_F.
 inline constexpr double material_poisson_ratio = 0.25;
 /// The crust's E_2D (e_g R) and D_F (e_g R^3) of a [material] body.

@@ -4,6 +4,7 @@
 // names exactly the commands of the table.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <regex>
 #include <set>
 #include <string>
@@ -43,10 +44,10 @@ TEST(ConfigCli, DefaultsListEveryKeyWithItsDefaultAndStages) {
   const CliResult json = run_cli("config --defaults --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const Json keys = Json::parse(json.out)["keys"];
-  ASSERT_EQ(keys.size(), 77u);  // 70 keys of Config, 7 of [[encounters]]
+  ASSERT_EQ(keys.size(), 90u);  // 83 keys of Config, 7 of [[encounters]]
   std::set<std::string> names;
   for (const auto& k : keys) names.insert(k["section"].get<std::string>() + "." + k["name"].get<std::string>());
-  EXPECT_EQ(names.size(), 77u);
+  EXPECT_EQ(names.size(), 90u);
   for (const auto& k : keys)
     if (k["section"] == "integrator" && k["name"] == "dt") {
       EXPECT_EQ(k["default"], "0.002");
@@ -66,6 +67,24 @@ TEST(ConfigCli, WorkflowPrintsItsResolvedConfiguration) {
     EXPECT_EQ(refused.exit_code, 2) << bad << "\n" << refused.err;
     EXPECT_EQ(count_lines(refused.err), 1) << bad << "\n" << refused.err;
   }
+}
+
+// A [moon] value with a unit udunits2 does not know: one line naming the file and the key, exit 2;
+// the shipped workflows/tethys.toml is accepted.
+TEST(ConfigCli, MoonWithABadUnitIsExitCodeTwo) {
+  const ScratchFolder folder("moon");
+  std::string text = read_file(workflow_file("tethys.toml"));
+  text.replace(text.find("\"10.6 km\""), 9, "\"10.6 kmm\"");
+  write_file(folder.path / "bad.toml", text);
+  const CliResult bad = run_cli("config " + quoted(folder.path / "bad.toml"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("bad.toml: moon.crust_thickness = \"10.6 kmm\": 'kmm' is not a unit udunits2 knows"),
+            std::string::npos)
+      << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  const CliResult good = run_cli("config " + quoted(workflow_file("tethys.toml")));
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_NE(good.out.find("preset = 'tethys'"), std::string::npos);
 }
 
 TEST(CommandTable, HelpListsEveryCommandOnceWithTheLineOfItsOwnHelp) {

@@ -54,7 +54,8 @@ std::string changed_by(const std::string& assignment) {
 
 /// The configurations the key test starts from: paper-T (direct gravity, the paper's failure rule,
 /// linear cross springs); the same with the tree code, the local failure rule, nonlinear cross
-/// springs, a core and encounter overrides; and a [material] body with a core and balanced crust.
+/// springs, a core and encounter overrides; a [material] body with a core and balanced crust; and
+/// a [moon] body, without and with a core.
 std::vector<std::pair<std::string, Config>> bases() {
   std::vector<std::pair<std::string, Config>> out;
   out.emplace_back("paper-T", load_config(test_support::workflow_file("paper-T.toml")));
@@ -80,6 +81,14 @@ std::vector<std::pair<std::string, Config>> bases() {
     text.replace(at, from.size(), to);
   }
   out.emplace_back("core-T by modulus and density", parse_config(text, "core-T variant"));
+  // A moon in SI (docs/moon.md), and the same with a core.
+  out.emplace_back("tethys", load_config(test_support::workflow_file("tethys.toml")));
+  text = test_support::read_file(test_support::workflow_file("tethys.toml"));
+  const std::string preset = "preset = \"tethys\"\n";
+  if (text.find(preset) == std::string::npos) throw std::runtime_error("tethys.toml changed: " + preset);
+  text.insert(text.find(preset) + preset.size(),
+              "core_radius = \"150 km\"\ncore_density = \"2.5 g/cm3\"\ncore_youngs_modulus = \"90 GPa\"\n");
+  out.emplace_back("tethys with a core", parse_config(text, "tethys with a core"));
   return out;
 }
 
@@ -128,7 +137,7 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
       }
     }
   }
-  EXPECT_EQ(covered.size(), 77u);  // 70 keys of Config, 7 of [[encounters]]
+  EXPECT_EQ(covered.size(), 90u);  // 83 keys of Config, 7 of [[encounters]]
   for (const auto& [key, count] : covered) EXPECT_GT(count, 0) << key << ": no valid other value in any base";
 }
 

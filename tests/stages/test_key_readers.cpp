@@ -132,6 +132,20 @@ const std::pair<const char*, const char*> material_variant_edits[] = {
     {"crust_mass = 0.07", "crust_density = 0.2"},
     {"[core]\nradius = 0.4\ndensity_ratio = 2.0\nmodulus_ratio = 3.0\n", "[integrator]\ndt = 0.006\n"}};
 
+/// The tiny [material] body given as a moon in SI (docs/moon.md): R = 1000 km and M = 1e21 kg make
+/// e_g = 6.674e7 Pa, so E_I = 1.05 e_g, h_S = 0.03 R, M_S = 0.071 M, eps_S = 0.0015; a core of
+/// density ratio 2.2 and modulus ratio 2.9.
+const std::pair<const char*, const char*> moon_edits[] = {
+    {"[material]\nyoungs_modulus = 1.0\ncrust_thickness = 0.03\ncrust_mass = 0.07\n",
+     "[moon]\nradius = \"1000 km\"\nmass = \"1e21 kg\"\nyoungs_modulus = \"0.07 GPa\"\ncrust_thickness = \"30 km\"\n"
+     "crust_density = \"0.19 g/cm3\"\ntensile_strength = \"0.105 MPa\"\ncore_radius = \"400 km\"\n"
+     "core_density = \"0.5 g/cm3\"\ncore_youngs_modulus = \"0.2 GPa\"\n[material]\n"},
+    {"failure_strain = 0.0015\n", ""},
+    {"[core]\nradius = 0.4\ndensity_ratio = 2.0\nmodulus_ratio = 3.0\n", ""}};
+/// The tiny moon by its mean density and failure strain.
+const std::pair<const char*, const char*> moon_variant_edits[] = {
+    {"mass = \"1e21 kg\"", "mean_density = \"0.24 g/cm3\""}, {"tensile_strength = \"0.105 MPa\"", "failure_strain = 0.0015"}};
+
 /// What a stage's result is made of, for comparing two runs of it: the body's fixed properties
 /// (masses, springs, hinge stiffnesses, softening), the state, the record, the failures and samples.
 struct Result {
@@ -218,12 +232,15 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
   Config variant = parse_config(tiny_toml, "tiny.toml");
   for (const char* set : variant_sets) apply_override(variant, set);
   validate(variant, "variant");
-  std::string material_variant = material_toml;
-  for (const auto& [from, to] : material_variant_edits) {
-    const auto at = material_variant.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    material_variant.replace(at, std::string_view(from).size(), to);
-  }
+  const auto edited = [](std::string text, const auto& edits) {
+    for (const auto& [from, to] : edits) {
+      const auto at = text.find(from);
+      if (at == std::string::npos) throw std::runtime_error(std::string("material_toml changed: ") + from);
+      text.replace(at, std::string_view(from).size(), to);
+    }
+    return text;
+  };
+  const std::string material_variant = edited(material_toml, material_variant_edits);
   struct Base {
     std::string label;
     Config config;
@@ -236,7 +253,10 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
       {"tiny variant", variant, ""},
       {"tiny material", parse_config(material_toml, "tiny-material.toml"), ""},
       {"tiny material variant", parse_config(material_variant, "tiny-material-variant.toml"), "material"},
-      {"tiny interior-only", interior_only, "interior"}};
+      {"tiny interior-only", interior_only, "interior"},
+      {"tiny moon", parse_config(edited(material_toml, moon_edits), "tiny-moon.toml"), "moon"},
+      {"tiny moon variant", parse_config(edited(edited(material_toml, moon_edits), moon_variant_edits), "tiny-moon-variant.toml"),
+       "moon"}};
 
   std::set<std::string> tried, visible;
   for (const auto& [label, base, only_section] : bases) {
@@ -278,7 +298,7 @@ TEST(KeyReaders, AStageWhoseResultAKeyChangesDeclaresIt) {
       }
     }
   }
-  EXPECT_EQ(tried.size(), 77u);  // every key got a valid other value in some base
+  EXPECT_EQ(tried.size(), 90u);  // every key got a valid other value in some base
   // Every declared key shows its effect on some tiny body, but those listed (with the reason).
   for (const std::string& key : tried) {
     const bool listed = declared_without_visible_effect.contains(key);

@@ -10,11 +10,22 @@
 #include <vector>
 
 #include "model/config.hpp"
+#include "model/moon_units.hpp"
 
 namespace tidalcrust::test_support {
 
 inline std::vector<std::string> other_key_values(const KeyInfo& key) {
   if (key.type == "boolean") return {key.value == "true" ? "false" : "true"};
+  if (key.section == "moon" && key.name == "preset") return {"dione", "Europa"};
+  if (const auto dimension = dimension_of_si_unit(key.unit); key.type == "string" && dimension) {
+    // A [moon] quantity (the value as to_toml writes it, 'number unit'), scaled; unset: an example.
+    const std::string text = key.value ? key.value->substr(1, key.value->size() - 2) : std::string(dimension_example(*dimension));
+    std::size_t end = 0;
+    const double v = std::stod(text, &end);
+    std::vector<std::string> out;
+    for (double w : {v * 1.25, v * 0.8, v * 0.5}) out.push_back(fmt::format("'{}{}'", w, text.substr(end)));
+    return out;
+  }
   if (key.type == "string") return {"renamed"};  // workflow.name, encounters.name
   std::vector<std::string> out;
   if (key.type == "choice") {
