@@ -915,6 +915,23 @@ def ensembles_t5(p):
     return lines
 
 
+@full_table("resolution-welded-griffith")
+def resolution_welded_griffith(p):
+    """T5 on the welded bodies of levels 3-5 with the griffith failure rule (issue 24 item 4): the
+    single runs, then each level as a 5-member ensemble."""
+    folders = ["griffith-welded-L3", "griffith-welded-L4", "griffith-welded-L5"]
+    lines = resolution_lines(p, folders, [
+        "tidalcrust run workflows/welded-L3.toml --set encounter.failure_rule=griffith --out griffith-welded-L3   (and -L4, -L5)",
+        "tidalcrust run workflows/welded-L3.toml --set encounter.failure_rule=griffith --set ensemble.members=5 --only T5 --out griffith-welded-L3   (and -L4, -L5)",
+        "tidalcrust report workflows/welded-L3.toml --set encounter.failure_rule=griffith --set ensemble.members=5 --out griffith-welded-L3   (and -L4, -L5)",
+        "tidalcrust compare --resolution griffith-welded-L{3,4,5}/T5/encounter.h5 --json"])
+    runs = [(f, f"level {f[-1]}") for f in folders if (p.work / f / "report" / "ensembles.json").is_file()]
+    lines += ["", "The same, each level as an ensemble (members at pericenters q (1 + 5e-3 u_k)):", ""]
+    lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
+                   ensemble_rows(p, runs, "T5"))
+    return lines
+
+
 def compare_ensembles_lines(p, a, b, title, *pair):
     """The statistics of ENSEMBLE_COLUMNS from `compare --ensembles A B [--pair ...]`, as a code block."""
     args = ["compare", "--ensembles", a, b] + [x for n in pair for x in ("--pair", n)]
