@@ -178,7 +178,10 @@ Json layered_json(double core_radius, double density_ratio) {
 int command_estimate(int argc, char** argv) {
   cxxopts::Options options = command_options("estimate", "Without --body or --mass: all Table 1 bodies.");
   options.add_options()
-      ("body", "a Table 1 body: Tethys, Dione, Rhea, Ariel, Titania, Charon, Mars", cxxopts::value<std::string>())
+      ("body",
+       "a Table 1 body (Tethys, Dione, Rhea, Ariel, Titania, Charon, Mars) or a [moon] preset (Enceladus, Europa, "
+       "Mimas, Miranda; docs/moon.md)",
+       cxxopts::value<std::string>())
       ("mass", "body mass (kg), with --radius", cxxopts::value<std::string>())
       ("radius", "body radius (km), with --mass", cxxopts::value<std::string>())
       ("m2", "perturber mass (body masses; default 1)", cxxopts::value<std::string>())
@@ -215,7 +218,7 @@ int command_estimate(int argc, char** argv) {
 
   std::vector<BodyReport> reports;
   if (parsed.count("body")) {
-    reports.push_back(report_for(find_table1_body(parsed["body"].as<std::string>()), geometry, youngs_GPa));
+    reports.push_back(report_for(find_named_body(parsed["body"].as<std::string>()), geometry, youngs_GPa));
   } else if (has_mass) {
     const double mass = positive_option(parsed, "mass", 0);
     const double radius = positive_option(parsed, "radius", 0);

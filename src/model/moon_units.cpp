@@ -193,6 +193,19 @@ const MoonPreset& find_moon_preset(std::string_view name, const std::string& whe
   throw InputError(fmt::format("{} = \"{}\": unknown preset (known: {})", where, name, known));
 }
 
+PhysicalBody find_named_body(std::string_view name) {
+  std::string known;
+  for (const auto& body : table1_bodies()) {
+    if (equal_ignoring_case(body.name, name)) return body;
+    known += (known.empty() ? "" : ", ") + body.name;
+  }
+  for (const MoonPreset& preset : moon_presets()) {
+    if (equal_ignoring_case(preset.name, name)) return {std::string(preset.name), preset.mass_kg, preset.radius_m / 1e3};
+    if (known.find(preset.name) == std::string::npos) known += fmt::format(", {}", preset.name);
+  }
+  throw InputError(fmt::format("unknown body '{}' (known: {})", name, known));
+}
+
 void check_moon_poisson_ratio(double nu, const std::string& where) {
   if (nu == 0.25) return;
   throw InputError(fmt::format("{} = {}: the random spring network has nu = 1/4 (paper eq. 15, docs/material.md); "

@@ -28,6 +28,10 @@ const std::vector<PhysicalBody>& table1_bodies();
 /// names otherwise.
 const PhysicalBody& find_table1_body(std::string_view name);
 
+/// A body by name for `estimate --body`: a Table 1 body, else a [moon] preset (mass and radius;
+/// compared case-insensitively); InputError listing every known name otherwise.
+PhysicalBody find_named_body(std::string_view name);
+
 /// What one model unit is worth in SI for a body of mass M and radius R (G = gravitational_constant_si).
 struct ModelUnits {
   double mass_kg = 0;        ///< M

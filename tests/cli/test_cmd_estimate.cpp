@@ -71,6 +71,17 @@ TEST(CommandEstimate, WithoutABodyPrintsAllOfTable1) {
   EXPECT_NE(table.out.find("Titania"), std::string::npos);
 }
 
+TEST(CommandEstimate, KnowsTheMoonPresetsBesideTable1) {
+  const auto r = run_cli("estimate --body europa --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(has_key(r.out, "mass_kg")) << r.out;
+  EXPECT_NE(r.out.find("\"Europa\""), std::string::npos) << r.out;
+  EXPECT_DOUBLE_EQ(json_number(r.out, "mass_kg"), 4.80e22);  // Anderson et al. 1998 (docs/moon.md)
+  EXPECT_DOUBLE_EQ(json_number(r.out, "radius_km"), 1560.8);
+  const auto unknown = run_cli("estimate --body Pluto2");
+  EXPECT_NE(unknown.err.find("Miranda"), std::string::npos) << unknown.err;
+}
+
 TEST(CommandEstimate, UnknownBodyIsAOneLineInputError) {
   const auto r = run_cli("estimate --body Pluto2");
   EXPECT_EQ(r.exit_code, 2);
