@@ -416,6 +416,11 @@ T read_value(const toml::node& node, const Key<T>& key, const std::string& where
   if constexpr (std::is_same_v<T, double>) {
     if (auto v = node.value_exact<double>()) return *v;
     if (auto i = node.value_exact<std::int64_t>()) return static_cast<double>(*i);
+    // A string here is most often a quantity with its unit: say where those go.
+    if (node.is_string() && !key.unit.empty() && key.unit != "-")
+      throw InputError(fmt::format("{}: '{}' must be a number in {} (model units G = M = R = 1); a quantity with "
+                                   "its unit (\"0.9 GPa\", \"531 km\") goes in [moon] (docs/moon.md)",
+                                   where, key.name, key.unit));
     throw wrong("a number");
   } else if constexpr (std::is_same_v<T, std::int64_t>) {
     if (auto i = node.value_exact<std::int64_t>()) return *i;

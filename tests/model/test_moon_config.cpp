@@ -230,3 +230,17 @@ TEST(MoonConfig, EncounterInSiIsConvertedWithTheMoonsUnits) {
                 .find("si.toml: encounters[0]: pericenter = \"977 kg\": 'kg' is not a unit of a length"),
             std::string::npos);
 }
+
+TEST(MoonConfig, AQuantityWithItsUnitInAModelUnitKeyPointsToTheMoonTable) {
+  // The case users report: [material] youngs_modulus = "0.9 GPa" (in e_g) said only "must be a number".
+  try {
+    parse_config("[material]\nyoungs_modulus = \"0.9 GPa\"\n[[encounters]]\nname = \"A\"\nperturber_mass = 0.5\n"
+                 "pericenter = 2.0\n",
+                 "m.toml");
+    FAIL() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "m.toml: material: 'youngs_modulus' must be a number in e_g (model units G = M = R = 1); a quantity "
+              "with its unit (\"0.9 GPa\", \"531 km\") goes in [moon] (docs/moon.md)");
+  }
+}
