@@ -80,6 +80,7 @@ ModelUnits model_units(double mass_kg, double radius_m) {
   u.speed_m_s = std::sqrt(G * M / R);
   u.density_kg_m3 = M / (R * R * R);
   u.mean_density_kg_m3 = M / (4.0 / 3.0 * std::numbers::pi * R * R * R);
+  u.energy_J = G * M * M / R;
   return u;
 }
 
@@ -90,12 +91,14 @@ std::string_view si_unit(Dimension dimension) {
     case Dimension::density: return "kg/m^3";
     case Dimension::pressure: return "Pa";
     case Dimension::speed: return "m/s";
+    case Dimension::time: return "s";
+    case Dimension::energy: return "J";
   }
   return "";
 }
 
 std::optional<Dimension> dimension_of_si_unit(std::string_view unit) {
-  for (Dimension d : {Dimension::length, Dimension::mass, Dimension::density, Dimension::pressure, Dimension::speed})
+  for (Dimension d : all_dimensions)
     if (si_unit(d) == unit) return d;
   return std::nullopt;
 }
@@ -107,6 +110,8 @@ std::string_view dimension_name(Dimension dimension) {
     case Dimension::density: return "a density";
     case Dimension::pressure: return "a pressure";
     case Dimension::speed: return "a speed";
+    case Dimension::time: return "a time";
+    case Dimension::energy: return "an energy";
   }
   return "";
 }
@@ -118,6 +123,8 @@ std::string_view dimension_example(Dimension dimension) {
     case Dimension::density: return "0.93 g/cm3";
     case Dimension::pressure: return "0.9 GPa";
     case Dimension::speed: return "2.0 km/s";
+    case Dimension::time: return "3 h";
+    case Dimension::energy: return "1e18 J";
   }
   return "";
 }
@@ -129,8 +136,63 @@ double model_unit(const ModelUnits& units, Dimension dimension) {
     case Dimension::density: return units.density_kg_m3;
     case Dimension::pressure: return units.modulus_Pa;
     case Dimension::speed: return units.speed_m_s;
+    case Dimension::time: return units.time_s;
+    case Dimension::energy: return units.energy_J;
   }
   return 0;
+}
+
+std::string_view model_unit_name(Dimension dimension) {
+  switch (dimension) {
+    case Dimension::length: return "R";
+    case Dimension::mass: return "M";
+    case Dimension::density: return "M/R^3";
+    case Dimension::pressure: return "e_g";
+    case Dimension::speed: return "sqrt(GM/R)";
+    case Dimension::time: return "t_grav";
+    case Dimension::energy: return "G M^2/R";
+  }
+  return "";
+}
+
+std::optional<Dimension> dimension_of_model_unit(std::string_view name) {
+  if (name == "GM^2/R") return Dimension::energy;  // the spelling of report's tables
+  for (Dimension d : all_dimensions)
+    if (model_unit_name(d) == name) return d;
+  return std::nullopt;
+}
+
+double model_to_si(const ModelUnits& units, Dimension dimension, double model_value) {
+  return model_value * model_unit(units, dimension);
+}
+
+double si_to_model(const ModelUnits& units, Dimension dimension, double value_in_si) {
+  return value_in_si / model_unit(units, dimension);
+}
+
+OutputUnit output_unit(Dimension dimension) {
+  switch (dimension) {
+    case Dimension::length: return {"km", "_km", 1e3};
+    case Dimension::mass: return {"kg", "_kg", 1};
+    case Dimension::density: return {"kg/m^3", "_kg_m3", 1};
+    case Dimension::pressure: return {"Pa", "_Pa", 1};
+    case Dimension::speed: return {"km/s", "_km_s", 1e3};
+    case Dimension::time: return {"h", "_h", 3600};
+    case Dimension::energy: return {"J", "_J", 1};
+  }
+  return {};
+}
+
+double model_to_output(const ModelUnits& units, Dimension dimension, double model_value) {
+  return model_to_si(units, dimension, model_value) / output_unit(dimension).si_per_unit;
+}
+
+double output_to_model(const ModelUnits& units, Dimension dimension, double output_value) {
+  return si_to_model(units, dimension, output_value * output_unit(dimension).si_per_unit);
+}
+
+std::string si_key(std::string_view key, Dimension dimension) {
+  return std::string(key) + std::string(output_unit(dimension).key_suffix);
 }
 
 double quantity_si(std::string_view text, Dimension dimension, const std::string& where) {
@@ -204,6 +266,12 @@ PhysicalBody find_named_body(std::string_view name) {
     if (known.find(preset.name) == std::string::npos) known += fmt::format(", {}", preset.name);
   }
   throw InputError(fmt::format("unknown body '{}' (known: {})", name, known));
+}
+
+MoonScale moon_scale(const MoonConfig& moon, const std::string& origin) {
+  MoonScale scale{"moon", moon_model_values(moon, origin).units};
+  if (moon.preset) scale.name = std::string(find_moon_preset(*moon.preset, origin + ": moon.preset").name);
+  return scale;
 }
 
 void check_moon_poisson_ratio(double nu, const std::string& where) {

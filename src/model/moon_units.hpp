@@ -41,13 +41,18 @@ struct ModelUnits {
   double speed_m_s = 0;      ///< v_c = sqrt(G M / R) (eq. 6)
   double density_kg_m3 = 0;  ///< M / R^3 (the mean density is 3 / (4 pi) of it)
   double mean_density_kg_m3 = 0;  ///< 3 M / (4 pi R^3)
+  double energy_J = 0;       ///< G M^2 / R = M v_c^2: energies
 };
 /// The model units of a body; InputError unless M and R are finite and > 0.
 ModelUnits model_units(double mass_kg, double radius_m);
 
 /// What a quantity with a unit measures.
-enum class Dimension { length, mass, density, pressure, speed };
-/// The SI unit a quantity of `dimension` is converted to ("m", "kg", "kg/m^3", "Pa", "m/s").
+enum class Dimension { length, mass, density, pressure, speed, time, energy };
+/// Every dimension, in declaration order.
+inline constexpr Dimension all_dimensions[] = {Dimension::length, Dimension::mass,  Dimension::density,
+                                               Dimension::pressure, Dimension::speed, Dimension::time,
+                                               Dimension::energy};
+/// The SI unit a quantity of `dimension` is converted to ("m", "kg", "kg/m^3", "Pa", "m/s", "s", "J").
 std::string_view si_unit(Dimension dimension);
 /// The dimension whose si_unit is `unit`; none for another text ("-", "R", ...).
 std::optional<Dimension> dimension_of_si_unit(std::string_view unit);
@@ -55,8 +60,33 @@ std::optional<Dimension> dimension_of_si_unit(std::string_view unit);
 std::string_view dimension_name(Dimension dimension);
 /// An example value of the dimension ("531 km"), for messages and docs.
 std::string_view dimension_example(Dimension dimension);
-/// One model unit of `dimension` for `units`, in SI (R, M, M/R^3, e_g, v_c).
+/// One model unit of `dimension` for `units`, in SI (R, M, M/R^3, e_g, v_c, t_grav, G M^2/R).
 double model_unit(const ModelUnits& units, Dimension dimension);
+/// The name of the model unit of `dimension` as the output writes it beside a value ("R", "M",
+/// "M/R^3", "e_g", "sqrt(GM/R)", "t_grav", "G M^2/R").
+std::string_view model_unit_name(Dimension dimension);
+/// The dimension of a model unit named as the output writes it (model_unit_name; also "GM^2/R"
+/// and "G M^2/R"); none for another text ("1", "deg", "e_g R", ...).
+std::optional<Dimension> dimension_of_model_unit(std::string_view name);
+
+/// A model value in SI and back: value * model_unit, value / model_unit.
+double model_to_si(const ModelUnits& units, Dimension dimension, double model_value);
+double si_to_model(const ModelUnits& units, Dimension dimension, double value_in_si);
+
+/// The unit the output in SI writes a quantity of `dimension` in (docs/moon.md, "Output in SI"):
+/// lengths in km, masses in kg, densities in kg/m^3, moduli in Pa, speeds in km/s, times in hours,
+/// energies in J.
+struct OutputUnit {
+  std::string_view symbol;      ///< "km", "kg", "kg/m^3", "Pa", "km/s", "h", "J"
+  std::string_view key_suffix;  ///< what a JSON key or CSV column in it ends with: "_km", ..., "_h", "_J"
+  double si_per_unit = 1;       ///< 1e3 for km, 3600 for h
+};
+OutputUnit output_unit(Dimension dimension);
+/// A model value in the output unit of its dimension, and back.
+double model_to_output(const ModelUnits& units, Dimension dimension, double model_value);
+double output_to_model(const ModelUnits& units, Dimension dimension, double output_value);
+/// `key` with the suffix of the output unit of `dimension`: si_key("pericenter", length) = "pericenter_km".
+std::string si_key(std::string_view key, Dimension dimension);
 
 /// The SI value of a number followed by a unit ("0.9 GPa", "6.17e20 kg", "0.93 g/cm3"), converted
 /// by udunits2 (ut_parse of the unit, ut_are_convertible and ut_get_converter to si_unit).
@@ -133,6 +163,14 @@ struct MoonModelValues {
 /// one, two alternatives given together (mass and mean_density, tensile_strength and
 /// failure_strain), or a core that leaves the mantle no mass.
 MoonModelValues moon_model_values(const MoonConfig& moon, const std::string& origin);
+
+/// The moon whose units a [moon] workflow's output is also written in (docs/moon.md, "Output in SI").
+struct MoonScale {
+  std::string name;  ///< the preset's name as listed ("Tethys"); "moon" for one given by radius and mass
+  ModelUnits units;
+};
+/// The scale of `moon` (moon_model_values' units, the preset's name); InputError as moon_model_values.
+MoonScale moon_scale(const MoonConfig& moon, const std::string& origin);
 
 /// Refuses a Poisson ratio the random spring network cannot have: it has nu = 1/4 (paper eq. 15,
 /// docs/material.md). InputError "<where> = <nu>: ..." unless `nu` is 0.25.

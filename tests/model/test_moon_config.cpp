@@ -100,6 +100,45 @@ TEST(MoonUnits, EveryPresetRoundTripsSiToModelToSi) {
   }
 }
 
+// The output in SI (docs/moon.md, "Output in SI"): for every preset and every kind of quantity,
+// SI -> model -> SI, model -> SI -> model and the output unit (km, h, km/s, ...) -> model -> output
+// unit each come back to within round_trip_ulps of where they started.
+TEST(MoonUnits, EveryQuantityKindRoundTripsSiToModelToSi) {
+  ASSERT_EQ(std::size(all_dimensions), 7u);
+  for (const MoonPreset& preset : moon_presets()) {
+    const ModelUnits u = model_units(preset.mass_kg, preset.radius_m);
+    for (const Dimension d : all_dimensions) {
+      SCOPED_TRACE(std::string(preset.name) + ", " + std::string(dimension_name(d)));
+      EXPECT_EQ(model_to_si(u, d, 1.0), model_unit(u, d));
+      for (const double factor : {1.0, 0.37, 1.84, 3.1e-4, 2.5e3, 1.0 / 3.0}) {
+        const double si = factor * model_unit(u, d);
+        EXPECT_LE(ulps(model_to_si(u, d, si_to_model(u, d, si)), si), round_trip_ulps) << factor;
+        EXPECT_LE(ulps(si_to_model(u, d, model_to_si(u, d, factor)), factor), round_trip_ulps) << factor;
+        const double shown = factor * 977;  // a value in the output unit (km, kg, h, ...)
+        EXPECT_LE(ulps(model_to_output(u, d, output_to_model(u, d, shown)), shown), round_trip_ulps) << factor;
+        EXPECT_LE(ulps(model_to_output(u, d, factor) * output_unit(d).si_per_unit, model_to_si(u, d, factor)),
+                  round_trip_ulps)
+            << factor;
+      }
+      // The names the output writes: the model unit read back, the SI key of the output unit.
+      EXPECT_EQ(dimension_of_model_unit(model_unit_name(d)), d);
+      EXPECT_TRUE(si_key("x", d).starts_with("x_"));
+    }
+  }
+  // The units are those of quantity_si: one km read is 1 km written, one hour 3600 s.
+  const ModelUnits tethys = model_units(0.62e21, 531e3);
+  EXPECT_EQ(model_to_output(tethys, Dimension::length, si_to_model(tethys, Dimension::length,
+                                                                   quantity_si("977 km", Dimension::length, "k"))),
+            977.0);
+  EXPECT_DOUBLE_EQ(quantity_si("1 h", Dimension::time, "k"), output_unit(Dimension::time).si_per_unit);
+  EXPECT_DOUBLE_EQ(quantity_si("1 km/s", Dimension::speed, "k"), output_unit(Dimension::speed).si_per_unit);
+  EXPECT_DOUBLE_EQ(tethys.energy_J, tethys.mass_kg * tethys.speed_m_s * tethys.speed_m_s);
+  EXPECT_EQ(si_key("pericenter", Dimension::length), "pericenter_km");
+  EXPECT_EQ(si_key("min_distance", Dimension::time), "min_distance_h");
+  EXPECT_EQ(dimension_of_model_unit("GM^2/R"), Dimension::energy);
+  EXPECT_FALSE(dimension_of_model_unit("deg"));
+}
+
 // Tethys (Table 1: M = 0.62e21 kg, R = 531 km) with a 10.6 km crust, by hand (Python, G = 6.674e-11):
 // e_g = G M^2 / R^4 = 3.226944506855669e8 Pa; E_I = 9e9 / e_g = 27.89016043157677; h_S = 10.6 / 531
 // = 0.019962335216572504; rho_S = 930 / (M / R^3) = 0.22458193650000002; E_2D = (0.9e9 / e_g) h_S
