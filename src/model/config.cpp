@@ -667,7 +667,7 @@ void convert_encounter_quantities(std::vector<Encounter>& encounters, const std:
   std::set<std::size_t> with_speed;
   for (const EncounterQuantity& q : in_si) {
     const Dimension dimension = *encounter_dimension(q.key);
-    const double value = quantity_si(q.text, dimension, fmt::format("{}: {}", q.where, q.key)) / model_unit(units, dimension);
+    const double value = si_to_model(units, dimension, quantity_si(q.text, dimension, fmt::format("{}: {}", q.where, q.key)));
     Encounter& e = encounters[q.encounter];
     (q.key == "perturber_mass" ? e.perturber_mass : q.key == "pericenter" ? e.pericenter : e.pericenter_speed) = value;
     if (q.key == "pericenter_speed") with_speed.insert(q.encounter);
@@ -905,6 +905,16 @@ void resolve_moon(Config& c, const std::string& origin) {
                                    toml_text(**f.field), f.source, toml_text(*f.value)));
     *f.field = f.value;
   }
+}
+
+std::optional<MoonScale> output_moon(const Config& config, const std::string& origin) {
+  if (!config.moon.given()) return std::nullopt;
+  return moon_scale(config.moon, origin);
+}
+
+std::optional<MoonScale> stored_moon(const std::string& config_toml, const std::string& origin) {
+  if (config_toml.empty()) return std::nullopt;  // a checkpoint made in memory (tests), not by a stage
+  return output_moon(parse_config(config_toml, origin), origin);
 }
 
 std::string path_name_problem(std::string_view name) {

@@ -343,6 +343,12 @@ void resolve_material(Config& config, const std::string& origin);
 /// could have written them; no-op without [moon]. A key given with another value is an
 /// InputError naming both (the resolved text carries the same value beside [moon], accepted).
 void resolve_moon(Config& config, const std::string& origin);
+
+/// The moon of a [moon] workflow, whose units the output gives beside the model's (docs/moon.md,
+/// "Output in SI"); none without [moon]. InputError naming `origin` as moon_model_values.
+std::optional<MoonScale> output_moon(const Config& config, const std::string& origin);
+/// The same of a checkpoint's stored (resolved) configuration text; none for an empty text.
+std::optional<MoonScale> stored_moon(const std::string& config_toml, const std::string& origin);
 /// Poisson ratio of the random isotropic network (Kot 2015), also taken for the crust's D_F.
 inline constexpr double material_poisson_ratio = 0.25;
 /// The crust's E_2D (e_g R) and D_F (e_g R^3) of a [material] body.
