@@ -195,6 +195,11 @@ Json failure_summary_json(const FractureSummary& summary) {
           {"longest_arc_misfit_deg", number(longest.rms_misfit_deg)}};
 }
 
+std::string_view failure_summary_unit(std::string_view key) {
+  if (key.starts_with("largest_network") || key == "total_crack_length") return "R";
+  return key.ends_with("_deg") ? "deg" : "1";
+}
+
 Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash) {
   // Each failed spring's bars (one per face it borders), in face order.
   std::map<std::int32_t, std::vector<const CrackBar*>> bars_of_spring;

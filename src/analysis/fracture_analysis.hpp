@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "analysis/crack_geometry.hpp"
@@ -96,6 +97,11 @@ FractureSummary analyze_fractures(const Body& body, const State& state);
 /// on it); count, clusters and fitted_arcs are integers, undefined (NaN) values are written as null
 /// (the crack-geometry keys hold null in the Json too, where no failure or no arc defines them).
 Json failure_summary_json(const FractureSummary& summary);
+
+/// The unit of a key of failure_summary_json: "R" for the crack lengths (largest_network_length,
+/// largest_network_extent, total_crack_length), "deg" for the keys ending in _deg, "1" for the
+/// counts and ratios.
+std::string_view failure_summary_unit(std::string_view key);
 
 /// cracks.json of `analyze` (docs/python.md, docs/crack-geometry.md), the one home of the crack
 /// polylines the Python package turns into GeoJSON and shapefiles: `format` ("tidalcrust-cracks"),

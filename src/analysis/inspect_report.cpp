@@ -153,11 +153,8 @@ void add_failures_section(const Checkpoint& c, InspectReport& r) {
   if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
   const Json summary = failure_summary_json(analyze_fractures(c.body, c.state));
-  // Keys of failure_summary_json: counts and fractions are pure numbers, angles in degrees,
-  // crack lengths in R.
   for (const auto& [key, value] : summary.items()) {
-    const bool length = key.starts_with("largest_network") || key == "total_crack_length";
-    const std::string unit = key.ends_with("_deg") ? "deg" : length ? "R" : "1";
+    const std::string unit(failure_summary_unit(key));
     if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>(), unit);
     else failures.add(key, value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>(), unit);
   }
