@@ -12,6 +12,11 @@ constexpr double degrees_per_radian = 180.0 / std::numbers::pi;
 
 double longitude_deg(const Vec3& r) { return std::atan2(r.y(), r.x()) * degrees_per_radian; }
 
+double planetocentric_longitude_deg(double orbital_longitude_deg) {
+  const double longitude = orbital_longitude_deg - subsatellite_longitude_deg;
+  return longitude > 180 ? longitude - 360 : longitude <= -180 ? longitude + 360 : longitude;
+}
+
 double latitude_deg(const Vec3& r) {
   const double norm = r.norm();
   if (norm == 0) return 0;

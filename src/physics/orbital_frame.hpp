@@ -10,12 +10,20 @@ namespace tidalcrust {
 
 /// Direction of the perturber at pericenter, seen from the body's centre of mass.
 inline const Vec3 subsatellite_direction{0.0, 1.0, 0.0};
+/// Its longitude in the orbital frame, degrees.
+inline constexpr double subsatellite_longitude_deg = 90;
 
 /// Longitude in degrees, (-180, 180], of a point r relative to the centre of mass; +y is +90.
 double longitude_deg(const Vec3& r);
 
 /// Latitude in degrees, [-90, 90], of r relative to the centre of mass; +z is +90.
 double latitude_deg(const Vec3& r);
+
+/// The planetocentric longitude of the maps of a moon (docs/moon.md, "Output in SI"), degrees in
+/// (-180, 180]: east-positive (right-handed about +z, the orbit normal, which is north) from the
+/// subsatellite point at pericenter, so orbital-frame longitude - subsatellite_longitude_deg.
+/// Latitude is the orbital frame's.
+double planetocentric_longitude_deg(double orbital_longitude_deg);
 
 /// Angle in degrees, [0, 180], between r and the subsatellite direction.
 double angle_from_subsatellite_deg(const Vec3& r);
