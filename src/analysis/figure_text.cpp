@@ -34,13 +34,30 @@ std::string general_text(double value, int significant) {
   return without_negative_zero(fmt::format("{:.{}g}", value, significant), value);
 }
 
-std::string time_from_pericenter_text(double time_from_pericenter) {
-  return fmt::format("t \u2212 t_peri = {} t_grav", signed_fixed_text(time_from_pericenter, 2));
+std::string time_from_pericenter_text(double time_from_pericenter, const MoonScale* moon) {
+  const std::string model = fmt::format("{} t_grav", signed_fixed_text(time_from_pericenter, 2));
+  if (!moon) return "t \u2212 t_peri = " + model;
+  return fmt::format("t \u2212 t_peri = {} {} ({})",
+                     signed_fixed_text(model_to_output(moon->units, Dimension::time, time_from_pericenter), 2),
+                     output_unit(Dimension::time).symbol, model);
 }
 
-std::string encounter_parameters_text(const Encounter& encounter) {
-  return fmt::format("M\u2082 = {} M, q = {} R, V_q = {} \u221a(GM/R)", general_text(encounter.perturber_mass),
-                     general_text(encounter.pericenter), general_text(encounter.pericenter_speed));
+std::string si_beside_text(double model_value, Dimension dimension, const MoonScale* moon) {
+  if (!moon) return "";
+  return fmt::format(" = {} {}", general_text(model_to_output(moon->units, dimension, model_value), 3),
+                     output_unit(dimension).symbol);
+}
+
+std::string encounter_parameters_text(const Encounter& encounter, const MoonScale* moon) {
+  return fmt::format("M\u2082 = {} M{}, q = {} R{}, V_q = {} \u221a(GM/R){}", general_text(encounter.perturber_mass),
+                     si_beside_text(encounter.perturber_mass, Dimension::mass, moon), general_text(encounter.pericenter),
+                     si_beside_text(encounter.pericenter, Dimension::length, moon),
+                     general_text(encounter.pericenter_speed),
+                     si_beside_text(encounter.pericenter_speed, Dimension::speed, moon));
+}
+
+std::string time_axis_label(const MoonScale* moon) {
+  return fmt::format("t \u2212 t_peri [{}]", moon ? output_unit(Dimension::time).symbol : "t_grav");
 }
 
 double dt_factor_of(const StepClock& clock) {
@@ -59,8 +76,9 @@ std::string time_step_text(const StepClock& clock) {
   return factor == 1 ? dt : fmt::format("{} = {} \u00d7 the body's dt", dt, general_text(factor));
 }
 
-std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock) {
-  return fmt::format("{}\n{}; {}", headline, encounter_parameters_text(encounter), time_step_text(clock));
+std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock,
+                                   const MoonScale* moon) {
+  return fmt::format("{}\n{}; {}", headline, encounter_parameters_text(encounter, moon), time_step_text(clock));
 }
 
 }  // namespace tidalcrust

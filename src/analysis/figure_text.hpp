@@ -6,6 +6,7 @@
 #include <string>
 
 #include "model/encounter.hpp"
+#include "model/moon_units.hpp"
 #include "model/stage_records.hpp"
 
 namespace tidalcrust {
@@ -21,11 +22,21 @@ std::string signed_fixed_text(double value, int decimals);
 /// Shortest form with `significant` digits ("{:g}"): 0.5, 1e-05, 1.84; never "-0".
 std::string general_text(double value, int significant = 6);
 
-/// "t − t_peri = +1.84 t_grav" for `time_from_pericenter` in t_grav, two decimals.
-std::string time_from_pericenter_text(double time_from_pericenter);
+/// "t − t_peri = +1.84 t_grav" for `time_from_pericenter` in t_grav, two decimals; of a moon
+/// (docs/moon.md, "Output in SI") in hours first: "t − t_peri = +0.97 h (+1.84 t_grav)".
+std::string time_from_pericenter_text(double time_from_pericenter, const MoonScale* moon = nullptr);
 
-/// "M₂ = 0.5 M, q = 1.84 R, V_q = 1.6 √(GM/R)": the encounter's parameters with their units.
-std::string encounter_parameters_text(const Encounter& encounter);
+/// "M₂ = 0.5 M, q = 1.84 R, V_q = 1.6 √(GM/R)": the encounter's parameters with their units; of a
+/// moon each with its SI value beside it, three digits: "M₂ = 0.5 M = 3.1e+20 kg, q = 1.84 R =
+/// 977 km, V_q = 1.6 √(GM/R) = 0.447 km/s".
+std::string encounter_parameters_text(const Encounter& encounter, const MoonScale* moon = nullptr);
+
+/// " = 977 km": a model value of `dimension` in its SI output unit for a moon, three digits, to put
+/// beside the model value; "" without a moon.
+std::string si_beside_text(double model_value, Dimension dimension, const MoonScale* moon);
+
+/// The label of the figures' time axes: "t − t_peri [h]" for a moon, else "t − t_peri [t_grav]".
+std::string time_axis_label(const MoonScale* moon);
 
 /// The ratio of the stage's time step to the mean time step before the stage began
 /// (clock.start_time / clock.start_step), rounded to 6 significant digits: for an encounter
@@ -40,6 +51,7 @@ std::string time_step_text(const StepClock& clock);
 
 /// Title of an encounter figure: `headline` on the first line, then a second line with the
 /// encounter's parameters and the time step.
-std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock);
+std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock,
+                                   const MoonScale* moon = nullptr);
 
 }  // namespace tidalcrust
