@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,11 +22,13 @@
 #include "figures/figure_script.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/fracture_comparison.hpp"
+#include "analysis/si_output.hpp"
 #include "io/atomic_file.hpp"
 #include "io/json.hpp"
 #include "io/checkpoint_names.hpp"
 #include "io/state_hash.hpp"
 #include "io/checkpoint_file.hpp"
+#include "model/config.hpp"
 #include "model/stage_fingerprint.hpp"
 
 namespace tidalcrust {
@@ -79,6 +82,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out)) throw InputError(fmt::format("{}: cannot create output folder: {}", out.string(), ec.message()));
 
+  const std::optional<MoonScale> moon = stored_moon(checkpoint.config_toml, from.string() + ":/parameters/config");
   const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
   const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
@@ -102,13 +106,21 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
 
   const std::string name = record.encounter.name.empty() ? from.stem().string() : record.encounter.name;
   const double t_after = checkpoint.state.time - record.pericenter_time;
+  // Of a moon, the largest crack network in km on the map's title.
+  const std::string largest_network =
+      moon && fractures.count() > 0
+          ? fmt::format(", largest crack network {} {}",
+                        general_text(model_to_output(moon->units, Dimension::length, fractures.longest_crack_length), 3),
+                        output_unit(Dimension::length).symbol)
+          : "";
   auto title = [&](const std::string& headline) {
-    return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock);
+    return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock, moon ? &*moon : nullptr);
   };
   // The figures' titles (two lines: headline, then the encounter's parameters and dt).
   const Json titles = {
-      {"fracture_map", title(fmt::format("{}: {} failed shell springs ({}), {}", name, fractures.count(),
-                                         percent(fractures.fraction_shell), time_from_pericenter_text(t_after)))},
+      {"fracture_map", title(fmt::format("{}: {} failed shell springs ({}){}, {}", name, fractures.count(),
+                                         percent(fractures.fraction_shell), largest_network,
+                                         time_from_pericenter_text(t_after, moon ? &*moon : nullptr)))},
       {"hemisphere", title(name + ": hemisphere facing pericenter")},
       {"orbit", title(name + ": perturber orbit")},
       {"failures", title(name + ": shell spring failures")},
@@ -158,7 +170,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   Json figure_names = Json::array();
   for (const auto& f : figures) figure_names.push_back(f.filename().string());
 
-  const Json summary = {
+  Json summary = {
       {"source", from.string()},
       {"stage", checkpoint.stage.name()},
       {"complete", checkpoint.stage.complete},
@@ -215,6 +227,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"principal_axis_ratios", shape_list},
       {"figures", figure_names},
       {"crack_geometry", crack_geometry_json(fractures.geometry)}};
+  // A [moon] workflow's values in SI beside the model's, last (readers rely on the order before it).
+  if (moon) summary["si"] = summary_si_json(*moon, summary);
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
   // is up to date. cracks.json (the crack polylines for GIS products, read by the Python
   // package) first, so that a summary.json naming this state is never beside an older one.
@@ -222,7 +236,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   // drawn last, by the Python package, from these files: the numbers never depend on it.
   const std::string hash = state_hash(checkpoint.state);
   write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, hash)));
-  write_file_atomically(out / "figure_data.json", figure_data_json(checkpoint, record, panels, titles, hash).dump() + "\n");
+  write_file_atomically(out / "figure_data.json", figure_data_json(checkpoint, record, panels, titles, hash, moon ? &*moon : nullptr).dump() + "\n");
   write_file_atomically(out / "summary.json", json_text(summary));
   // Figures of an earlier analysis are removed first, so that a figure process that fails leaves
   // no figure of another state beside this summary.json (analysis_is_current then redoes it).
@@ -241,6 +255,8 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   // one that had to skip a snapshot (unreadable, or of another run) is not finished: the next run
   // tries again.
   if (!summary.contains("crack_geometry") || !summary.contains("failure_trend")) return false;
+  // One of a [moon] workflow written before the output in SI.
+  if (!summary.contains("si") && stored_moon(checkpoint.config_toml, "/parameters/config")) return false;
   // Likewise one written before cracks.json existed.
   if (!fs::exists(out / "cracks.json") || !fs::exists(out / "figure_data.json")) return false;
   // And one whose figures were not all drawn (the figure script failed or was interrupted).

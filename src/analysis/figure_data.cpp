@@ -4,12 +4,16 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <numbers>
+
+#include <fmt/format.h>
 
 #include "analysis/body_shape.hpp"
 #include "analysis/crack_geometry.hpp"
 #include "analysis/figure_text.hpp"
 #include "analysis/fracture_analysis.hpp"
 #include "analysis/recorded_track.hpp"
+#include "analysis/si_output.hpp"
 #include "model/center_of_mass.hpp"
 #include "physics/conservation.hpp"
 #include "physics/orbital_frame.hpp"
@@ -31,7 +35,8 @@ Vec3 perturber_offset(const Checkpoint& c, const Vec3& center) {
 
 /// One hemisphere panel: the shell nodes (positions), the crack bars (3D, with their face), the
 /// perturber; the faces themselves are the body's (the same for every panel).
-Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes) {
+Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes,
+                      const MoonScale* moon) {
   const Vec3 center = body_center_of_mass(c.body, c.state);
   const FractureSummary fractures = analyze_fractures(c.body, c.state);
   Json positions = Json::array();
@@ -41,7 +46,7 @@ Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::ve
     bars.push_back({{"face", bar.face}, {"from", xyz(bar.centroid)}, {"to", xyz(bar.edge_midpoint)}});
   const bool has_perturber = c.state.perturber.present && c.state.perturber.mass > 0;
   return {{"time_from_pericenter", c.state.time - pericenter_time},
-          {"label", time_from_pericenter_text(c.state.time - pericenter_time)},
+          {"label", time_from_pericenter_text(c.state.time - pericenter_time, moon)},
           {"failed", fractures.count()},
           {"positions", positions},
           {"crack_bars", bars},
@@ -50,7 +55,7 @@ Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::ve
                                       : Json(nullptr)}};
 }
 
-Json hemisphere_json(const std::vector<const Checkpoint*>& panels, double pericenter_time) {
+Json hemisphere_json(const std::vector<const Checkpoint*>& panels, double pericenter_time, const MoonScale* moon) {
   // The shell nodes, numbered in the order of their particle index; faces renumbered to them.
   const Body& body = panels.front()->body;
   std::vector<std::int32_t> nodes;
@@ -62,7 +67,7 @@ Json hemisphere_json(const std::vector<const Checkpoint*>& panels, double perice
   Json faces = Json::array();
   for (const auto& f : body.faces) faces.push_back({local[f[0]], local[f[1]], local[f[2]]});
   Json list = Json::array();
-  for (const Checkpoint* c : panels) list.push_back(hemisphere_panel(*c, pericenter_time, nodes));
+  for (const Checkpoint* c : panels) list.push_back(hemisphere_panel(*c, pericenter_time, nodes, moon));
   return {{"view", "orthographic from +y (the subsatellite side) in the orbital plane, +z up: screen x = -x, y = z"},
           {"nodes", nodes},
           {"faces", faces},
@@ -70,7 +75,8 @@ Json hemisphere_json(const std::vector<const Checkpoint*>& panels, double perice
 }
 
 /// Figure 7: the simulated track (timeseries perturber_offset) or the analytic two-body track.
-Json orbit_json(const Checkpoint& checkpoint, const EncounterRecord& record, const std::vector<double>& snapshot_times) {
+Json orbit_json(const Checkpoint& checkpoint, const EncounterRecord& record, const std::vector<double>& snapshot_times,
+                const MoonScale* moon) {
   constexpr double tick_interval = 0.1;  ///< t_grav between diamonds (as in the paper)
   constexpr double max_ticks = 400;      ///< a longer track gets a whole multiple of the interval
   double t_start = checkpoint.stage.clock.start_time, t_end = checkpoint.state.time;
@@ -129,7 +135,7 @@ Json orbit_json(const Checkpoint& checkpoint, const EncounterRecord& record, con
           {"pericenter", xy(pericenter)},
           {"direction", xy(direction)},
           {"stored_position", checkpoint.state.perturber.present ? xy(perturber_offset(checkpoint, center)) : Json(nullptr)},
-          {"stored_label", "stored position, " + time_from_pericenter_text(checkpoint.state.time - tq)}};
+          {"stored_label", "stored position, " + time_from_pericenter_text(checkpoint.state.time - tq, moon)}};
 }
 
 /// Cumulative failed shell springs: a step function of the failure events, else the samples.
@@ -220,7 +226,7 @@ std::vector<Point> convex_hull(std::vector<Point> points) {
 /// Figure 5: the body seen from +z, its outline (convex hull of all particles projected onto the
 /// orbital plane), the springs with both ends within body_slice_half_width of the plane and those
 /// particles, the perturber's direction in the plane.
-Json body_slice_panel(const Checkpoint& c, double pericenter_time) {
+Json body_slice_panel(const Checkpoint& c, double pericenter_time, const MoonScale* moon) {
   const Vec3 center = body_center_of_mass(c.body, c.state);
   const std::size_t n = c.body.particle_count();
   std::vector<Vec3> r(n);
@@ -243,7 +249,7 @@ Json body_slice_panel(const Checkpoint& c, double pericenter_time) {
   }
   const PrincipalAxes shape = principal_axes(c.body.mass, c.state.position);
   return {{"time_from_pericenter", c.state.time - pericenter_time},
-          {"label", time_from_pericenter_text(c.state.time - pericenter_time)},
+          {"label", time_from_pericenter_text(c.state.time - pericenter_time, moon)},
           {"b_over_a", shape.b_over_a()},
           {"c_over_a", shape.c_over_a()},
           {"hull", hull},
@@ -271,15 +277,52 @@ Json crack_circles_json(const CrackGeometry& geometry) {
   return arcs;
 }
 
+/// A round length for the maps' scale bar: 1, 2 or 5 times a power of ten, at most half the radius.
+double scale_bar_length(double radius) {
+  const double half = radius / 2, decade = std::pow(10.0, std::floor(std::log10(half)));
+  for (const double m : {5.0, 2.0, 1.0})
+    if (m * decade <= half) return m * decade;
+  return decade;
+}
+
+/// How the maps show the surface: in the orbital frame (longitude of cracks.json and summary.json),
+/// or for a moon in planetocentric longitude (physics/orbital_frame.hpp) with a km scale bar.
+Json map_json(const MoonScale* moon) {
+  if (!moon)
+    return {{"frame", "orbital"},
+            {"longitude_shift_deg", 0},
+            {"subsatellite", {subsatellite_longitude_deg, 0}},
+            {"scale_bar", nullptr},
+            {"note", fmt::format("top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital "
+                                 "plane; below: orthographic; ring: subsatellite point ({:g}\u00b0, 0\u00b0)",
+                                 subsatellite_longitude_deg)}};
+  const double radius_km = model_to_output(moon->units, Dimension::length, 1);
+  const double bar_km = scale_bar_length(radius_km);
+  return {{"frame", "planetocentric"},
+          {"longitude_shift_deg", planetocentric_longitude_deg(0)},
+          {"subsatellite", {planetocentric_longitude_deg(subsatellite_longitude_deg), 0}},
+          {"scale_bar",
+           {{"length_km", bar_km},
+            {"length_R", output_to_model(moon->units, Dimension::length, bar_km)},
+            {"label", fmt::format("{:g} {}", bar_km, output_unit(Dimension::length).symbol)}}},
+          {"note", fmt::format("top: Mollweide (equal-area); planetocentric latitude and longitude in degrees "
+                               "(equator = orbital plane, north = orbit normal, longitude 0 = subsatellite point at "
+                               "pericenter, east positive); below: orthographic; ring: subsatellite point; bars: {:g} "
+                               "km along the equator at the centre; {} R = {:g} km, 10\u00b0 = {} km",
+                               bar_km, moon->name, radius_km,
+                               general_text(model_to_output(moon->units, Dimension::length, std::numbers::pi / 18), 3))}};
+}
+
 }  // namespace
 
 Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord& record,
-                      const std::vector<const Checkpoint*>& panels, const Json& titles, const std::string& state_hash) {
+                      const std::vector<const Checkpoint*>& panels, const Json& titles, const std::string& state_hash,
+                      const MoonScale* moon) {
   const double tq = record.pericenter_time;
   std::vector<double> panel_times;
   for (const Checkpoint* c : panels) panel_times.push_back(c->state.time);
   Json slices = Json::array();
-  for (const Checkpoint* c : panels) slices.push_back(body_slice_panel(*c, tq));
+  for (const Checkpoint* c : panels) slices.push_back(body_slice_panel(*c, tq, moon));
   const FractureSummary fractures = analyze_fractures(final_checkpoint.body, final_checkpoint.state);
   return {{"format", "tidalcrust-figure-data"},
           {"version", 1},
@@ -289,12 +332,22 @@ Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord&
           {"figures", encounter_figure_names()},
           {"titles", titles},
           {"pericenter_time", tq},
-          {"hemisphere", hemisphere_json(panels, tq)},
-          {"orbit", orbit_json(final_checkpoint, record, panel_times)},
+          {"hemisphere", hemisphere_json(panels, tq, moon)},
+          {"orbit", orbit_json(final_checkpoint, record, panel_times, moon)},
           {"failures", failures_json(final_checkpoint, tq)},
           {"conservation", conservation_json(final_checkpoint, tq)},
           {"body_shape", {{"slice_half_width", body_slice_half_width}, {"panels", slices}}},
-          {"crack_geometry", {{"circles", crack_circles_json(fractures.geometry)}}}};
+          {"crack_geometry", {{"circles", crack_circles_json(fractures.geometry)}}},
+          {"map", map_json(moon)},
+          {"time_axis",
+           {{"label", time_axis_label(moon)},
+            {"per_t_grav", moon ? model_to_output(moon->units, Dimension::time, 1) : 1.0},
+            {"model_label", time_axis_label(nullptr)}}},
+          {"length_axis",
+           moon ? Json{{"unit", output_unit(Dimension::length).symbol},
+                       {"per_R", model_to_output(moon->units, Dimension::length, 1)}}
+                : Json(nullptr)},
+          {"si", moon ? Json{{"units", si_units_text(*moon)}, {"moon", moon_json(*moon)}} : Json(nullptr)}};
 }
 
 }  // namespace tidalcrust

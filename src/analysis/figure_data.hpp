@@ -8,6 +8,7 @@
 
 #include "io/json.hpp"
 #include "model/checkpoint.hpp"
+#include "model/moon_units.hpp"
 
 namespace tidalcrust {
 
@@ -27,9 +28,13 @@ inline constexpr double body_slice_half_width = 0.12;
 /// order), `shape_checkpoints` every checkpoint whose principal axes summary.json lists,
 /// `titles` one two-line title per name of encounter_figure_names(). Positions are relative to the
 /// body's centre of mass in the maps' orbital frame (orbital plane = equator, subsatellite point
-/// +y), lengths in R, times in t_grav from pericenter. Keys: docs/python.md.
+/// +y), lengths in R, times in t_grav from pericenter. Keys: docs/python.md. Of a [moon] workflow
+/// (`moon`; docs/moon.md, "Output in SI") the labels give times in hours beside t_grav, and `map`,
+/// `time_axis`, `length_axis` and `si` say how the figures show SI: maps in planetocentric
+/// longitude (0 at the subsatellite point) with a km scale bar, time axes in hours, a km axis
+/// beside R.
 Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord& record,
                       const std::vector<const Checkpoint*>& panels, const Json& titles,
-                      const std::string& state_hash);
+                      const std::string& state_hash, const MoonScale* moon = nullptr);
 
 }  // namespace tidalcrust
