@@ -1,6 +1,7 @@
 #include "analysis/inspect_report.hpp"
 
 #include "analysis/fracture_analysis.hpp"
+#include "analysis/si_output.hpp"
 
 #include <fmt/format.h>
 
@@ -99,6 +100,11 @@ ReportSection record_section(const Checkpoint& c) {
 
 std::string value_text(const ReportValue& v) {
   auto number = [](double x) { return fmt::format("{:.6g}", x); };
+  if (v.dimension) {
+    ReportValue model = v;
+    model.dimension.reset();
+    return fmt::format("{} = {} {}", value_text(model), number(v.si), output_unit(*v.dimension).symbol);
+  }
   if (!v.unit.empty() && v.unit != pure_number) {
     ReportValue bare = v;
     bare.unit.clear();
@@ -124,6 +130,14 @@ Json units_of(const ReportSection& s) {
   for (const auto& [key, v] : s.entries)
     if (!v.unit.empty()) units[key] = v.unit;
   return units;
+}
+
+/// The SI values of a section's numbers, by si_key (numbers without one left out).
+Json si_of(const ReportSection& s) {
+  Json si = Json::object();
+  for (const auto& [key, v] : s.entries)
+    if (v.dimension) si[si_key(key, *v.dimension)] = v.si;
+  return si;
 }
 
 Json json_of(const ReportSection& s) {
@@ -165,8 +179,22 @@ std::string fingerprint_hash(const std::string& fingerprint) {
   return fmt::format("xxh3:{:016x}", XXH3_64bits(fingerprint.data(), fingerprint.size()));
 }
 
+void add_si_values(InspectReport& r) {
+  if (!r.moon) return;
+  const auto convert = [&](ReportSection& s) {
+    for (auto& [key, v] : s.entries)
+      if (const auto dimension = dimension_of_model_unit(v.unit); dimension && v.kind == ReportValue::Kind::number) {
+        v.dimension = dimension;
+        v.si = model_to_output(r.moon->units, *dimension, v.number);
+      }
+  };
+  convert(r.top);
+  for (auto& s : r.sections) convert(s);
+}
+
 InspectReport build_inspect_report(const Checkpoint& c, const std::string& file) {
   InspectReport r;
+  r.moon = stored_moon(c.config_toml, file + ":/parameters/config");
   // The format the file was written in (read_checkpoint upgrades an older one in memory).
   r.top.add("format_version", c.provenance.format_version > 0 ? c.provenance.format_version : checkpoint_format_version, "1")
       .add("stage", c.stage.name())
@@ -179,6 +207,19 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
       .add("fingerprint_hash", fingerprint_hash(c.stage.fingerprint));
   r.fingerprint = c.stage.fingerprint;
   if (!c.stage.diagnostic.empty()) r.top.add("diagnostic", c.stage.diagnostic);
+  if (r.moon) {  // what one model unit is worth, in SI
+    const ModelUnits& u = r.moon->units;
+    const auto unit = [](Dimension d) { return std::string(output_unit(d).symbol); };
+    r.section("moon")
+        .add("name", r.moon->name)
+        .add("radius", model_to_output(u, Dimension::length, 1), unit(Dimension::length))
+        .add("mass", model_to_output(u, Dimension::mass, 1), unit(Dimension::mass))
+        .add("mean_density", u.mean_density_kg_m3, unit(Dimension::density))
+        .add("t_grav", u.time_s, "s")
+        .add("v_c", model_to_output(u, Dimension::speed, 1), unit(Dimension::speed))
+        .add("e_g", model_to_output(u, Dimension::pressure, 1), unit(Dimension::pressure))
+        .add("G", gravitational_constant_si, "m^3 kg^-1 s^-2");
+  }
   r.section("provenance")
       .add("version", c.provenance.version)
       .add("git_commit", c.provenance.git_commit)
@@ -197,12 +238,14 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
     ReportSection& p = r.section("perturber");
     if (c.state.perturber.present) p.add("mass", c.state.perturber.mass, "M");
     p.add("min_distance", e->min_distance, "R").add("speed_at_min", e->speed_at_min, "sqrt(GM/R)");
+    p.add("time_from_pericenter", c.state.time - e->pericenter_time, "t_grav");
   }
   if (const auto* relax = std::get_if<RelaxRecord>(&c.stage.record); relax && relax->probe_runs > 0)
     r.section("stability")
         .add("failures", relax->probe_failures, "1")
         .add("max_shell_strain", relax->probe_max_shell_strain, "1");
   add_failures_section(c, r);
+  add_si_values(r);
   return r;
 }
 
@@ -215,6 +258,13 @@ std::string inspect_report_json(const InspectReport& r) {
     if (Json section_units = units_of(s); !section_units.empty()) units[s.name] = std::move(section_units);
   }
   json["units"] = std::move(units);
+  if (r.moon) {
+    Json si = si_of(r.top);
+    si["units"] = si_units_text(*r.moon);
+    for (const auto& s : r.sections)
+      if (Json section = si_of(s); !section.empty()) si[s.name] = std::move(section);
+    json["si"] = std::move(si);
+  }
   return json_text(json);
 }
 
@@ -224,6 +274,7 @@ std::string inspect_report_table(const InspectReport& r) {
   for (const auto& s : r.sections)
     for (const auto& [key, value] : s.entries) width = std::max(width, key.size() + 2);
   std::string out = "units: G = M = R = 1 (README \"Units\"); a number without a unit is a count or a ratio\n";
+  if (r.moon) out += "beside them (\" = \"): " + si_units_text(*r.moon) + "\n";
   for (const auto& [key, value] : r.top.entries) out += fmt::format("{:<{}}  {}\n", key, width, value_text(value));
   for (const auto& s : r.sections) {
     out += s.name + (s.entries.empty() ? "  (none)\n" : "\n");

@@ -4,12 +4,14 @@
 // of the program extend it by adding sections (see add_failures_section).
 #include <concepts>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "model/checkpoint.hpp"
+#include "model/moon_units.hpp"
 
 namespace tidalcrust {
 
@@ -25,6 +27,10 @@ struct ReportValue {
   bool flag = false;
   std::string text;
   std::vector<double> numbers;
+  /// Of a [moon] workflow (docs/moon.md, "Output in SI"): the dimension of a number whose unit
+  /// is a model unit (dimension_of_model_unit) and its value in that dimension's output unit.
+  std::optional<Dimension> dimension;
+  double si = 0;
 };
 
 /// An ordered list of named values; `name` is the JSON key of the nested object.
@@ -81,6 +87,7 @@ struct InspectReport {
   ReportSection top;                    ///< top-level keys (format_version, stage, ...)
   std::vector<ReportSection> sections;  ///< nested objects, in output order
   std::string fingerprint;              ///< the stage fingerprint's full text (JSON only)
+  std::optional<MoonScale> moon;        ///< of a [moon] workflow: the SI beside the model values
 
   /// The section called `name`, appended if it does not exist yet.
   ReportSection& section(const std::string& name);
@@ -89,8 +96,10 @@ struct InspectReport {
 /// Builds the full report: top-level stage keys (with the fingerprint's short hash), the writer's
 /// provenance (version, git commit, compiler, build flags), counts, derived (Table 3 quantities
 /// with r_I from the stored configuration), conservation, the stage record (units from
-/// visit_fields), and for encounters the perturber, for relaxed bodies the stability probe, plus
-/// add_failures_section. Every number carries its unit.
+/// visit_fields), and for encounters the perturber (with the time from pericenter), for relaxed
+/// bodies the stability probe, plus add_failures_section. Every number carries its unit. Of a
+/// [moon] workflow a section `moon` (its scale) comes first and every number in a model unit of
+/// model_unit_name (R, M, t_grav, sqrt(GM/R), e_g, ...) gets its SI value (add_si_values).
 /// `file` names the checkpoint in error messages (e.g. an unparsable stored configuration).
 InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::string& file);
 
@@ -98,15 +107,21 @@ InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::stri
 /// adds nothing yet; the analysis code fills it in.
 void add_failures_section(const Checkpoint& checkpoint, InspectReport& report);
 
+/// Sets the SI value of every number of `report` whose unit is a model unit, with the units of
+/// `report.moon`; nothing without a moon.
+void add_si_values(InspectReport& report);
+
 /// One JSON object (io/json.hpp: doubles read back to the same bits, NaN is null): the values
 /// as "key": value, and their units in one more object "units", laid out like the values
 /// ("units": {"time": "t_grav", ..., "record": {"pericenter": "R", ...}}; keys without a unit are
-/// left out). The fingerprint appears in full ("fingerprint") beside its short hash.
+/// left out). The fingerprint appears in full ("fingerprint") beside its short hash. Of a moon, an
+/// object "si" last, laid out like the values, with each SI value under si_key(key) ("time_h",
+/// "perturber": {"min_distance_km", ...}) and the units text.
 std::string inspect_report_json(const InspectReport& report);
 
 /// A line naming the units, then aligned "key  value unit" lines (the unit "1" of counts and
-/// ratios left out), sections indented below their names; the fingerprint as its short hash only
-/// (inspect --fingerprint prints the text).
+/// ratios left out; of a moon "value unit = SI-value SI-unit"), sections indented below their
+/// names; the fingerprint as its short hash only (inspect --fingerprint prints the text).
 std::string inspect_report_table(const InspectReport& report);
 
 /// Short identity of a stage fingerprint: "xxh3:" and 16 hex digits of XXH3-64 of its text, or

@@ -159,3 +159,58 @@ TEST(InspectReport, FingerprintIsOneShortLineAndProvenanceIsShown) {
   EXPECT_TRUE(contains(json, "\"git_commit\": \"abc123def456\"")) << json;
   EXPECT_TRUE(contains(json, "\"version\": \"9.8.7\"")) << json;
 }
+
+// Of a [moon] workflow (docs/moon.md, "Output in SI"), every number in a model unit has its SI
+// value beside it, in the table and in the JSON's "si" object; the moon's scale is a section.
+TEST(InspectReport, AMoonsNumbersHaveTheirSiValueBeside) {
+  Checkpoint c = synthetic_checkpoint();
+  c.config_toml = "[workflow]\nname = \"synthetic\"\n[moon]\npreset = \"tethys\"\n";
+  const InspectReport r = build_inspect_report(c, "synthetic.h5");
+  ASSERT_TRUE(r.moon);
+  EXPECT_EQ(r.moon->name, "Tethys");
+  const ModelUnits& u = r.moon->units;
+  const double t_grav_h = u.time_s / 3600, R_km = 531;
+  std::vector<const ReportSection*> sections{&r.top};
+  for (const auto& s : r.sections) sections.push_back(&s);
+  std::size_t converted = 0;
+  for (const ReportSection* s : sections)
+    for (const auto& [key, v] : s->entries) {
+      const auto dimension = dimension_of_model_unit(v.unit);
+      EXPECT_EQ(v.dimension.has_value(), dimension.has_value() && v.kind == ReportValue::Kind::number)
+          << s->name << "." << key;
+      if (!v.dimension) continue;
+      ++converted;
+      EXPECT_EQ(v.si, model_to_output(u, *v.dimension, v.number)) << s->name << "." << key;
+    }
+  EXPECT_GT(converted, 10u);
+  const auto find = [&](const std::string& section, const std::string& key) -> const ReportValue& {
+    for (const auto& s : r.sections)
+      if (s.name == section)
+        for (const auto& [k, v] : s.entries)
+          if (k == key) return v;
+    throw std::runtime_error("no " + section + "." + key);
+  };
+  EXPECT_NEAR(find("record", "pericenter").si, find("record", "pericenter").number * R_km, 1e-12 * R_km);
+  EXPECT_NEAR(find("perturber", "time_from_pericenter").si,
+              (c.state.time - c.stage.as<EncounterRecord>().pericenter_time) * t_grav_h, 1e-12);
+  EXPECT_EQ(find("moon", "radius").number, 531);
+  EXPECT_EQ(find("moon", "radius").unit, "km");
+
+  const std::string table = inspect_report_table(r);
+  EXPECT_TRUE(contains(table, "SI for Tethys")) << table;
+  const auto at = table.find("\n  pericenter ");
+  ASSERT_NE(at, std::string::npos) << table;
+  const std::string row = table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+  EXPECT_TRUE(contains(row, " R = ") && row.ends_with(" km")) << row;
+  const Json json = Json::parse(inspect_report_json(r));
+  ASSERT_TRUE(json.contains("si"));
+  EXPECT_EQ(json["si"]["record"]["pericenter_km"].get<double>(), find("record", "pericenter").si);
+  EXPECT_EQ(json["si"]["time_h"].get<double>(), model_to_output(u, Dimension::time, c.state.time));
+  EXPECT_EQ(json["moon"]["name"], "Tethys");
+  EXPECT_EQ(json["units"]["moon"]["radius"], "km");
+  // Without [moon]: no SI anywhere.
+  const InspectReport model = build_inspect_report(synthetic_checkpoint(), "synthetic.h5");
+  EXPECT_FALSE(model.moon);
+  EXPECT_FALSE(contains(inspect_report_json(model), "\"si\""));
+  EXPECT_FALSE(contains(inspect_report_table(model), " km"));
+}
