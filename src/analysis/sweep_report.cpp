@@ -13,6 +13,7 @@
 
 #include "analysis/energy_budget.hpp"
 #include "analysis/fracture_analysis.hpp"
+#include "analysis/si_output.hpp"
 #include "base/errors.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/checkpoint_names.hpp"
@@ -205,6 +206,22 @@ std::span<const EnsembleStatistic> ensemble_statistics() {
   return list;
 }
 
+std::span<const SweepSiColumn> sweep_si_columns() {
+  static constexpr SweepSiColumn list[] = {
+      {"M2", "perturber_mass", Dimension::mass, [](const SweepRow& r) { return r.encounter.perturber_mass; }},
+      {"q", "pericenter", Dimension::length, [](const SweepRow& r) { return r.encounter.pericenter; }},
+      {"V_q", "pericenter_speed", Dimension::speed, [](const SweepRow& r) { return r.encounter.pericenter_speed; }},
+      {"largest_network_length", "largest_network_length", Dimension::length,
+       [](const SweepRow& r) { return r.largest_network_length; }},
+      {"total_crack_length", "total_crack_length", Dimension::length,
+       [](const SweepRow& r) { return r.total_crack_length; }},
+      {"energy_deposited", "energy_deposited", Dimension::energy, [](const SweepRow& r) { return r.energy_deposited; }},
+      {"energy_dissipated", "energy_dissipated", Dimension::energy,
+       [](const SweepRow& r) { return r.energy_dissipated; }},
+  };
+  return list;
+}
+
 const char* status_name(SweepStatus status) {
   switch (status) {
     case SweepStatus::finished: return "finished";
@@ -286,6 +303,7 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
   }
   report.ensembles = ensemble_rows(config, report.rows, report.youngs_modulus);
   if (config.ensemble) report.ensemble_vary = config.ensemble->vary;
+  report.moon = output_moon(config, config.workflow.name);
   report.boundaries = config.ensemble ? ensemble_boundaries(report.ensembles, report.youngs_modulus)
                                       : crack_boundaries(report.rows, report.youngs_modulus);
   return report;
@@ -296,10 +314,13 @@ std::string sweep_report_csv(const SweepReport& report) {
       "name,status,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],failures [1],failed_fraction [1],"
       "hemisphere_fraction [1],median_angle [deg],largest_network_length [R],energy_deposited [GM^2/R],"
       "energy_dissipated [GM^2/R],state_hash,note,concentricity [1],fitted_arcs [1],median_arc_radius [deg],"
-      "median_arc_pole_axis [deg],total_crack_length [R],cracks [1]\n";
+      "median_arc_pole_axis [deg],total_crack_length [R],cracks [1]";
+  if (report.moon)
+    for (const auto& c : sweep_si_columns()) csv += fmt::format(",{} [{}]", c.csv_name, output_unit(c.dimension).symbol);
+  csv += "\n";
   for (const auto& r : report.rows) {
     const bool done = r.status == SweepStatus::finished;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_text(r.encounter.name),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", csv_text(r.encounter.name),
                        status_name(r.status), r.encounter.perturber_mass, r.encounter.pericenter,
                        r.encounter.pericenter_speed, r.failure_strain, r.strain_estimate,
                        done ? std::to_string(r.failures) : "", csv_number(r.failed_fraction),
@@ -308,6 +329,10 @@ std::string sweep_report_csv(const SweepReport& report) {
                        csv_number(r.concentricity), done ? std::to_string(r.fitted_arcs) : "",
                        csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg),
                        csv_number(r.total_crack_length), done ? std::to_string(r.cracks) : "");
+    if (report.moon)
+      for (const auto& c : sweep_si_columns())
+        csv += "," + csv_number(model_to_output(report.moon->units, c.dimension, c.value(r)));
+    csv += "\n";
   }
   return csv;
 }
@@ -343,6 +368,12 @@ Json sweep_report_json(const SweepReport& report) {
                           {"median_arc_pole_axis_deg", number(r.median_arc_pole_axis_deg)},
                           {"total_crack_length", number(r.total_crack_length)},
                           {"cracks", done ? Json(r.cracks) : Json(nullptr)}});
+    if (report.moon) {
+      Json si = Json::object();
+      for (const auto& c : sweep_si_columns())
+        si[si_key(c.json_key, c.dimension)] = number(model_to_output(report.moon->units, c.dimension, c.value(r)));
+      encounters.back()["si"] = std::move(si);
+    }
   }
   Json boundaries = Json::array();
   for (const auto& b : report.boundaries)
@@ -355,7 +386,16 @@ Json sweep_report_json(const SweepReport& report) {
                           {"half_probability_q", number(b.half_probability_q)},
                           {"half_probability_q_low", number(b.half_probability_q_low)},
                           {"half_probability_q_high", number(b.half_probability_q_high)}});
-  return {{"workflow", report.workflow},
+  if (report.moon)
+    for (Json& b : boundaries) {
+      static constexpr ModelKey boundary_keys[] = {
+          {"perturber_mass", Dimension::mass},        {"pericenter_speed", Dimension::speed},
+          {"largest_cracked_q", Dimension::length},   {"smallest_intact_q", Dimension::length},
+          {"eq5_q", Dimension::length},               {"half_probability_q", Dimension::length},
+          {"half_probability_q_low", Dimension::length}, {"half_probability_q_high", Dimension::length}};
+      b["si"] = si_values(b, boundary_keys, report.moon->units);
+    }
+  Json out = {{"workflow", report.workflow},
           {"folder", report.folder.string()},
           {"dt_factor", report.dt_factor},
           {"units", "G = M = R = 1: M2 in M, q in R, V_q in sqrt(GM/R), energies in G M^2/R, angles in degrees"},
@@ -364,6 +404,8 @@ Json sweep_report_json(const SweepReport& report) {
           {"counts", counts},
           {"encounters", encounters},
           {"crack_boundaries", boundaries}};
+  if (report.moon) out["si"] = {{"units", si_units_text(*report.moon)}, {"moon", moon_json(*report.moon)}};
+  return out;
 }
 
 std::string ensemble_report_csv(const SweepReport& report) {
@@ -371,6 +413,15 @@ std::string ensemble_report_csv(const SweepReport& report) {
                     "cracked [1],cracked_fraction [1],cracked_low [1],cracked_high [1]";
   for (const auto& s : ensemble_statistics())
     csv += fmt::format(",{0}_mean [{1}],{0}_sd [{1}],{0}_low [{1}],{0}_high [{1}]", s.name, s.unit);
+  // Of a moon, the inputs and the statistics in a model unit again in SI.
+  const auto in_si = [&](const char* unit) { return report.moon ? dimension_of_model_unit(unit) : std::nullopt; };
+  if (report.moon) {
+    for (const auto& c : sweep_si_columns().first(3))
+      csv += fmt::format(",{} [{}]", c.csv_name, output_unit(c.dimension).symbol);
+    for (const auto& s : ensemble_statistics())
+      if (const auto d = in_si(s.unit))
+        csv += fmt::format(",{0}_mean [{1}],{0}_sd [{1}],{0}_low [{1}],{0}_high [{1}]", s.name, output_unit(*d).symbol);
+  }
   csv += "\n";
   for (const auto& e : report.ensembles) {
     csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{}", csv_text(e.encounter.name), e.encounter.perturber_mass,
@@ -380,6 +431,18 @@ std::string ensemble_report_csv(const SweepReport& report) {
     for (const auto& s : e.statistics)
       csv += fmt::format(",{},{},{},{}", csv_number(s.mean), csv_number(s.standard_deviation), csv_number(s.low),
                          csv_number(s.high));
+    if (report.moon) {
+      SweepRow inputs;
+      inputs.encounter = e.encounter;
+      for (const auto& c : sweep_si_columns().first(3))
+        csv += "," + csv_number(model_to_output(report.moon->units, c.dimension, c.value(inputs)));
+      for (std::size_t i = 0; i < e.statistics.size(); ++i)
+        if (const auto d = in_si(ensemble_statistics()[i].unit)) {
+          const SampleSummary& s = e.statistics[i];
+          for (const double v : {s.mean, s.standard_deviation, s.low, s.high})
+            csv += "," + csv_number(model_to_output(report.moon->units, *d, v));
+        }
+    }
     csv += "\n";
   }
   return csv;

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "analysis/ensemble_statistics.hpp"
 #include "io/json.hpp"
 #include "model/config.hpp"
+#include "model/moon_units.hpp"
 
 namespace tidalcrust {
 
@@ -103,6 +105,8 @@ struct SweepReport {
   std::vector<CrackBoundary> boundaries; ///< by M2, eps_S, V_q (ascending)
   std::vector<EnsembleRow> ensembles;    ///< per encounter before the expansion; empty without [ensemble]
   EnsembleVariation ensemble_vary = EnsembleVariation::pericenter;  ///< what differs between the members
+  /// Of a [moon] workflow: the moon whose SI units the tables give beside the model's (docs/moon.md).
+  std::optional<MoonScale> moon;
   std::size_t count(SweepStatus status) const;
 };
 
@@ -131,7 +135,8 @@ double eq5_strain(const Encounter& encounter, double youngs_in_e_g);
 
 /// The ensemble table as CSV: per encounter (before the expansion) its inputs, members finished,
 /// the cracked share with its interval, then per statistic mean, sd, low, high (95%, Student t;
-/// summarize_about_trend).
+/// summarize_about_trend). Of a [moon] workflow, last, M2, q, V_q and the mean, sd, low, high of
+/// each statistic in a model unit again in SI ("total_crack_length_mean [km]", ...).
 std::string ensemble_report_csv(const SweepReport& report);
 /// The same as JSON, with the method of each interval stated.
 Json ensemble_report_json(const SweepReport& report);
@@ -148,13 +153,27 @@ std::vector<StoredEnsemble> read_ensemble_report(const std::filesystem::path& fi
 
 /// CSV, one header row with the unit of each column in brackets, then one row per encounter;
 /// cells of values an encounter does not have (not finished, NaN) are empty. The crack-geometry
-/// columns (concentricity, fitted_arcs, median_arc_radius, median_arc_pole_axis) come last, after
-/// the note: readers rely on the order of the others.
+/// columns (concentricity, fitted_arcs, median_arc_radius, median_arc_pole_axis) come after
+/// the note: readers rely on the order of the others. Of a [moon] workflow the SI columns follow
+/// last (sweep_si_columns: "M2 [kg]", "q [km]", "V_q [km/s]", crack lengths in km, energies in J).
 std::string sweep_report_csv(const SweepReport& report);
 
 /// The report as JSON: workflow, folder, dt_factor, youngs_modulus_E_I, counts per status, the
 /// encounters (one object per row, NaN as null; the crack-geometry keys last) and the crack
-/// boundaries.
+/// boundaries. Of a [moon] workflow each encounter and boundary has an object "si" last (the
+/// same values in SI, keys si_key(...): "pericenter_km", ...), and the report one "si" with the
+/// units text and the moon.
 Json sweep_report_json(const SweepReport& report);
+
+/// A column of the sweep table that a [moon] workflow also gives in SI: its CSV name, its JSON
+/// key, its dimension and its model value of a row.
+struct SweepSiColumn {
+  const char* csv_name;
+  const char* json_key;
+  Dimension dimension;
+  double (*value)(const SweepRow& row);
+};
+/// The SI columns, in table order.
+std::span<const SweepSiColumn> sweep_si_columns();
 
 }  // namespace tidalcrust

@@ -4,6 +4,7 @@
 // the unfinished and missing ones listed as such; a folder with nothing run is a one-line error.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -181,4 +182,57 @@ TEST(Report, AMaterialBodyWhoseTimeStepRunChoseIsFinishedNotStale) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("finished: 1"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("stale"), std::string::npos) << r.out;
+}
+
+// A [moon] workflow (docs/moon.md, "Output in SI"): report's table has the SI columns last, each
+// the model value beside it in the moon's units; the JSON an "si" object per encounter; and the
+// encounter's summary.json and inspect give the same values in SI.
+TEST(Report, AMoonsTableHasItsSiColumnsAfterTheModelOnes) {
+  const ScratchFolder scratch("report_moon");
+  const fs::path workflow = scratch.path / "tiny-moon.toml", out = scratch.path / "out";
+  std::ofstream(workflow) << tiny_moon_toml("tiny-moon");
+  const auto ran = run_cli("run " + quoted(workflow) + " --quiet --out " + quoted(out));
+  ASSERT_EQ(ran.exit_code, 0) << ran.err;
+  const auto r = run_cli("report " + quoted(workflow) + " --out " + quoted(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double R_km = 1000, M_kg = 1e21, v_c_km_s = std::sqrt(6.674e-11 * 1e21 / 1e6) / 1e3;
+  const double energy_J = 6.674e-11 * 1e21 * 1e21 / 1e6;
+  const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
+  ASSERT_EQ(rows.size(), 2u);
+  const auto& header = rows[0];
+  ASSERT_EQ(header.size(), 29u);
+  EXPECT_EQ(header[21], "cracks [1]");  // the model columns as before, then SI
+  const std::vector<std::string> si_header = {"M2 [kg]", "q [km]", "V_q [km/s]", "largest_network_length [km]",
+                                              "total_crack_length [km]", "energy_deposited [J]",
+                                              "energy_dissipated [J]"};
+  EXPECT_EQ(std::vector<std::string>(header.begin() + 22, header.end()), si_header);
+  const auto& row = rows[1];
+  ASSERT_EQ(row.size(), header.size());
+  const auto cell = [&](std::size_t i) { return std::stod(row.at(i)); };
+  EXPECT_NEAR(cell(22), cell(2) * M_kg, 1e-12 * M_kg);
+  EXPECT_NEAR(cell(23), 1200, 1e-9);
+  EXPECT_NEAR(cell(23), cell(3) * R_km, 1e-9);
+  EXPECT_NEAR(cell(24), 0.45, 1e-12);
+  EXPECT_NEAR(cell(24), cell(4) * v_c_km_s, 1e-12);
+  EXPECT_NEAR(cell(25), cell(11) * R_km, 1e-9 * cell(25));
+  EXPECT_NEAR(cell(26), cell(20) * R_km, 1e-9 * cell(26));
+  EXPECT_NEAR(cell(27), cell(12) * energy_J, 1e-9 * std::abs(cell(27)));
+  EXPECT_GT(cell(26), 0);
+  const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
+  EXPECT_EQ(json["si"]["moon"]["radius_km"], R_km);
+  const Json& e = json["encounters"][0];
+  EXPECT_EQ(e["si"]["total_crack_length_km"].get<double>(), cell(26));
+  EXPECT_EQ(e["si"]["pericenter_km"].get<double>(), cell(23));
+
+  // The same numbers in the encounter's summary.json and in inspect.
+  const Json summary = Json::parse(read_file(out / "A" / "analysis" / "summary.json"));
+  EXPECT_EQ(summary["si"]["failures"]["total_crack_length_km"].get<double>(), cell(26));
+  EXPECT_EQ(summary["si"]["encounter"]["pericenter_km"].get<double>(), cell(23));
+  const auto inspected = run_cli("inspect --json " + quoted(out / "A" / "encounter.h5"));
+  ASSERT_EQ(inspected.exit_code, 0) << inspected.err;
+  const Json inspect = Json::parse(inspected.out);
+  EXPECT_EQ(inspect["si"]["failures"]["total_crack_length_km"].get<double>(), cell(26));
+  EXPECT_EQ(inspect["si"]["record"]["pericenter_km"].get<double>(), cell(23));
+  const auto table = run_cli("inspect " + quoted(out / "A" / "encounter.h5"));
+  EXPECT_NE(table.out.find(" sqrt(GM/R) = 0.45 km/s"), std::string::npos) << table.out;
 }
