@@ -28,7 +28,7 @@ Json hours_from_pericenter(const Json& time, double pericenter_time, const Model
 
 std::string si_units_text(const MoonScale& moon) {
   return fmt::format(
-      "SI for {} (R = {:g} km, M = {:g} kg, G = {:g} m^3 kg^-1 s^-2): lengths in km, masses in kg, speeds in km/s, "
+      "SI for the moon ({}: R = {:g} km, M = {:g} kg, G = {:g} m^3 kg^-1 s^-2): lengths in km, masses in kg, speeds in km/s, "
       "times in hours (from pericenter where named so), energies in J; each the model value beside it times its "
       "model unit (R, M, v_c = sqrt(GM/R), t_grav = sqrt(R^3/(GM)), G M^2/R; docs/moon.md)",
       moon.name, moon.units.radius_m / 1e3, moon.units.mass_kg, gravitational_constant_si);

@@ -269,7 +269,7 @@ PhysicalBody find_named_body(std::string_view name) {
 }
 
 MoonScale moon_scale(const MoonConfig& moon, const std::string& origin) {
-  MoonScale scale{"moon", moon_model_values(moon, origin).units};
+  MoonScale scale{"custom", moon_model_values(moon, origin).units};
   if (moon.preset) scale.name = std::string(find_moon_preset(*moon.preset, origin + ": moon.preset").name);
   return scale;
 }

@@ -166,7 +166,7 @@ MoonModelValues moon_model_values(const MoonConfig& moon, const std::string& ori
 
 /// The moon whose units a [moon] workflow's output is also written in (docs/moon.md, "Output in SI").
 struct MoonScale {
-  std::string name;  ///< the preset's name as listed ("Tethys"); "moon" for one given by radius and mass
+  std::string name;  ///< the preset's name as listed ("Tethys"); "custom" for one given by radius and mass
   ModelUnits units;
 };
 /// The scale of `moon` (moon_model_values' units, the preset's name); InputError as moon_model_values.

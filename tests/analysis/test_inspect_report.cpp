@@ -197,7 +197,7 @@ TEST(InspectReport, AMoonsNumbersHaveTheirSiValueBeside) {
   EXPECT_EQ(find("moon", "radius").unit, "km");
 
   const std::string table = inspect_report_table(r);
-  EXPECT_TRUE(contains(table, "SI for Tethys")) << table;
+  EXPECT_TRUE(contains(table, "SI for the moon (Tethys: R = 531 km")) << table;
   const auto at = table.find("\n  pericenter ");
   ASSERT_NE(at, std::string::npos) << table;
   const std::string row = table.substr(at + 1, table.find('\n', at + 1) - at - 1);
