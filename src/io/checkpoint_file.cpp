@@ -12,7 +12,9 @@
 #include <cstdlib>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <thread>
 #include <cstring>
@@ -30,6 +32,7 @@
 #include "io/state_hash.hpp"
 #include "base/invariant.hpp"
 #include "io/test_points.hpp"
+#include "model/config.hpp"
 
 namespace tidalcrust {
 
@@ -68,21 +71,53 @@ constexpr const char* failures = "/checkpoint/failures";
 constexpr const char* timeseries = "/checkpoint/timeseries";
 }  // namespace path
 
-/// H5MD units module strings (SI system) for the H5MD elements. The model is scale free
-/// (G = M = R = 1), so every choice of R and t_grav is an exact physical realization of a run;
-/// these strings name the one with R = 1 nm and t_grav = 1 ps (hence M = R^3/(G t_grav^2) =
-/// 1.4983e7 kg with CODATA 2018 G), chosen because readers that convert units (MDAnalysis)
-/// accept nm and ps. The numbers themselves are in R, t_grav, sqrt(GM/R) and M.
-namespace unit {
-constexpr const char* length = "nm";
-constexpr const char* time = "ps";
-constexpr const char* velocity = "nm ps-1";
-constexpr const char* mass = "14983000 kg";
-constexpr const char* realization =
-    "G = M = R = 1: lengths in body radii R, times in t_grav = sqrt(R^3/(G M)), velocities in "
-    "sqrt(G M/R), masses in M. The unit strings name the exact realization R = 1 nm, t_grav = 1 ps "
-    "(M = 1.4983e7 kg); for a real moon scale by its R and t_grav (tidalcrust estimate).";
-}  // namespace unit
+/// H5MD units module strings (SI system) for the H5MD elements: the numbers are in the model's
+/// units G = M = R = 1 (R, t_grav, sqrt(GM/R), M), and the `unit` attributes say what one of them
+/// is (docs/checkpoint-layout.md, "Units in the file"). Of a [moon] workflow they are the moon's
+/// own (H5MD's numeric factor: "531000 m", "1902.47... s", "279.1... m s-1", "620000...000 kg"),
+/// so that a stored number times its unit string is its SI value. Without [moon] the model has no
+/// scale, and they name the exact realization R = 1 nm, t_grav = 1 ps (M = R^3/(G t_grav^2) =
+/// 1.4983e7 kg with CODATA 2018 G), which readers that convert units (MDAnalysis) accept.
+struct UnitStrings {
+  std::string length, time, velocity, mass, reduced_units;
+};
+
+/// `value` as an H5MD numeric factor: a decimal fraction with its point, no exponent (the shortest
+/// text that reads back to the same double; "531000.0"). With the point, unit libraries read a
+/// factor beyond the integers' range (udunits2 refuses "620000000000000000000 kg", reads
+/// "620000000000000000000.0 kg").
+std::string h5md_factor(double value) {
+  char text[400];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value, std::chars_format::fixed);
+  TIDALCRUST_ASSERT(error == std::errc(), "a model unit too large to write as a decimal fraction");
+  std::string factor(text, end);
+  return factor.find('.') == std::string::npos ? factor + ".0" : factor;
+}
+
+/// The unit strings of checkpoint `c`: its moon's units (stored_moon of its configuration), else
+/// the realization in nm and ps. A stored configuration that cannot be read (never one a stage
+/// wrote) gives the latter: the file is written all the same.
+UnitStrings unit_strings(const Checkpoint& c) {
+  std::optional<MoonScale> moon;
+  try {
+    moon = stored_moon(c.config_toml, "/parameters/config");
+  } catch (const InputError&) {
+  }
+  if (!moon)
+    return {"nm", "ps", "nm ps-1", "14983000 kg",
+            "G = M = R = 1: lengths in body radii R, times in t_grav = sqrt(R^3/(G M)), velocities in "
+            "sqrt(G M/R), masses in M. The workflow gives no moon ([moon]), so the model has no scale: the unit "
+            "strings name the exact realization R = 1 nm, t_grav = 1 ps (M = 1.4983e7 kg); for a real moon scale "
+            "by its R and t_grav (tidalcrust estimate) or give the workflow a [moon]."};
+  const ModelUnits& u = moon->units;
+  return {h5md_factor(u.radius_m) + " m", h5md_factor(u.time_s) + " s", h5md_factor(u.speed_m_s) + " m s-1",
+          h5md_factor(u.mass_kg) + " kg",
+          fmt::format("G = M = R = 1 for the moon of [moon] ({}): lengths in R = {} m, times in t_grav = sqrt(R^3/(G M)) "
+                      "= {} s, velocities in sqrt(G M/R) = {} m/s, masses in M = {} kg (G = {} m^3 kg^-1 s^-2). The "
+                      "unit strings are these units, so a stored number times its unit string is its SI value.",
+                      moon->name, h5md_factor(u.radius_m), h5md_factor(u.time_s), h5md_factor(u.speed_m_s),
+                      h5md_factor(u.mass_kg), gravitational_constant_si)};
+}
 
 std::string shape_text(const std::vector<hsize_t>& dims) {
   std::string s = "[";
@@ -268,7 +303,7 @@ std::string author_name() {
 
 /// /h5md: the H5MD version, author, creator and the units module (variable-length strings,
 /// as the specification prescribes).
-void write_h5md_header(hid_t root) {
+void write_h5md_header(hid_t root, const UnitStrings& unit) {
   h5::Group h5md = h5::create_group(root, "h5md");
   h5::write_attribute_array<std::int32_t>(h5md.get(), "version", {1, 1});
   h5::Group author = h5::create_group(h5md.get(), "author");
@@ -280,7 +315,7 @@ void write_h5md_header(hid_t root) {
   h5::Group units = h5::create_group(modules.get(), "units");
   h5::write_attribute_array<std::int32_t>(units.get(), "version", {1, 0});
   h5::write_vl_string_attribute(units.get(), "system", "SI");
-  h5::write_vl_string_attribute(units.get(), "reduced_units", unit::realization);
+  h5::write_vl_string_attribute(units.get(), "reduced_units", unit.reduced_units);
 }
 
 /// Applies `edit(id)` to the group or dataset at `object_path`.
@@ -292,10 +327,10 @@ void edit_object(hid_t root, const char* object_path, Edit edit) {
 
 /// The H5MD metadata of the stored arrays: units, the particles group of each connectivity
 /// list, and the names of the integer codes of species and spring kinds (labels[i] names code i).
-void write_h5md_metadata(hid_t root) {
-  for (auto [dataset, u] : {std::pair{path::position, unit::length}, std::pair{path::position_time, unit::time},
-                            std::pair{path::velocity, unit::velocity}, std::pair{path::mass, unit::mass}})
-    edit_object(root, dataset, [&](hid_t id) { h5::write_vl_string_attribute(id, "unit", u); });
+void write_h5md_metadata(hid_t root, const UnitStrings& unit) {
+  for (auto [dataset, u] : {std::pair{path::position, &unit.length}, std::pair{path::position_time, &unit.time},
+                            std::pair{path::velocity, &unit.velocity}, std::pair{path::mass, &unit.mass}})
+    edit_object(root, dataset, [&](hid_t id) { h5::write_vl_string_attribute(id, "unit", *u); });
   for (const char* list : {path::springs, path::hinges, path::faces})
     edit_object(root, list, [](hid_t id) { h5::write_object_reference_attribute(id, "particles_group", path::particles_group); });
   edit_object(root, path::species, [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell"}); });
@@ -305,7 +340,7 @@ void write_h5md_metadata(hid_t root) {
 
 /// The groups of /particles and /connectivity with their H5MD metadata, and every per-element
 /// array (visit_element_arrays) in them and in /checkpoint/{springs,hinges}.
-void write_body_and_state(hid_t root, const Checkpoint& c) {
+void write_body_and_state(hid_t root, const Checkpoint& c, const UnitStrings& unit) {
   {
     h5::Group particles = h5::create_group(root, "particles");
     h5::Group body = h5::create_group(particles.get(), "body");
@@ -328,7 +363,7 @@ void write_body_and_state(hid_t root, const Checkpoint& c) {
     if (shape.time_slice) h5::write_extensible_dataset(root, dataset, flat_data(values), dims);
     else h5::write_dataset(root, dataset, flat_data(values), dims);
   });
-  write_h5md_metadata(root);
+  write_h5md_metadata(root, unit);
 }
 
 /// Writes one stage-record field under /checkpoint/record: numbers and flags as attributes,
@@ -486,8 +521,9 @@ void reserve_memory_for_writing(const fs::path& file, const Checkpoint& c) {
 std::string hdf5_bytes(const fs::path& file, const Checkpoint& c) {
   h5::File f = h5::create_memory_file(file.string());
   const hid_t root = f.get();
-  write_h5md_header(root);
-  write_body_and_state(root, c);
+  const UnitStrings unit = unit_strings(c);
+  write_h5md_header(root, unit);
+  write_body_and_state(root, c, unit);
   write_checkpoint_group(root, c, state_hash(c.state));
   write_parameters(root, c);
   write_observables(root, c.observables);

@@ -13,10 +13,12 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/checkpoint_file.hpp"
 #include "io/hdf5_handles.hpp"
+#include "model/moon_units.hpp"
 #include "support/files.hpp"
 #include "support/synthetic_checkpoint.hpp"
 
@@ -203,6 +205,35 @@ TEST(ViewerFiles, DimensionfulElementsCarryUnitsOfTheUnitsModule) {
   EXPECT_EQ(unit_of(f.get(), "/particles/body/velocity/value"), "nm ps-1");
   EXPECT_EQ(unit_of(f.get(), "/particles/body/mass"), "14983000 kg");
   EXPECT_TRUE(is_variable_length_string(f.get(), "/particles/body/position/value", "unit"));
+}
+
+// Of a [moon] workflow the unit strings are the moon's own units, with H5MD's numeric factor (a
+// decimal fraction, no exponent): one stored number times its unit string is its SI value, as
+// udunits2 reads the string (docs/checkpoint-layout.md, "Units in the file").
+TEST(ViewerFiles, AMoonsUnitStringsAreItsOwnUnits) {
+  const ScratchFolder scratch("h5md_moon_units");
+  Checkpoint c = synthetic_checkpoint();
+  c.config_toml = "[workflow]\nname = \"synthetic\"\n[moon]\npreset = \"tethys\"\n";
+  write_checkpoint(scratch.path / "c.h5", c);
+  h5::File f = h5::open_file_readonly(scratch.path / "c.h5");
+  const ModelUnits u = model_units(0.62e21, 531e3);
+  EXPECT_EQ(unit_of(f.get(), "/particles/body/position/value"), "531000.0 m");
+  EXPECT_EQ(unit_of(f.get(), "/particles/body/mass"), "620000000000000000000.0 kg");
+  for (const auto& [dataset, dimension] : {std::pair{"/particles/body/position/value", Dimension::length},
+                                           std::pair{"/particles/body/position/time", Dimension::time},
+                                           std::pair{"/particles/body/velocity/value", Dimension::speed},
+                                           std::pair{"/particles/body/mass", Dimension::mass}}) {
+    const std::string unit = unit_of(f.get(), dataset);
+    EXPECT_EQ(unit.find_first_of("eE"), std::string::npos) << unit;  // no exponent
+    const double one = quantity_si("1 " + unit, dimension, dataset);
+    EXPECT_NEAR(one, model_unit(u, dimension), 1e-15 * model_unit(u, dimension)) << unit;
+  }
+  h5::Group units = h5::open_group(f.get(), "/h5md/modules/units");
+  const std::string reduced = h5::read_string_attribute(units.get(), "reduced_units");
+  EXPECT_NE(reduced.find("(Tethys)"), std::string::npos) << reduced;
+  EXPECT_NE(reduced.find("R = 531000.0 m"), std::string::npos) << reduced;
+  // The file reads back as any other (the unit strings are not read).
+  EXPECT_EQ(read_checkpoint(scratch.path / "c.h5").config_toml, c.config_toml);
 }
 
 TEST(ViewerFiles, TimeDependentElementsHaveStepTimeValueExtensibleInTime) {
