@@ -2,9 +2,9 @@
 
 Every quantity is in the model's units, G = M = R = 1: lengths in R (the body's radius), masses
 in M (its mass), times in t_grav = sqrt(R^3/(G M)), velocities in sqrt(G M/R), energies in
-G M^2/R. The H5MD unit strings of the files ("nm", "ps", "14983000 kg") are stand-ins for R,
-t_grav and M (docs/checkpoint-layout.md, "Units in the file"): the numbers are read unchanged,
-never scaled.
+G M^2/R. The H5MD unit strings of the files say what R, t_grav and M are (docs/checkpoint-layout.md,
+"Units in the file"): of a workflow with a [moon] the moon's own ("531000.0 m", ...), else the
+stand-ins "nm", "ps", "14983000 kg"; the numbers are read unchanged, never scaled.
 """
 from __future__ import annotations
 
@@ -17,7 +17,8 @@ import numpy as np
 
 UNITS_NOTE = ("model units G = M = R = 1: lengths in R (the body's radius), masses in M, times in "
               "t_grav = sqrt(R^3/(G M)), velocities in sqrt(G M/R), energies in G M^2/R; the file's H5MD "
-              "unit strings (nm, ps, 14983000 kg) stand for R, t_grav and M and are not converted")
+              "unit strings say what R, t_grav and M are (a [moon]'s own, else nm, ps, 14983000 kg) and are "
+              "not converted")
 
 READABLE_FORMATS = (4, 5, 6)
 

@@ -189,8 +189,7 @@ TEST(Report, AMaterialBodyWhoseTimeStepRunChoseIsFinishedNotStale) {
 // encounter's summary.json and inspect give the same values in SI.
 TEST(Report, AMoonsTableHasItsSiColumnsAfterTheModelOnes) {
   const ScratchFolder scratch("report_moon");
-  const fs::path workflow = scratch.path / "tiny-moon.toml", out = scratch.path / "out";
-  std::ofstream(workflow) << tiny_moon_toml("tiny-moon");
+  const fs::path workflow = source_file("tests/support/tiny-moon.toml"), out = scratch.path / "out";
   const auto ran = run_cli("run " + quoted(workflow) + " --quiet --out " + quoted(out));
   ASSERT_EQ(ran.exit_code, 0) << ran.err;
   const auto r = run_cli("report " + quoted(workflow) + " --out " + quoted(out));

@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from small_run import make_small_run, scratch  # noqa: E402
+from small_run import MOON_WORKFLOW, make_small_run, scratch  # noqa: E402
 
 import tidalcrust  # noqa: E402
 from tidalcrust import figures  # noqa: E402
@@ -200,6 +200,88 @@ class AnalysisFigures(unittest.TestCase):
                               capture_output=True, text=True)
         self.assertEqual(done.returncode, 2, done.stderr)
         self.assertIn("figure 'x' of unknown kind 'pie'", done.stderr)
+
+
+class MoonFigures(unittest.TestCase):
+    """A workflow with a [moon] (docs/moon.md, "Output in SI"): maps in planetocentric longitude (0 at
+    the subsatellite point) with a km scale bar, time axes in hours beside t_grav, a km axis on the
+    orbit."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = scratch()
+        cls.encounter = make_small_run(cls.tmp.name, MOON_WORKFLOW)
+        cls.analysis = cls.encounter / "analysis"
+        cls.summary = json.loads((cls.analysis / "summary.json").read_text())
+        cls.data = json.loads((cls.analysis / "figure_data.json").read_text())
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def tearDown(self):
+        plt.close("all")
+
+    def test_summary_is_in_si_beside_the_model_units(self):
+        si = self.summary["si"]
+        self.assertEqual(si["moon"]["radius_km"], 1000.0)
+        self.assertAlmostEqual(si["encounter"]["pericenter_km"], 1200.0, places=9)
+        self.assertAlmostEqual(si["failures"]["total_crack_length_km"],
+                               1000.0 * self.summary["failures"]["total_crack_length"], places=6)
+
+    def test_fracture_map_is_planetocentric_with_a_km_scale(self):
+        frame = figures.map_frame(self.encounter)
+        self.assertEqual(frame["frame"], "planetocentric")
+        self.assertEqual(frame["subsatellite"], [0.0, 0])
+        fig = figures.fracture_map(self.encounter)
+        mollweide, near, far = fig.axes
+        self.assertIn("planetocentric", by_gid(fig.texts, "note").get_text())
+        self.assertIn(" km", fig._suptitle.get_text())
+        # The ring at planetocentric (0, 0): the centre of the near hemisphere.
+        ring = by_gid(near.lines, "subsatellite")
+        xy = near.transData.inverted().transform(ring.get_transform().transform(ring.get_xydata()))[0]
+        np.testing.assert_allclose(xy, (0.0, 0.0), atol=1e-9)
+        # Every failed spring's midpoint at its planetocentric longitude (summary.json's si) on the map.
+        cracks = by_gid(mollweide.collections, "cracks")
+        failed = self.summary["failed_springs"]
+        self.assertEqual(set(cracks.springs), set(failed["spring"]))
+        geodetic = ccrs.Geodetic(globe=figures.UNIT_GLOBE)
+        for spring, lon, lat in list(zip(failed["spring"], self.summary["si"]["failed_springs"]["planetocentric_longitude_deg"],
+                                         failed["latitude_deg"]))[:20]:
+            point = mollweide.projection.transform_point(lon, lat, geodetic)
+            vertices = np.concatenate([seg for seg, s in zip(cracks.get_segments(), cracks.springs) if s == spring])
+            self.assertLess(np.min(np.hypot(*(vertices - point).T)), 1e-6, spring)
+        # A scale bar on every map: its length the projected length of scale_bar length_R along the equator.
+        bar = frame["scale_bar"]
+        self.assertEqual(bar["label"], "500 km")
+        for ax in fig.axes:
+            line = by_gid(ax.lines, "scale_bar")
+            lon0 = ax.projection.proj4_params.get("lon_0", 0.0)
+            ends = ax.projection.transform_points(geodetic, np.array([lon0 - 1e-3, lon0 + 1e-3]), np.zeros(2))
+            per_radian = np.hypot(*(ends[1] - ends[0])[:2]) / np.radians(2e-3)
+            self.assertAlmostEqual(np.ptp(line.get_xdata()) / (per_radian * bar["length_R"]), 1.0, places=3)
+            self.assertEqual(by_gid(ax.texts, "scale_bar_label").get_text(), "500 km")
+
+    def test_time_axes_are_in_hours_beside_t_grav(self):
+        per_t_grav = self.data["time_axis"]["per_t_grav"]
+        self.assertAlmostEqual(per_t_grav, self.summary["si"]["moon"]["t_grav_s"] / 3600)
+        fig = figures.failures(self.encounter)
+        ax = fig.axes[0]
+        self.assertEqual(ax.get_xlabel(), "t \u2212 t_peri [h]")
+        np.testing.assert_allclose(by_gid(ax.lines, "failures").get_xdata(),
+                                   np.asarray(self.data["failures"]["time_from_pericenter"]) * per_t_grav)
+        self.assertEqual([c.get_gid() for c in ax.child_axes], ["t_grav_axis"])
+        fig = figures.axis_ratios(self.encounter)
+        np.testing.assert_allclose(by_gid(fig.axes[0].lines, "b_over_a").get_xdata(),
+                                   [r["time_from_pericenter_h"] for r in self.summary["si"]["principal_axis_ratios"]])
+        fig = figures.conservation(self.encounter)
+        self.assertEqual(fig.axes[-1].get_xlabel(), "t \u2212 t_peri [h]")
+        fig = figures.orbit(self.encounter)
+        self.assertIn("km_axis", [c.get_gid() for c in fig.axes[0].child_axes])
+
+    def test_every_figure_is_drawn(self):
+        for name in self.data["figures"]:
+            self.assertTrue((self.analysis / f"{name}.png").is_file(), name)
 
 
 class SpecFigures(unittest.TestCase):

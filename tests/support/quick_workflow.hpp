@@ -43,46 +43,6 @@ crust_support = "paper"
 )";
 }
 
-/// A tiny moon in SI (docs/moon.md): R = 1000 km, M = 1e21 kg (t_grav = 3871 s, v_c = 258 m/s), a
-/// [material] body of shell level 2 and a short relax, with one encounter "A" in SI (M2 = M,
-/// q = 1.2 R, V_q = 1.74 v_c) under the local failure rule: a few seconds of `run`, about 90
-/// failed shell springs.
-inline std::string tiny_moon_toml(const std::string& name) {
-  return "[workflow]\nname = \"" + name + R"("
-seed = 4
-[moon]
-radius = "1000 km"
-mass = "1e21 kg"
-youngs_modulus = "0.07 GPa"
-crust_thickness = "30 km"
-crust_density = "0.19 g/cm3"
-failure_strain = 0.0015
-[material]
-coupling_speed_ratio = 0.8
-[resolution]
-shell_level = 2
-interior_spacing = 0.22
-[stretch]
-max_iterations = 20
-[relax]
-damping = 5.0
-duration = 0.2
-settle_duration = 0.1
-probe_duration = 0.1
-crust_support = "balanced"
-[encounter]
-start_distance = 1.35
-end_distance = 1.35
-sample_interval = 5
-failure_rule = "local"
-[[encounters]]
-name = "A"
-perturber_mass = "1e21 kg"
-pericenter = "1200 km"
-pericenter_speed = "0.45 km/s"
-)";
-}
-
 inline Config quick_config() { return load_config(workflow_file("quick.toml")); }
 
 /// A small body without a crust (250 interior nodes, [shell] enabled = false), like paper-N.

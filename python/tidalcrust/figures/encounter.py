@@ -9,7 +9,10 @@ only draw it.
 
 draws every figure of an analysis folder as PNG and SVG (what `analyze` runs). Maps are in the
 orbital frame: the orbital plane is the equator, the subsatellite point (the perturber's
-direction at pericenter) is at longitude +90, latitude 0.
+direction at pericenter) is at longitude +90, latitude 0. Of a workflow with a [moon]
+(figure_data.json's `map`, `time_axis`, `length_axis`; docs/moon.md, "Output in SI") the maps are
+in planetocentric longitude (0 at the subsatellite point, east positive) with a km scale bar, the
+time axes in hours (t_grav on a second axis) and the orbit has a km axis beside R.
 """
 from __future__ import annotations
 
@@ -41,6 +44,11 @@ ARC_COLOR = "#1f6fd0"
 TICK_COLOR = "#d02020"
 TIME_LABEL = "t \u2212 t_peri [t_grav]"
 VIEWS = ("overview", "mollweide", "equirectangular", "orthographic", "antipode")
+#: The map frame of figure_data.json's `map` without a [moon] (and of files written before it).
+ORBITAL_MAP = {"frame": "orbital", "longitude_shift_deg": 0.0, "subsatellite": list(SUBSATELLITE_LON_LAT),
+               "scale_bar": None,
+               "note": "top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital plane; "
+                       "below: orthographic; ring: subsatellite point (90\u00b0, 0\u00b0)"}
 
 
 def _analysis_folder(path: str | os.PathLike) -> Path:
@@ -83,28 +91,67 @@ def _number(value, spec: str) -> str:
 def _title(fig, title) -> None:
     if title:
         fig.suptitle(title, fontsize=10)
+        # A moon's third title line (SI) and axes on top (t_grav, km): room above the subplots.
+        lines = title.count("\n") + 1
+        top_axis = any(child.get_gid() in ("t_grav_axis", "km_axis") for ax in fig.axes for child in ax.child_axes)
+        if lines >= 3 or top_axis:
+            needed = (0.19 * lines + (0.4 if top_axis else 0.0) + 0.12) / fig.get_figheight()
+            if fig.subplotpars.top > 1 - needed:
+                fig.subplots_adjust(top=1 - needed)
+
+
+def map_frame(path) -> dict:
+    """How the maps of an analysis folder show the surface (figure_data.json's `map`): `frame`
+    ("orbital", or "planetocentric" for a [moon] workflow), `longitude_shift_deg` (added to the
+    orbital-frame longitudes of cracks.json and summary.json), `subsatellite` ([lon, lat] on the
+    map), `scale_bar` (length_km, length_R, label; None without a moon) and `note`. The orbital
+    frame when there is no figure_data.json or it has no `map`."""
+    file = _analysis_folder(path) / "figure_data.json"
+    return read_figure_data(path).get("map", ORBITAL_MAP) if file.is_file() else ORBITAL_MAP
+
+
+def _time_axis(data: dict) -> tuple[float, str]:
+    """(hours or t_grav per t_grav, axis label) of figure_data.json's `time_axis`."""
+    axis = data.get("time_axis") or {"per_t_grav": 1.0, "label": TIME_LABEL}
+    return float(axis["per_t_grav"]), axis["label"]
+
+
+def _time_in_axis_units(ax, data: dict, times, label: bool = True):
+    """`times` (t_grav from pericenter) in the unit of the time axis; labels the axis (unless
+    `label` is False), and of a moon adds the t_grav axis on top."""
+    scale, text = _time_axis(data)
+    if label:
+        ax.set_xlabel(text)
+    if scale != 1.0:
+        top = ax.secondary_xaxis("top", functions=(lambda x: x / scale, lambda x: x * scale))
+        top.set_xlabel(data["time_axis"]["model_label"], fontsize=7)
+        top.tick_params(labelsize=6)
+        top.set_gid("t_grav_axis")
+    return np.asarray(times, dtype=float) * scale
 
 
 # ---- maps ---------------------------------------------------------------------------------------
 
-def projection(view: str) -> ccrs.Projection:
+def projection(view: str, subsatellite=SUBSATELLITE_LON_LAT) -> ccrs.Projection:
     """The cartopy projection of a map view: "mollweide" (global, equal-area, no polar
     stretching), "equirectangular" (longitude and latitude as x and y), "orthographic" (the
-    hemisphere centred on the subsatellite point) or "antipode" (the other one)."""
+    hemisphere centred on the subsatellite point, at `subsatellite` (lon, lat) of the map's frame:
+    map_frame(path)["subsatellite"]) or "antipode" (the other one)."""
     if view == "mollweide":
         return ccrs.Mollweide(globe=UNIT_GLOBE)
     if view == "equirectangular":
         return ccrs.PlateCarree(globe=UNIT_GLOBE)
     if view == "orthographic":
-        return ccrs.Orthographic(*SUBSATELLITE_LON_LAT, globe=UNIT_GLOBE)
+        return ccrs.Orthographic(*subsatellite, globe=UNIT_GLOBE)
     if view == "antipode":
-        return ccrs.Orthographic(SUBSATELLITE_LON_LAT[0] - 180.0, 0.0, globe=UNIT_GLOBE)
+        return ccrs.Orthographic(subsatellite[0] - 180.0, -subsatellite[1], globe=UNIT_GLOBE)
     raise ValueError(f"view '{view}': one of {', '.join(VIEWS)}")
 
 
-def _densify(line, step_deg: float = 2.0) -> np.ndarray:
-    """A polyline of (lon, lat) in degrees with great-circle points at most step_deg apart."""
-    lon, lat = np.radians(np.asarray(line, dtype=float)).T
+def _densify(line, step_deg: float = 2.0, shift_deg: float = 0.0) -> np.ndarray:
+    """A polyline of (lon, lat) in degrees, its longitudes shifted by shift_deg, with great-circle
+    points at most step_deg apart; longitudes in [-180, 180]."""
+    lon, lat = np.radians(np.asarray(line, dtype=float) + [shift_deg, 0.0]).T
     xyz = np.stack([np.cos(lat) * np.cos(lon), np.cos(lat) * np.sin(lon), np.sin(lat)], axis=1)
     out = [xyz[:1]]
     for a, b in zip(xyz[:-1], xyz[1:]):
@@ -116,14 +163,15 @@ def _densify(line, step_deg: float = 2.0) -> np.ndarray:
     return np.column_stack([np.degrees(np.arctan2(out[:, 1], out[:, 0])), np.degrees(np.arcsin(np.clip(out[:, 2], -1, 1)))])
 
 
-def _project_lines(lines, proj: ccrs.Projection) -> tuple[list[np.ndarray], list[int]]:
-    """The projected pieces of polylines of (lon, lat) in degrees, and the index of the line each
-    piece is of: densified along great circles, cut at the antimeridian (the seam of the global
-    projections, centred on longitude 0) and where a line leaves the visible hemisphere of an
-    orthographic view. One projection call for all points."""
+def _project_lines(lines, proj: ccrs.Projection, shift_deg: float = 0.0) -> tuple[list[np.ndarray], list[int]]:
+    """The projected pieces of polylines of (lon, lat) in degrees (longitudes shifted by shift_deg
+    into the map's frame), and the index of the line each piece is of: densified along great
+    circles, cut at the antimeridian (the seam of the global projections, centred on longitude 0)
+    and where a line leaves the visible hemisphere of an orthographic view. One projection call for
+    all points."""
     parts, owners = [], []
     for i, line in enumerate(lines):
-        for part in _split_at_antimeridian([tuple(p) for p in _densify(line)]):
+        for part in _split_at_antimeridian([tuple(p) for p in _densify(line, shift_deg=shift_deg)]):
             parts.append(np.asarray(part, dtype=float))
             owners.append(i)
     if not parts:
@@ -151,24 +199,43 @@ def _project_lines(lines, proj: ccrs.Projection) -> tuple[list[np.ndarray], list
     return pieces, piece_owners
 
 
-def crack_collection(cracks: dict, proj: ccrs.Projection, color=CRACK_COLOR, linewidth: float = 1.0) -> LineCollection:
+def crack_collection(cracks: dict, proj: ccrs.Projection, color=CRACK_COLOR, linewidth: float = 1.0,
+                     longitude_shift: float = 0.0) -> LineCollection:
     """The failed springs' dual-lattice bars of cracks.json (read_cracks) as one LineCollection in
-    `proj`'s coordinates (add it to a GeoAxes of that projection). Its attribute `springs` names
-    the failed spring of every segment (a bar cut at the seam or the limb gives several)."""
+    `proj`'s coordinates (add it to a GeoAxes of that projection), their longitudes shifted by
+    `longitude_shift` (map_frame's longitude_shift_deg: -90 for planetocentric maps). Its attribute
+    `springs` names the failed spring of every segment (a bar cut at the seam or the limb gives
+    several)."""
     lines, springs = [], []
     for crack in cracks["cracks"]:
         for spring, line in zip(crack["springs"], crack["polylines"]):
             lines.append(line)
             springs.append(spring)
-    segments, owners = _project_lines(lines, proj)
+    segments, owners = _project_lines(lines, proj, longitude_shift)
     collection = LineCollection(segments, colors=color, linewidths=linewidth, capstyle="round", joinstyle="round",
                                 gid="cracks", zorder=3)
     collection.springs = [springs[k] for k in owners]
     return collection
 
 
-def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0):
-    proj = projection(view)
+def _scale_bar(ax, proj: ccrs.Projection, bar: dict) -> None:
+    """A bar of bar["length_R"] at the map's scale along the equator at its central longitude (true
+    there), drawn in the lower left corner with its label."""
+    lon0, step = proj.proj4_params.get("lon_0", 0.0), 1e-3  # degrees
+    ends = proj.transform_points(ccrs.Geodetic(globe=UNIT_GLOBE), np.array([lon0 - step, lon0 + step]),
+                                 np.zeros(2))[:, :2]
+    length = float(np.hypot(*(ends[1] - ends[0]))) / np.radians(2 * step) * bar["length_R"]
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    x, y = x0 + 0.03 * (x1 - x0), y0 + 0.04 * (y1 - y0)
+    ax.plot([x, x + length], [y, y], color="black", linewidth=2.5, solid_capstyle="butt", gid="scale_bar", zorder=6,
+            clip_on=False)  # in the corner, outside the map's outline
+    ax.text(x + length / 2, y + 0.015 * (y1 - y0), bar["label"], fontsize=7, ha="center", va="bottom", zorder=6,
+            gid="scale_bar_label")
+
+
+def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0,
+              frame: dict = ORBITAL_MAP):
+    proj = projection(view, frame["subsatellite"])
     data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
     ax.set_global()
     if mosaic is not None:
@@ -190,8 +257,10 @@ def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180
             ax.text(lon, -1, f"{lon}\u00b0", fontsize=6, color="0.35", ha="center", va="top", transform=data_crs)
         for lat in (-60, -30, 30, 60):
             ax.text(2, lat, f"{lat}\u00b0", fontsize=6, color="0.35", ha="left", va="bottom", transform=data_crs)
-    ax.add_collection(crack_collection(cracks, proj, linewidth=linewidth))
-    ax.plot(*SUBSATELLITE_LON_LAT, marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
+    ax.add_collection(crack_collection(cracks, proj, linewidth=linewidth, longitude_shift=frame["longitude_shift_deg"]))
+    if frame.get("scale_bar"):
+        _scale_bar(ax, proj, frame["scale_bar"])
+    ax.plot(*frame["subsatellite"], marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
             markeredgecolor=SUBSATELLITE_COLOR, transform=data_crs, gid="subsatellite", zorder=4)
     return ax
 
@@ -205,31 +274,33 @@ def fracture_map(path: str | os.PathLike, view: str = "overview", ax=None, mosai
     "mollweide", "equirectangular", "orthographic" or "antipode", into `ax` (a cartopy GeoAxes of
     projection(view)) or a new figure. mosaic: an image (file or array) in the orbital frame's
     longitude and latitude, drawn under the cracks over `mosaic_extent` (lon0, lon1, lat0, lat1,
-    degrees). The ring marks the subsatellite point. Returns the Figure. Raises CracksError (no
-    cracks.json), ValueError (view)."""
+    degrees; in the map's frame: planetocentric for a [moon] workflow). The ring marks the
+    subsatellite point; of a [moon] workflow each map has a km scale bar (true along the equator
+    at the map's centre). Returns the Figure. Raises CracksError (no cracks.json), ValueError
+    (view)."""
     cracks = read_cracks(path)
+    frame = map_frame(path)
     if title is None:
         summary_file = _analysis_folder(path) / "figure_data.json"
         title = (read_figure_data(path)["titles"]["fracture_map"] if summary_file.is_file()
                  else f"{cracks['crack_count']} cracks")
     if view == "overview":
         fig = plt.figure(figsize=(9, 8.2))
-        top = fig.add_axes([0.04, 0.42, 0.92, 0.46], projection=projection("mollweide"))
-        _map_axes(top, "mollweide", cracks, mosaic, mosaic_extent, linewidth)
+        top = fig.add_axes([0.04, 0.42, 0.92, 0.46], projection=projection("mollweide", frame["subsatellite"]))
+        _map_axes(top, "mollweide", cracks, mosaic, mosaic_extent, linewidth, frame)
         for k, (v, label) in enumerate((("orthographic", "hemisphere centred on the subsatellite point"),
                                         ("antipode", "hemisphere centred on its antipode"))):
-            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34], projection=projection(v))
-            _map_axes(sub, v, cracks, mosaic, mosaic_extent, linewidth)
+            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34], projection=projection(v, frame["subsatellite"]))
+            _map_axes(sub, v, cracks, mosaic, mosaic_extent, linewidth, frame)
             sub.set_title(label, fontsize=8)
-        fig.text(0.5, 0.01, "top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital "
-                 "plane; below: orthographic; ring: subsatellite point (90\u00b0, 0\u00b0)", ha="center", fontsize=7)
+        fig.text(0.5, 0.01, frame["note"], ha="center", fontsize=7, wrap=True, gid="note")
         _title(fig, title)
         return fig
-    proj = projection(view)
+    proj = projection(view, frame["subsatellite"])
     if ax is None:
         fig = plt.figure(figsize=(9, 5) if view in ("equirectangular", "mollweide") else (5.5, 5.5))
         ax = fig.add_subplot(1, 1, 1, projection=proj)
-    _map_axes(ax, view, cracks, mosaic, mosaic_extent, linewidth)
+    _map_axes(ax, view, cracks, mosaic, mosaic_extent, linewidth, frame)
     ax.set_title(title, fontsize=9)
     return ax.figure
 
@@ -243,6 +314,8 @@ def crack_geometry(path: str | os.PathLike, axes=None, title: str | None = None)
     polar Axes). Returns the Figure."""
     summary, data, cracks = _summary(path), read_figure_data(path), read_cracks(path)
     geometry = summary["crack_geometry"]
+    frame = data.get("map", ORBITAL_MAP)
+    shift = frame["longitude_shift_deg"]
     if axes is None:
         fig = plt.figure(figsize=(12, 6.2))
         map_ax = fig.add_axes([0.02, 0.2, 0.6, 0.66], projection=projection("mollweide"))
@@ -250,11 +323,11 @@ def crack_geometry(path: str | os.PathLike, axes=None, title: str | None = None)
     else:
         map_ax, rose_ax = axes
         fig = map_ax.figure
-    _map_axes(map_ax, "mollweide", cracks)
+    _map_axes(map_ax, "mollweide", cracks, frame=frame)
     proj = projection("mollweide")
     circles = data["crack_geometry"]["circles"]
-    covered = _project_lines([c["covered"] for c in circles], proj)[0]
-    rest = _project_lines([c["rest"] for c in circles], proj)[0]
+    covered = _project_lines([c["covered"] for c in circles], proj, shift)[0]
+    rest = _project_lines([c["rest"] for c in circles], proj, shift)[0]
     map_ax.add_collection(LineCollection(rest, colors=ARC_COLOR, linewidths=0.8, linestyles=(0, (4, 3)), alpha=0.7,
                                          gid="circles", zorder=5))
     map_ax.add_collection(LineCollection(covered, colors=ARC_COLOR, linewidths=2.4, alpha=0.85, gid="arcs",
@@ -262,10 +335,11 @@ def crack_geometry(path: str | os.PathLike, axes=None, title: str | None = None)
     data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
     arcs = geometry["arcs"]
     if arcs:
-        map_ax.scatter([a["pole_longitude_deg"] for a in arcs], [a["pole_latitude_deg"] for a in arcs], s=30,
+        pole_lon = [(a["pole_longitude_deg"] + shift + 180.0) % 360.0 - 180.0 for a in arcs]
+        map_ax.scatter(pole_lon, [a["pole_latitude_deg"] for a in arcs], s=30,
                        color=ARC_COLOR, edgecolors="white", transform=data_crs, gid="poles", zorder=6)
         for k, a in enumerate(arcs):
-            map_ax.text(a["pole_longitude_deg"], a["pole_latitude_deg"], f" {k + 1}", fontsize=7,
+            map_ax.text(pole_lon[k], a["pole_latitude_deg"], f" {k + 1}", fontsize=7,
                         color=ARC_COLOR, transform=data_crs, zorder=6)
 
     rose = geometry["rose"]
@@ -286,11 +360,15 @@ def crack_geometry(path: str | os.PathLike, axes=None, title: str | None = None)
     rose_ax.set_title("crack azimuth from the direction to the subsatellite point", fontsize=8)
     concentricity = geometry.get("concentricity")
     lines = [f"concentricity {_number(concentricity, '.2f')} (1: rings about the subsatellite point; 0.64: random)"]
-    for k, a in enumerate(arcs):
-        lines.append(f"{k + 1}: pole ({_number(a['pole_longitude_deg'], '.0f')}\u00b0, "
+    si_arcs = summary["si"]["crack_geometry"]["arcs"] if "si" in summary else [None] * len(arcs)
+    for k, (a, si) in enumerate(zip(arcs, si_arcs)):
+        pole_lon = a["pole_longitude_deg"] if si is None else si["pole_planetocentric_longitude_deg"]
+        km = "" if si is None else (f" = {_number(si['radius_km'], '.0f')} km, arc "
+                                    f"{_number(si['arc_length_km'], '.0f')} km long")
+        lines.append(f"{k + 1}: pole ({_number(pole_lon, '.0f')}\u00b0, "
                      f"{_number(a['pole_latitude_deg'], '.0f')}\u00b0), "
                      f"{_number(a['pole_axis_from_subsatellite_deg'], '.0f')}\u00b0 from the subsatellite axis, radius "
-                     f"{_number(a['radius_deg'], '.0f')}\u00b0, arc {_number(a['arc_deg'], '.0f')}\u00b0, misfit "
+                     f"{_number(a['radius_deg'], '.0f')}\u00b0{km}, arc {_number(a['arc_deg'], '.0f')}\u00b0, misfit "
                      f"{_number(a['rms_misfit_deg'], '.1f')}\u00b0")
     if axes is None:
         fig.text(0.66, 0.36, "\n".join(lines), fontsize=7, va="top")
@@ -395,16 +473,16 @@ def axis_ratios(path: str | os.PathLike, ax=None, title: str | None = None):
     """Principal axis ratios b/a (solid) and c/a (dashed) against t - t_peri, one marker per
     checkpoint (summary.json's principal_axis_ratios). Returns the Figure."""
     ratios = _summary(path)["principal_axis_ratios"]
+    data = read_figure_data(path)
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4))
-    t = [r["time_from_pericenter"] for r in ratios]
+    t = _time_in_axis_units(ax, data, [r["time_from_pericenter"] for r in ratios])
     ax.plot(t, [r["b_over_a"] for r in ratios], "o-", color="black", label="b/a", gid="b_over_a")
     ax.plot(t, [r["c_over_a"] for r in ratios], "s--", color="black", label="c/a", gid="c_over_a")
     ax.axvline(0.0, color="0.45", linestyle="--", linewidth=0.8)
-    ax.set_xlabel(TIME_LABEL)
     ax.set_ylabel("axis ratio")
     ax.legend(fontsize=8)
-    _title(ax.figure, title if title is not None else read_figure_data(path)["titles"]["axis_ratios"])
+    _title(ax.figure, title if title is not None else data["titles"]["axis_ratios"])
     return ax.figure
 
 
@@ -446,6 +524,15 @@ def orbit(path: str | os.PathLike, ax=None, title: str | None = None):
     ax.autoscale_view()
     ax.set_xlabel("x [R]")
     ax.set_ylabel("y [R]")
+    if data.get("length_axis"):  # of a moon: km beside R
+        per_r, unit = data["length_axis"]["per_R"], data["length_axis"]["unit"]
+        top = ax.secondary_xaxis("top", functions=(lambda x: x * per_r, lambda x: x / per_r))
+        top.set_xlabel(f"x [{unit}]", fontsize=7)
+        top.set_gid("km_axis")
+        right = ax.secondary_yaxis("right", functions=(lambda y: y * per_r, lambda y: y / per_r))
+        right.set_ylabel(f"y [{unit}]", fontsize=7)
+        for secondary in (top, right):
+            secondary.tick_params(labelsize=7)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2)
     ax.text(0.0, -0.36, "relative to the body's centre of mass (black disc, radius R); pericenter on +y",
             transform=ax.transAxes, fontsize=7)
@@ -461,12 +548,12 @@ def failures(path: str | os.PathLike, ax=None, title: str | None = None):
     f = data["failures"]
     if ax is None:
         _, ax = plt.subplots(figsize=(6.4, 4))
-    ax.plot(f["time_from_pericenter"], f["failed"], color="black", linewidth=1.4, gid="failures")
+    ax.plot(_time_in_axis_units(ax, data, f["time_from_pericenter"]), f["failed"], color="black", linewidth=1.4,
+            gid="failures")
     ax.axvline(0.0, color="0.45", linestyle="--", linewidth=0.8, label="pericenter")
-    ax.set_xlabel(TIME_LABEL)
     ax.set_ylabel("failed shell springs")
     ax.set_ylim(0, 1.08 * max(1.0, max(f["failed"], default=0)))
-    ax.text(0.0, -0.2, f["note"], transform=ax.transAxes, fontsize=7)
+    ax.figure.text(0.02, 0.015, f["note"], fontsize=7)
     _title(ax.figure, title if title is not None else data["titles"]["failures"])
     ax.figure.subplots_adjust(bottom=0.2)
     return ax.figure
@@ -480,14 +567,14 @@ def conservation(path: str | os.PathLike, axes=None, title: str | None = None):
     c = data["conservation"]
     if axes is None:
         _, axes = plt.subplots(3, 1, figsize=(6.4, 7), sharex=True)
-    t = c["time_from_pericenter"]
+    t = _time_in_axis_units(axes[0], data, c["time_from_pericenter"], label=False)
     for ax, key, label in zip(axes, ("energy", "momentum", "angular_momentum"),
                               (c["energy_label"], "|P \u2212 P\u2080| [M \u221a(GM/R)]",
                                "|L \u2212 L\u2080| [M R \u221a(GM/R)]")):
         ax.plot(t, c[key], color="black", linewidth=1.2, gid=key)
         ax.axvline(0.0, color="0.45", linestyle="--", linewidth=0.8)
         ax.set_ylabel(label, fontsize=8)
-    axes[-1].set_xlabel(TIME_LABEL)
+    axes[-1].set_xlabel(_time_axis(data)[1])
     axes[-1].text(0.0, -0.45, c["note"], transform=axes[-1].transAxes, fontsize=7)
     _title(axes[0].figure, title if title is not None else data["titles"]["conservation"])
     return axes[0].figure
