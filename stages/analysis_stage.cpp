@@ -109,9 +109,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   // Of a moon, the largest crack network in km on the map's title.
   const std::string largest_network =
       moon && fractures.count() > 0
-          ? fmt::format(", largest crack network {} {}",
-                        general_text(model_to_output(moon->units, Dimension::length, fractures.longest_crack_length), 3),
-                        output_unit(Dimension::length).symbol)
+          ? ", largest crack network " + si_text(fractures.longest_crack_length, Dimension::length, *moon)
           : "";
   auto title = [&](const std::string& headline) {
     return encounter_figure_title(headline, record.encounter, checkpoint.stage.clock, moon ? &*moon : nullptr);

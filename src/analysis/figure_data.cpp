@@ -308,9 +308,9 @@ Json map_json(const MoonScale* moon) {
           {"note", fmt::format("top: Mollweide (equal-area); planetocentric latitude and longitude in degrees "
                                "(equator = orbital plane, north = orbit normal, longitude 0 = subsatellite point at "
                                "pericenter, east positive); below: orthographic; ring: subsatellite point; bars: {:g} "
-                               "km along the equator at the centre; {} R = {:g} km, 10\u00b0 = {} km",
+                               "km along the equator at the centre; {} R = {:g} km, 10\u00b0 = {}",
                                bar_km, moon->name, radius_km,
-                               general_text(model_to_output(moon->units, Dimension::length, std::numbers::pi / 18), 3))}};
+                               si_text(std::numbers::pi / 18, Dimension::length, *moon))}};
 }
 
 }  // namespace

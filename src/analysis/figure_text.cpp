@@ -42,18 +42,22 @@ std::string time_from_pericenter_text(double time_from_pericenter, const MoonSca
                      output_unit(Dimension::time).symbol, model);
 }
 
-std::string si_beside_text(double model_value, Dimension dimension, const MoonScale* moon) {
-  if (!moon) return "";
-  return fmt::format(" = {} {}", general_text(model_to_output(moon->units, dimension, model_value), 3),
+std::string si_text(double model_value, Dimension dimension, const MoonScale& moon) {
+  return fmt::format("{} {}", general_text(model_to_output(moon.units, dimension, model_value), 4),
                      output_unit(dimension).symbol);
 }
 
-std::string encounter_parameters_text(const Encounter& encounter, const MoonScale* moon) {
-  return fmt::format("M\u2082 = {} M{}, q = {} R{}, V_q = {} \u221a(GM/R){}", general_text(encounter.perturber_mass),
-                     si_beside_text(encounter.perturber_mass, Dimension::mass, moon), general_text(encounter.pericenter),
-                     si_beside_text(encounter.pericenter, Dimension::length, moon),
-                     general_text(encounter.pericenter_speed),
-                     si_beside_text(encounter.pericenter_speed, Dimension::speed, moon));
+std::string encounter_parameters_text(const Encounter& encounter) {
+  return fmt::format("M\u2082 = {} M, q = {} R, V_q = {} \u221a(GM/R)", general_text(encounter.perturber_mass),
+                     general_text(encounter.pericenter), general_text(encounter.pericenter_speed));
+}
+
+std::string encounter_si_text(const Encounter& encounter, const StepClock& clock, const MoonScale& moon) {
+  return fmt::format("{}: M\u2082 = {}, q = {}, V_q = {}; dt = {} s", moon.name,
+                     si_text(encounter.perturber_mass, Dimension::mass, moon),
+                     si_text(encounter.pericenter, Dimension::length, moon),
+                     si_text(encounter.pericenter_speed, Dimension::speed, moon),
+                     general_text(model_to_si(moon.units, Dimension::time, clock.dt), 4));
 }
 
 std::string time_axis_label(const MoonScale* moon) {
@@ -78,7 +82,8 @@ std::string time_step_text(const StepClock& clock) {
 
 std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock,
                                    const MoonScale* moon) {
-  return fmt::format("{}\n{}; {}", headline, encounter_parameters_text(encounter, moon), time_step_text(clock));
+  const std::string title = fmt::format("{}\n{}; {}", headline, encounter_parameters_text(encounter), time_step_text(clock));
+  return moon ? title + "\n" + encounter_si_text(encounter, clock, *moon) : title;
 }
 
 }  // namespace tidalcrust

@@ -26,14 +26,15 @@ std::string general_text(double value, int significant = 6);
 /// (docs/moon.md, "Output in SI") in hours first: "t − t_peri = +0.97 h (+1.84 t_grav)".
 std::string time_from_pericenter_text(double time_from_pericenter, const MoonScale* moon = nullptr);
 
-/// "M₂ = 0.5 M, q = 1.84 R, V_q = 1.6 √(GM/R)": the encounter's parameters with their units; of a
-/// moon each with its SI value beside it, three digits: "M₂ = 0.5 M = 3.1e+20 kg, q = 1.84 R =
-/// 977 km, V_q = 1.6 √(GM/R) = 0.447 km/s".
-std::string encounter_parameters_text(const Encounter& encounter, const MoonScale* moon = nullptr);
+/// "M₂ = 0.5 M, q = 1.84 R, V_q = 1.6 √(GM/R)": the encounter's parameters with their units.
+std::string encounter_parameters_text(const Encounter& encounter);
 
-/// " = 977 km": a model value of `dimension` in its SI output unit for a moon, three digits, to put
-/// beside the model value; "" without a moon.
-std::string si_beside_text(double model_value, Dimension dimension, const MoonScale* moon);
+/// "977 km": a model value of `dimension` in the SI output unit of `moon`, four significant digits.
+std::string si_text(double model_value, Dimension dimension, const MoonScale& moon);
+
+/// "Tethys: M₂ = 3.1e+20 kg, q = 977 km, V_q = 0.447 km/s; dt = 3.805 s": the encounter's
+/// parameters and the time step in the moon's SI units.
+std::string encounter_si_text(const Encounter& encounter, const StepClock& clock, const MoonScale& moon);
 
 /// The label of the figures' time axes: "t − t_peri [h]" for a moon, else "t − t_peri [t_grav]".
 std::string time_axis_label(const MoonScale* moon);
@@ -50,7 +51,7 @@ double dt_factor_of(const StepClock& clock);
 std::string time_step_text(const StepClock& clock);
 
 /// Title of an encounter figure: `headline` on the first line, then a second line with the
-/// encounter's parameters and the time step.
+/// encounter's parameters and the time step; of a moon a third, the same in SI (encounter_si_text).
 std::string encounter_figure_title(const std::string& headline, const Encounter& encounter, const StepClock& clock,
                                    const MoonScale* moon = nullptr);
 

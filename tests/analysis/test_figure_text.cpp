@@ -55,7 +55,7 @@ TEST(FigureText, EncounterTitlesNameUnitsAndTheTimeStep) {
 }
 
 // Of a moon (docs/moon.md, "Output in SI") the texts give SI beside the model units: hours first
-// in the time, each encounter parameter with its SI value, the time axis in hours.
+// in the time, the encounter's parameters and dt in SI on a third title line, the time axis in hours.
 TEST(FigureText, AMoonsTextsGiveSiBesideTheModelUnits) {
   const MoonScale tethys{"Tethys", model_units(0.62e21, 531e3)};
   const double t_grav_h = tethys.units.time_s / 3600;  // 0.528 h
@@ -63,12 +63,13 @@ TEST(FigureText, AMoonsTextsGiveSiBesideTheModelUnits) {
             "t \u2212 t_peri = " + signed_fixed_text(1.84 * t_grav_h, 2) + " h (+1.84 t_grav)");
   EXPECT_EQ(time_from_pericenter_text(-1e-17, &tethys), "t \u2212 t_peri = 0.00 h (0.00 t_grav)");
   const Encounter t5{"T5", 0.5, 1.84, 1.6, std::nullopt, std::nullopt, std::nullopt};
-  const std::string text = encounter_parameters_text(t5, &tethys);
-  EXPECT_TRUE(contains(text, "M\u2082 = 0.5 M = 3.1e+20 kg")) << text;
-  EXPECT_TRUE(contains(text, "q = 1.84 R = 977 km")) << text;
-  EXPECT_TRUE(contains(text, "V_q = 1.6 \u221a(GM/R) = 0.447 km/s")) << text;
-  EXPECT_EQ(encounter_parameters_text(t5), "M\u2082 = 0.5 M, q = 1.84 R, V_q = 1.6 \u221a(GM/R)");
+  const StepClock clock{3.0, 750, 0.002};
+  EXPECT_EQ(encounter_si_text(t5, clock, tethys),
+            "Tethys: M\u2082 = 3.1e+20 kg, q = 977 km, V_q = 0.4466 km/s; dt = " +
+                general_text(0.002 * tethys.units.time_s, 4) + " s");
+  const std::string title = encounter_figure_title("T5: orbit", t5, clock, &tethys);
+  EXPECT_EQ(title, encounter_figure_title("T5: orbit", t5, clock) + "\n" + encounter_si_text(t5, clock, tethys));
+  EXPECT_EQ(si_text(1.84, Dimension::length, tethys), "977 km");
   EXPECT_EQ(time_axis_label(&tethys), "t \u2212 t_peri [h]");
   EXPECT_EQ(time_axis_label(nullptr), "t \u2212 t_peri [t_grav]");
-  EXPECT_EQ(si_beside_text(1.84, Dimension::length, nullptr), "");
 }

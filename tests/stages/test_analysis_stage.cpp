@@ -224,7 +224,8 @@ TEST(AnalysisStage, AMoonsSummaryAndFiguresAreInSiBesideTheModelUnits) {
   EXPECT_TRUE(near(data["length_axis"]["per_R"], R_km));
   EXPECT_EQ(data["si"]["moon"], si["moon"]);
   const std::string map_title = data["titles"]["fracture_map"];
-  EXPECT_NE(map_title.find("q = 1.84 R = 977 km"), std::string::npos) << map_title;
+  EXPECT_NE(map_title.find("\nTethys: M\u2082 = 3.1e+20 kg, q = 977 km, V_q = 0.4466 km/s; dt = "), std::string::npos)
+      << map_title;
   EXPECT_NE(map_title.find("largest crack network"), std::string::npos) << map_title;
   EXPECT_NE(map_title.find(" h (+"), std::string::npos) << map_title;  // hours, then t_grav
   EXPECT_TRUE(analysis_is_current(out, c));
