@@ -74,7 +74,7 @@ constexpr const char* timeseries = "/checkpoint/timeseries";
 /// H5MD units module strings (SI system) for the H5MD elements: the numbers are in the model's
 /// units G = M = R = 1 (R, t_grav, sqrt(GM/R), M), and the `unit` attributes say what one of them
 /// is (docs/checkpoint-layout.md, "Units in the file"). Of a [moon] workflow they are the moon's
-/// own (H5MD's numeric factor: "531000 m", "1902.47... s", "279.1... m s-1", "620000...000 kg"),
+/// own (H5MD's numeric factor: "531000.0 m", "1902.19... s", "279.15... m s-1", "620000...000.0 kg"),
 /// so that a stored number times its unit string is its SI value. Without [moon] the model has no
 /// scale, and they name the exact realization R = 1 nm, t_grav = 1 ps (M = R^3/(G t_grav^2) =
 /// 1.4983e7 kg with CODATA 2018 G), which readers that convert units (MDAnalysis) accept.
