@@ -33,7 +33,7 @@ Vec3 perturber_offset(const Checkpoint& c, const Vec3& center) {
 /// perturber; the faces themselves are the body's (the same for every panel).
 Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes) {
   const Vec3 center = body_center_of_mass(c.body, c.state);
-  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  const FractureSummary fractures = analyze_fractures(c);
   Json positions = Json::array();
   for (const std::int32_t i : nodes) positions.push_back(xyz(vec3_at(c.state.position, static_cast<std::size_t>(i)) - center));
   Json bars = Json::array();
@@ -271,21 +271,66 @@ Json crack_circles_json(const CrackGeometry& geometry) {
   return arcs;
 }
 
+/// figure_data.json's `units`: for the paper's orbit one frame for all; for another orientation
+/// the figures of the body in the orbit's frame, the crack circles in the body's.
+std::string figure_data_units(bool paper_orbit) {
+  return paper_orbit ? "lengths in R relative to the body's centre of mass in the orbital frame (orbital plane = "
+                       "equator, subsatellite point on +y, longitude +90); times in t_grav from pericenter; angles in "
+                       "degrees"
+                     : "lengths in R relative to the body's centre of mass; hemisphere, orbit and body_shape in the "
+                       "encounter's orbital frame (orbital plane = xy, subsatellite point on +y), crack_geometry in "
+                       "the body's frame of the maps (cracks.json); times in t_grav from pericenter; angles in degrees";
+}
+
+/// `c` seen in the frame of its encounter's orbit (turned by the transpose of orbit_rotation: the
+/// orbit in the xy plane, pericenter on +y, as the paper's): positions, velocities, the perturber
+/// and the recorded perturber offsets, with the record's orientation reset to the paper's.
+Checkpoint in_orbit_frame(const Checkpoint& c) {
+  Checkpoint out = c;
+  auto* record = std::get_if<EncounterRecord>(&out.stage.record);
+  if (!record || record->orbit.is_default()) return out;
+  const Matrix3 back = orbit_rotation(record->orbit).transpose();
+  for (std::vector<double>* flat : {&out.state.position, &out.state.velocity})
+    for (std::size_t i = 0; 3 * i < flat->size(); ++i) set_vec3(*flat, i, back * vec3_at(*flat, i));
+  for (std::array<double, 3>* v : {&out.state.perturber.position, &out.state.perturber.velocity}) {
+    const Vec3 turned = back * Vec3((*v)[0], (*v)[1], (*v)[2]);
+    *v = {turned.x(), turned.y(), turned.z()};
+  }
+  for (TimeseriesSample& sample : out.observables.timeseries) {
+    const Vec3 turned = back * Vec3(sample.perturber_offset[0], sample.perturber_offset[1], sample.perturber_offset[2]);
+    sample.perturber_offset = {turned.x(), turned.y(), turned.z()};
+  }
+  record->orbit = OrbitOrientation{};
+  return out;
+}
+
 }  // namespace
 
 Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord& record,
                       const std::vector<const Checkpoint*>& panels, const Json& titles, const std::string& state_hash) {
+  const FractureSummary fractures = analyze_fractures(final_checkpoint);  // the circles: in the maps' (body's) frame
+  if (!record.orbit.is_default()) {
+    // The hemisphere, orbit and body figures are drawn in the encounter's orbital frame, as for the
+    // paper's orbit; the maps stay in the body's frame.
+    std::vector<Checkpoint> turned;
+    turned.reserve(panels.size());
+    std::vector<const Checkpoint*> turned_panels;
+    for (const Checkpoint* c : panels) turned.push_back(in_orbit_frame(*c)), turned_panels.push_back(&turned.back());
+    const Checkpoint turned_final = in_orbit_frame(final_checkpoint);
+    Json data = figure_data_json(turned_final, turned_final.stage.as<EncounterRecord>(), turned_panels, titles, state_hash);
+    data["crack_geometry"] = {{"circles", crack_circles_json(fractures.geometry)}};
+    data["units"] = figure_data_units(false);
+    return data;
+  }
   const double tq = record.pericenter_time;
   std::vector<double> panel_times;
   for (const Checkpoint* c : panels) panel_times.push_back(c->state.time);
   Json slices = Json::array();
   for (const Checkpoint* c : panels) slices.push_back(body_slice_panel(*c, tq));
-  const FractureSummary fractures = analyze_fractures(final_checkpoint.body, final_checkpoint.state);
   return {{"format", "tidalcrust-figure-data"},
           {"version", 1},
           {"state_hash", state_hash},
-          {"units", "lengths in R relative to the body's centre of mass in the orbital frame (orbital plane = equator, "
-                    "subsatellite point on +y, longitude +90); times in t_grav from pericenter; angles in degrees"},
+          {"units", figure_data_units(true)},
           {"figures", encounter_figure_names()},
           {"titles", titles},
           {"pericenter_time", tq},

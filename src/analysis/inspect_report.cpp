@@ -88,6 +88,8 @@ ReportSection record_section(const Checkpoint& c) {
       s.add(name, std::vector<double>(value.begin(), value.end()), unit);
     else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>)
       s.add(name, value);
+    else if constexpr (std::is_same_v<T, std::optional<std::string>>)
+      s.add(name, value.value_or(""));
     else if constexpr (Choice<T>)
       s.add(name, std::string(choice_name(value)));
     else
@@ -152,7 +154,7 @@ ReportSection& InspectReport::section(const std::string& name) {
 void add_failures_section(const Checkpoint& c, InspectReport& r) {
   if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
-  const Json summary = failure_summary_json(analyze_fractures(c.body, c.state));
+  const Json summary = failure_summary_json(analyze_fractures(c));
   // Keys of failure_summary_json: counts and fractions are pure numbers, angles in degrees,
   // crack lengths in R.
   for (const auto& [key, value] : summary.items()) {

@@ -84,13 +84,14 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
   ASSERT_EQ(rows.size(), 5u) << "a header and one row per encounter";
   const auto& header = rows[0];
-  ASSERT_EQ(header.size(), 22u);
+  ASSERT_EQ(header.size(), 23u);
   EXPECT_EQ(header[3], "q [R]");
   EXPECT_EQ(header[11], "largest_network_length [R]");
   EXPECT_EQ(header[15], "note");
   EXPECT_EQ(header[16], "concentricity [1]");  // the crack geometry after the others
   EXPECT_EQ(header[20], "total_crack_length [R]");  // then the crack sizes
   EXPECT_EQ(header[21], "cracks [1]");
+  EXPECT_EQ(header[22], "after");  // the encounter an encounter of a history comes after
   const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
   EXPECT_EQ(json["counts"]["finished"], 2);
   EXPECT_EQ(json["counts"]["unfinished"], 1);
@@ -108,7 +109,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
     EXPECT_EQ(row[1], statuses[i]);
     EXPECT_EQ(entry["name"], names[i]);
     EXPECT_EQ(entry["status"], statuses[i]);
-    const Encounter spec{names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8, {}, {}, {}};
+    const Encounter spec = encounter_of(names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8);
     EXPECT_EQ(row[5], "0.002");
     EXPECT_EQ(row[6], fmt::format("{}", estimate_encounter(spec, youngs).strain)) << names[i];
     if (statuses[i] != "finished") {

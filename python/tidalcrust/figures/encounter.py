@@ -34,6 +34,7 @@ FIGURE_DATA_FORMAT = "tidalcrust-figure-data"
 FIGURE_DATA_VERSION = 1
 #: Colours shared by the figures (restyle by passing your own Axes and changing the artists).
 CRACK_COLOR = "black"
+EARLIER_CRACK_COLOR = "0.6"  # cracks of the encounters before this one (an encounter history)
 SURFACE_COLOR = "#ede6d8"
 SUBSATELLITE_COLOR = "#f2c200"
 PERTURBER_COLOR = "#c0209a"
@@ -87,18 +88,19 @@ def _title(fig, title) -> None:
 
 # ---- maps ---------------------------------------------------------------------------------------
 
-def projection(view: str) -> ccrs.Projection:
+def projection(view: str, subsatellite=SUBSATELLITE_LON_LAT) -> ccrs.Projection:
     """The cartopy projection of a map view: "mollweide" (global, equal-area, no polar
     stretching), "equirectangular" (longitude and latitude as x and y), "orthographic" (the
-    hemisphere centred on the subsatellite point) or "antipode" (the other one)."""
+    hemisphere centred on the subsatellite point `subsatellite`, (lon, lat) in degrees: cracks.json's
+    `subsatellite`, (90, 0) for the paper's orbit) or "antipode" (the other one)."""
     if view == "mollweide":
         return ccrs.Mollweide(globe=UNIT_GLOBE)
     if view == "equirectangular":
         return ccrs.PlateCarree(globe=UNIT_GLOBE)
     if view == "orthographic":
-        return ccrs.Orthographic(*SUBSATELLITE_LON_LAT, globe=UNIT_GLOBE)
+        return ccrs.Orthographic(*subsatellite, globe=UNIT_GLOBE)
     if view == "antipode":
-        return ccrs.Orthographic(SUBSATELLITE_LON_LAT[0] - 180.0, 0.0, globe=UNIT_GLOBE)
+        return ccrs.Orthographic(subsatellite[0] - 180.0, -subsatellite[1], globe=UNIT_GLOBE)
     raise ValueError(f"view '{view}': one of {', '.join(VIEWS)}")
 
 
@@ -167,8 +169,13 @@ def crack_collection(cracks: dict, proj: ccrs.Projection, color=CRACK_COLOR, lin
     return collection
 
 
+def _subsatellite(cracks: dict) -> tuple[float, float]:
+    """The encounter's subsatellite point (lon, lat) of a cracks.json; (90, 0) in files before it."""
+    return tuple(cracks.get("subsatellite", SUBSATELLITE_LON_LAT))
+
+
 def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0):
-    proj = projection(view)
+    proj = projection(view, _subsatellite(cracks))
     data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
     ax.set_global()
     if mosaic is not None:
@@ -190,8 +197,12 @@ def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180
             ax.text(lon, -1, f"{lon}\u00b0", fontsize=6, color="0.35", ha="center", va="top", transform=data_crs)
         for lat in (-60, -30, 30, 60):
             ax.text(2, lat, f"{lat}\u00b0", fontsize=6, color="0.35", ha="left", va="bottom", transform=data_crs)
+    earlier = cracks.get("earlier", {}).get("polylines", [])
+    if earlier:  # an encounter of a history: the cracks it began with, under its own
+        ax.add_collection(LineCollection(_project_lines(earlier, proj)[0], colors=EARLIER_CRACK_COLOR,
+                                         linewidths=linewidth, capstyle="round", gid="earlier_cracks", zorder=2))
     ax.add_collection(crack_collection(cracks, proj, linewidth=linewidth))
-    ax.plot(*SUBSATELLITE_LON_LAT, marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
+    ax.plot(*_subsatellite(cracks), marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
             markeredgecolor=SUBSATELLITE_COLOR, transform=data_crs, gid="subsatellite", zorder=4)
     return ax
 
@@ -218,14 +229,17 @@ def fracture_map(path: str | os.PathLike, view: str = "overview", ax=None, mosai
         _map_axes(top, "mollweide", cracks, mosaic, mosaic_extent, linewidth)
         for k, (v, label) in enumerate((("orthographic", "hemisphere centred on the subsatellite point"),
                                         ("antipode", "hemisphere centred on its antipode"))):
-            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34], projection=projection(v))
+            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34], projection=projection(v, _subsatellite(cracks)))
             _map_axes(sub, v, cracks, mosaic, mosaic_extent, linewidth)
             sub.set_title(label, fontsize=8)
-        fig.text(0.5, 0.01, "top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital "
-                 "plane; below: orthographic; ring: subsatellite point (90\u00b0, 0\u00b0)", ha="center", fontsize=7)
+        lon, lat = _subsatellite(cracks)
+        history = "; grey: cracks of the earlier encounters" if cracks.get("earlier", {}).get("polylines") else ""
+        fig.text(0.5, 0.01, "top: Mollweide (equal-area), longitude and latitude in degrees in the body's frame; below: "
+                 f"orthographic; ring: subsatellite point ({lon:.0f}\u00b0, {lat:.0f}\u00b0){history}", ha="center",
+                 fontsize=7)
         _title(fig, title)
         return fig
-    proj = projection(view)
+    proj = projection(view, _subsatellite(cracks))
     if ax is None:
         fig = plt.figure(figsize=(9, 5) if view in ("equirectangular", "mollweide") else (5.5, 5.5))
         ax = fig.add_subplot(1, 1, 1, projection=proj)
