@@ -21,6 +21,7 @@
 #include "analysis/figure_text.hpp"
 #include "figures/figure_script.hpp"
 #include "analysis/fracture_analysis.hpp"
+#include "physics/orbital_frame.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "analysis/si_output.hpp"
 #include "io/atomic_file.hpp"
@@ -74,6 +75,20 @@ std::vector<Snapshot> load_snapshots(const fs::path& from, const Checkpoint& fin
 
 std::string percent(double fraction) { return std::isfinite(fraction) ? fmt::format("{:.1f}%", 100 * fraction) : "n/a"; }
 
+/// summary.json's `history`: null for an encounter that began from the relaxed body; for one that
+/// came after another, that encounter's name, the springs failed before it began (left out of
+/// `failures`) and the whole crust after it, every failed spring, about this encounter's
+/// subsatellite point.
+Json history_json(const Checkpoint& checkpoint, const EncounterRecord& record, const FractureSummary& fractures) {
+  if (!record.encounter.after) return nullptr;
+  FractureScope whole_crust;
+  whole_crust.subsatellite = fractures.subsatellite;
+  return {{"after", *record.encounter.after},
+          {"earlier_failed", fractures.earlier_failed.size()},
+          {"note", "failures counts this encounter's failures; all_failures every failed shell spring of the crust"},
+          {"all_failures", failure_summary_json(analyze_fractures(checkpoint.body, checkpoint.state, whole_crust))}};
+}
+
 }  // namespace
 
 std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& checkpoint, const fs::path& out) {
@@ -83,7 +98,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   if (ec || !fs::is_directory(out)) throw InputError(fmt::format("{}: cannot create output folder: {}", out.string(), ec.message()));
 
   const std::optional<MoonScale> moon = stored_moon(checkpoint.config_toml, from.string() + ":/parameters/config");
-  const FractureSummary fractures = analyze_fractures(checkpoint.body, checkpoint.state);
+  const FractureSummary fractures = analyze_fractures(checkpoint);
   const ConservationDrift drift = conservation_drift(checkpoint.observables.timeseries);
   const EnergyBudget budget = energy_budget(checkpoint.observables.timeseries, record.encounter);
   const FailureTrend trend =
@@ -116,9 +131,13 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   };
   // The figures' titles (two lines: headline, then the encounter's parameters and dt).
   const Json titles = {
-      {"fracture_map", title(fmt::format("{}: {} failed shell springs ({}){}, {}", name, fractures.count(),
-                                         percent(fractures.fraction_shell), largest_network,
-                                         time_from_pericenter_text(t_after, moon ? &*moon : nullptr)))},
+      {"fracture_map",
+       title(fmt::format("{}: {} failed shell springs ({}){}{}, {}", name, fractures.count(),
+                         percent(fractures.fraction_shell),
+                         record.encounter.after ? fmt::format(" after {} ({} earlier, grey)", *record.encounter.after,
+                                                              fractures.earlier_failed.size())
+                                                : std::string(),
+                         largest_network, time_from_pericenter_text(t_after, moon ? &*moon : nullptr)))},
       {"hemisphere", title(name + ": hemisphere facing pericenter")},
       {"orbit", title(name + ": perturber orbit")},
       {"failures", title(name + ": shell spring failures")},
@@ -182,8 +201,16 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
         {"pericenter_speed", record.encounter.pericenter_speed},
         {"pericenter_time", record.pericenter_time},
         {"min_distance", record.min_distance},
-        {"speed_at_min", record.speed_at_min}}},
+        {"speed_at_min", record.speed_at_min},
+        {"after", record.encounter.after ? Json(*record.encounter.after) : Json(nullptr)},
+        {"orbit",
+         {{"inclination_deg", record.orbit.inclination},
+          {"ascending_node_deg", record.orbit.ascending_node},
+          {"argument_of_pericenter_deg", record.orbit.argument_of_pericenter},
+          {"subsatellite_longitude_deg", longitude_deg(fractures.subsatellite)},
+          {"subsatellite_latitude_deg", latitude_deg(fractures.subsatellite)}}}}},
       {"failures", failure_summary_json(fractures)},
+      {"history", history_json(checkpoint, record, fractures)},
       {"failure_trend",
        {{"still_rising", trend.still_rising},
         {"rule", fmt::format("still rising: at least {} failures and {:g} of them in the last {:g} of the "

@@ -138,6 +138,10 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
         "an encounter starts from a complete 'relax' or 'encounter' checkpoint, got {} '{}' checkpoint",
         parent.stage.complete ? "a complete" : "an unfinished (mid-stage)", parent.stage.name()));
   check_encounter(config, spec);
+  if (spec.after && !std::holds_alternative<EncounterRecord>(parent.stage.record))
+    throw InputError(fmt::format("encounter '{}' comes after '{}' and starts from its final 'encounter' checkpoint, got "
+                                 "a '{}' checkpoint",
+                                 spec.name, *spec.after, parent.stage.name()));
 
   const double start_distance = config.encounter.start_distance;
   const double end_distance = config.encounter.end_distance;
@@ -152,11 +156,17 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   const double dt = c.stage.clock.dt;  // config.integrator.dt, as check_encounter used
 
   // The two-body orbit is relative to the body's centre of mass (a second pass replaces the
-  // earlier perturber).
+  // earlier perturber), turned to the encounter's orientation (none for the paper's orbit).
+  const OrbitOrientation orientation = orbit_orientation(spec);
   const Vec3 com = body_center_of_mass(c.body, state);
   const Vec3 vcom = body_center_of_mass_velocity(c.body, state);
-  const Vec3 position = com + start.relative.position;
-  const Vec3 velocity = vcom + start.relative.velocity;
+  Vec3 position = com + start.relative.position;
+  Vec3 velocity = vcom + start.relative.velocity;
+  if (!orientation.is_default()) {
+    const Matrix3 rotation = orbit_rotation(orientation);
+    position = com + rotation * start.relative.position;
+    velocity = vcom + rotation * start.relative.velocity;
+  }
   state.perturber.present = true;
   state.perturber.mass = spec.perturber_mass;
   state.perturber.position = {position.x(), position.y(), position.z()};
@@ -167,6 +177,9 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
   const Separation initial = separation(c.body, state);
   EncounterRecord& record = stage.as<EncounterRecord>();
   record.encounter = spec;
+  record.orbit = orientation;
+  // Which encounter it continues, as the parent says (also for `encounter --from` an encounter file).
+  if (const auto* before = std::get_if<EncounterRecord>(&parent.stage.record)) record.encounter.after = before->encounter.name;
   record.failure_strain = spec.failure_strain.value_or(config.shell.failure_strain);
   record.failed_stiffness_factor = config.shell.failed_stiffness_factor;
   record.damping = config.encounter.damping;

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "analysis/fracture_analysis.hpp"
@@ -131,24 +132,64 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
       for (const auto& inner : fs::directory_iterator(entry.path(), ec))
         if (inner.is_directory(ec)) folders.push_back(inner.path());
   }
-  for (const auto& dir : folders) {
+  // First every encounter that began from a relaxed body: superseded when that is another one.
+  // Then the encounters of histories (`after`), each once the one it comes after is settled:
+  // superseded when that one's final checkpoint is gone or holds another state than it began from.
+  const auto remove_encounter = [&](const fs::path& dir) {
+    for (const auto& name : files) remove_stage_outputs(dir / name, false);
+    fs::remove_all(dir / "analysis", ec);
+    say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
+  };
+  // The first stage's checkpoint of `dir`, read under its lock (held by `lock`); nullopt when
+  // absent, locked by another process, unreadable, or of another body.
+  const auto read_first = [&](const fs::path& dir, std::optional<StageLock>& lock) -> std::optional<Checkpoint> {
     const std::optional<std::uint64_t> known = seed_of_folder(dir.filename().string());
-    if (known && *known != seed) continue;
+    if (known && *known != seed) return std::nullopt;
     const fs::path file = dir / files.front();
     const fs::path found = fs::exists(file) ? file : sibling_checkpoint(file, "mid");
-    if (!fs::exists(found)) continue;
+    if (!fs::exists(found)) return std::nullopt;
     try {
-      const LockAttempt attempt = try_lock_stage(file, "");
+      LockAttempt attempt = try_lock_stage(file, "");
       if (!attempt.lock) every_folder_checked = false;
-      if (!attempt.lock) continue;
-      const Checkpoint first = read_checkpoint(found);
-      if (first.stage.parent_hash == relaxed_hash) continue;
-      if (!known && parse_config(first.config_toml, found.string()).workflow.seed != seed) continue;
-      for (const auto& name : files) remove_stage_outputs(dir / name, false);
-      fs::remove_all(dir / "analysis", ec);
-      say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
+      if (!attempt.lock) return std::nullopt;
+      lock = std::move(attempt.lock);
+      Checkpoint first = read_checkpoint(found);
+      if (!known && parse_config(first.config_toml, found.string()).workflow.seed != seed) return std::nullopt;
+      return first;
     } catch (const InputError&) {
-      continue;
+      return std::nullopt;
+    }
+  };
+  const auto after_of = [](const Checkpoint& c) -> std::optional<std::string> {
+    const auto* record = std::get_if<EncounterRecord>(&c.stage.record);
+    return record ? record->encounter.after : std::nullopt;
+  };
+  std::map<fs::path, fs::path> history;  // encounter folder -> the folder of the one it comes after
+  for (const auto& dir : folders) {
+    std::optional<StageLock> lock;
+    const std::optional<Checkpoint> first = read_first(dir, lock);
+    if (!first) continue;
+    if (const auto after = after_of(*first)) history.emplace(dir, dir.parent_path() / *after);
+    else if (first->stage.parent_hash != relaxed_hash) remove_encounter(dir);
+  }
+  std::set<fs::path> settled;
+  for (bool progress = true; progress && settled.size() < history.size();) {
+    progress = false;
+    for (const auto& [dir, before] : history) {
+      if (settled.contains(dir) || (history.contains(before) && !settled.contains(before))) continue;
+      settled.insert(dir);
+      progress = true;
+      std::optional<StageLock> lock;
+      const std::optional<Checkpoint> first = read_first(dir, lock);  // again, under its lock
+      if (!first || !after_of(*first)) continue;
+      const fs::path before_final = before / files.back();
+      try {
+        if (fs::exists(before_final) && state_hash(read_checkpoint(before_final).state) == first->stage.parent_hash)
+          continue;
+      } catch (const InputError&) {
+        continue;  // unreadable: run reports it when it reaches it
+      }
+      remove_encounter(dir);
     }
   }
   if (every_folder_checked) write_file_atomically(superseded_check_file(body_dir), relaxed_hash + "\n");
@@ -264,16 +305,37 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   };
   if (options.encounters.empty() && !chain_for(nullptr)) return interrupted(result);
 
-  for (const auto& spec : options.encounters) {
+  // An encounter begins from the end of its body chain, or (a history: `after`) from the final
+  // checkpoint of the encounter it comes after, which is run first when it is not among
+  // options.encounters (`run --only B` runs A too). The final checkpoints that others begin from
+  // are kept here, by name.
+  std::set<std::string> begun_from;
+  for (const Encounter& e : config.encounters)
+    if (e.after) begun_from.insert(*e.after);
+  struct Finished {
+    Checkpoint checkpoint;
+    fs::path file;
+  };
+  std::map<std::string, Finished> finished;
+  std::function<const Finished*(const Encounter&)> run_encounter_of = [&](const Encounter& spec) -> const Finished* {
+    if (const auto done = finished.find(spec.name); done != finished.end()) return &done->second;
     const BodyChain* chain = chain_for(&spec);
-    if (!chain) return interrupted(result);
+    if (!chain) return nullptr;
+    const Checkpoint* start = &chain->relaxed;
+    fs::path parent_file = chain->file;
+    if (spec.after) {
+      const Encounter* before = config.encounter_or_null(*spec.after);  // validate checked that it exists
+      const Finished* done = before ? run_encounter_of(*before) : nullptr;
+      if (!done) return nullptr;
+      start = &done->checkpoint;
+      parent_file = done->file;
+    }
     const fs::path dir = encounter_root / spec.name;
     fs::create_directories(dir);
     std::optional<Checkpoint> parent;
-    fs::path parent_file = chain->file;
     for (const StageKind* kind : per_encounter) {
       const StageJob job{kind, fmt::format("{} {}", kind->name(), spec.name), stage_file(dir, *kind),
-                         parent ? &*parent : &chain->relaxed, parent_file, &spec};
+                         parent ? &*parent : start, parent_file, &spec};
       StageRunOptions stage_options = workflow_stage_options(ctx);
       if (kind == per_encounter.back()) {
         stage_options.derived = dir / "analysis";
@@ -282,13 +344,24 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
         };
       }
       StageResult done = run_stage(job, chain->encounter_config, std::move(stage_options));
-      if (done.outcome == LoopOutcome::interrupted) return interrupted(result);
+      if (done.outcome == LoopOutcome::interrupted) return nullptr;
       parent = std::move(done.checkpoint);
       parent_file = job.file;
     }
-    result.encounters.push_back({spec.name, parent_file, dir / "analysis",
-                                 fracture_summary_line(spec.name, analyze_fractures(parent->body, parent->state)),
-                                 failure_trend_line(spec.name, *parent)});
+    Finished& out = finished[spec.name];
+    out.checkpoint = std::move(*parent);
+    out.file = parent_file;
+    return &out;
+  };
+
+  for (const auto& spec : options.encounters) {
+    const Finished* done = run_encounter_of(spec);
+    if (!done) return interrupted(result);
+    result.encounters.push_back({spec.name, done->file, encounter_root / spec.name / "analysis",
+                                 fracture_summary_line(spec.name, analyze_fractures(done->checkpoint)),
+                                 failure_trend_line(spec.name, done->checkpoint)});
+    // Only the checkpoints others begin from are kept (a sweep's would fill the memory).
+    if (!begun_from.contains(spec.name)) finished.erase(spec.name);
   }
 
   Json status = {{"stage", "workflow " + config.workflow.name},

@@ -55,7 +55,7 @@ bool SmallCircleFit::finite() const {
          std::isfinite(pole_axis_from_subsatellite_deg);
 }
 
-SmallCircleFit fit_small_circle(const std::vector<Vec3>& points) {
+SmallCircleFit fit_small_circle(const std::vector<Vec3>& points, const Vec3& subsatellite) {
   TIDALCRUST_ASSERT(points.size() >= 3, "a small circle is fitted to at least 3 points");
   std::vector<Vec3> x;
   x.reserve(points.size());
@@ -128,7 +128,7 @@ SmallCircleFit fit_small_circle(const std::vector<Vec3>& points) {
   fit.pole_latitude_deg = latitude_deg(pole);
   fit.radius_deg = radius * degrees;
   fit.rms_misfit_deg = std::sqrt(sum_of_squares(x, pole, radius) / n) * degrees;
-  fit.pole_from_subsatellite_deg = angle_between_unit(pole, subsatellite_direction) * degrees;
+  fit.pole_from_subsatellite_deg = angle_between_unit(pole, subsatellite) * degrees;
   fit.pole_axis_from_subsatellite_deg = std::min(fit.pole_from_subsatellite_deg, 180 - fit.pole_from_subsatellite_deg);
 
   // Arc covered: the azimuths of the points about the pole, 2 pi minus their largest gap.
@@ -160,11 +160,11 @@ Vec3 point_on_circle(const SmallCircleFit& fit, double angle_deg) {
   return std::cos(a) * v + std::sin(a) * k.cross(v) + (1 - std::cos(a)) * k.dot(v) * k;
 }
 
-double crack_azimuth_deg(const Vec3& position, const Vec3& spring) {
+double crack_azimuth_deg(const Vec3& position, const Vec3& spring, const Vec3& subsatellite) {
   const double norm = position.norm();
   if (!(norm > 0)) return nan;
   const Vec3 up = position / norm;
-  const Vec3 toward = subsatellite_direction - subsatellite_direction.dot(up) * up;  // tangent, toward +y
+  const Vec3 toward = subsatellite - subsatellite.dot(up) * up;  // tangent, toward the subsatellite point
   const Vec3 along = spring - spring.dot(up) * up;                                   // the spring, tangent
   if (toward.norm() < 1e-12 || along.norm() < 1e-12 * spring.norm() || !(spring.norm() > 0)) return nan;
   const Vec3 t = toward.normalized();
@@ -196,7 +196,7 @@ CrackOrientations crack_orientations(const std::vector<double>& azimuths_deg) {
 
 CrackGeometry crack_geometry(const std::vector<std::vector<Vec3>>& cluster_points,
                              const std::vector<double>& cluster_lengths, const std::vector<double>& cluster_extents,
-                             const std::vector<double>& azimuths_deg) {
+                             const std::vector<double>& azimuths_deg, const Vec3& subsatellite) {
   TIDALCRUST_ASSERT(cluster_lengths.size() == cluster_points.size() && cluster_extents.size() == cluster_points.size(),
                     "one length and one extent per cluster");
   CrackGeometry g;
@@ -204,7 +204,7 @@ CrackGeometry crack_geometry(const std::vector<std::vector<Vec3>>& cluster_point
   std::vector<double> pole_axes, radii;
   for (std::size_t c = 0; c < cluster_points.size() && g.arcs.size() < g.max_arcs; ++c) {
     if (!(cluster_extents[c] >= g.min_arc_extent) || cluster_points[c].size() < g.min_arc_springs) continue;
-    CrackArc arc{c, cluster_lengths[c], cluster_extents[c], fit_small_circle(cluster_points[c])};
+    CrackArc arc{c, cluster_lengths[c], cluster_extents[c], fit_small_circle(cluster_points[c], subsatellite)};
     if (!arc.fit.finite()) continue;
     pole_axes.push_back(arc.fit.pole_axis_from_subsatellite_deg);
     radii.push_back(arc.fit.radius_deg);

@@ -2,8 +2,9 @@
 // Crack geometry of a fracture set, what a geologist compares with a moon (docs/crack-geometry.md):
 // small circles fitted to the long cracks (pole, angular radius, arc covered, misfit), the rose of
 // crack azimuths about the subsatellite point and a concentricity measure. Everything is in the
-// orbital frame of the maps (physics/orbital_frame.hpp: subsatellite point +y, longitude +90,
-// orbital plane latitude 0), on the unit sphere (positions are used by direction only).
+// body's frame of the maps (physics/orbital_frame.hpp: for the paper's orbit the subsatellite point
+// is +y, longitude +90, the orbital plane latitude 0; an encounter of another orientation gives
+// its own subsatellite direction), on the unit sphere (positions are used by direction only).
 //
 // The small-circle fit is the least-squares fit of Gray, Geiser & Geiser (1980, "On the
 // least-squares fit of small and great circles to spherically projected orientation data",
@@ -20,6 +21,7 @@
 
 #include "base/vec3.hpp"
 #include "io/json.hpp"
+#include "physics/orbital_frame.hpp"
 
 namespace tidalcrust {
 
@@ -58,7 +60,7 @@ inline constexpr double fit_step_tolerance = 1e-13;
 /// max_fit_iterations steps. At least 3 points (asserted). Degenerate sets (all points on one
 /// spot, or a short arc of a noisy line) give a circle without meaning, possibly not finite
 /// (SmallCircleFit::finite): fit long cracks only (CrackGeometry).
-SmallCircleFit fit_small_circle(const std::vector<Vec3>& points);
+SmallCircleFit fit_small_circle(const std::vector<Vec3>& points, const Vec3& subsatellite = subsatellite_direction);
 
 /// The point at azimuth `angle_deg` along the fitted circle from fit.arc_start (counter-clockwise
 /// about the pole): a unit vector. At 0 it is arc_start; at fit.arc_deg the other end of the arc.
@@ -71,7 +73,7 @@ Vec3 point_on_circle(const SmallCircleFit& fit, double angle_deg);
 /// seen from outside the body, folded into [0, 180) deg: an axial quantity, 0 for a crack pointing
 /// at the subsatellite point (radial), 90 for a crack concentric about it. NaN where undefined:
 /// at the subsatellite point or its antipode, or for a purely radial spring.
-double crack_azimuth_deg(const Vec3& position, const Vec3& spring);
+double crack_azimuth_deg(const Vec3& position, const Vec3& spring, const Vec3& subsatellite = subsatellite_direction);
 
 /// The rose of crack azimuths and the concentricity of a set of crack elements.
 struct CrackOrientations {
@@ -125,7 +127,8 @@ struct CrackGeometry {
 /// per failed spring, crack_azimuth_deg).
 CrackGeometry crack_geometry(const std::vector<std::vector<Vec3>>& cluster_points,
                              const std::vector<double>& cluster_lengths, const std::vector<double>& cluster_extents,
-                             const std::vector<double>& azimuths_deg);
+                             const std::vector<double>& azimuths_deg,
+                             const Vec3& subsatellite = subsatellite_direction);
 
 /// The `crack_geometry` object of summary.json: units, the arc selection (min_extent R,
 /// min_springs, max_arcs), the arcs (cluster index, springs, length and extent in R, pole as a unit

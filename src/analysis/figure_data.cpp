@@ -38,7 +38,7 @@ Vec3 perturber_offset(const Checkpoint& c, const Vec3& center) {
 Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes,
                       const MoonScale* moon) {
   const Vec3 center = body_center_of_mass(c.body, c.state);
-  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  const FractureSummary fractures = analyze_fractures(c);
   Json positions = Json::array();
   for (const std::int32_t i : nodes) positions.push_back(xyz(vec3_at(c.state.position, static_cast<std::size_t>(i)) - center));
   Json bars = Json::array();
@@ -285,32 +285,70 @@ double scale_bar_length(double radius) {
   return decade;
 }
 
-/// How the maps show the surface: in the orbital frame (longitude of cracks.json and summary.json),
-/// or for a moon in planetocentric longitude (physics/orbital_frame.hpp) with a km scale bar.
-Json map_json(const MoonScale* moon) {
+/// How the maps show the surface, and where on them the encounter's subsatellite point lies
+/// (`subsatellite`, a direction from the centre of mass): in the body's orbital frame (longitude
+/// of cracks.json and summary.json), or for a moon in planetocentric longitude
+/// (physics/orbital_frame.hpp) with a km scale bar.
+Json map_json(const MoonScale* moon, const Vec3& subsatellite) {
+  const double lon = longitude_deg(subsatellite), lat = latitude_deg(subsatellite);
   if (!moon)
     return {{"frame", "orbital"},
             {"longitude_shift_deg", 0},
-            {"subsatellite", {subsatellite_longitude_deg, 0}},
+            {"subsatellite", {lon, lat}},
             {"scale_bar", nullptr},
-            {"note", fmt::format("top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital "
-                                 "plane; below: orthographic; ring: subsatellite point ({:g}\u00b0, 0\u00b0)",
-                                 subsatellite_longitude_deg)}};
+            {"note", fmt::format("top: Mollweide (equal-area), longitude and latitude in degrees in the body's frame; "
+                                 "below: orthographic; ring: subsatellite point ({}\u00b0, {}\u00b0)",
+                                 fixed_text(lon, 0), fixed_text(lat, 0))}};
   const double radius_km = model_to_output(moon->units, Dimension::length, 1);
   const double bar_km = scale_bar_length(radius_km);
+  const double map_lon = planetocentric_longitude_deg(lon);
   return {{"frame", "planetocentric"},
           {"longitude_shift_deg", planetocentric_longitude_deg(0)},
-          {"subsatellite", {planetocentric_longitude_deg(subsatellite_longitude_deg), 0}},
+          {"subsatellite", {map_lon, lat}},
           {"scale_bar",
            {{"length_km", bar_km},
             {"length_R", output_to_model(moon->units, Dimension::length, bar_km)},
             {"label", fmt::format("{:g} {}", bar_km, output_unit(Dimension::length).symbol)}}},
           {"note", fmt::format("top: Mollweide (equal-area); planetocentric latitude and longitude in degrees "
-                               "(equator = orbital plane, north = orbit normal, longitude 0 = subsatellite point at "
-                               "pericenter, east positive); below: orthographic; ring: subsatellite point; bars: {:g} "
-                               "km along the equator at the centre; {} R = {:g} km, 10\u00b0 = {}",
-                               bar_km, moon->name, radius_km,
+                               "(equator = the body's orbital plane, north = its orbit normal, longitude 0 = the "
+                               "subsatellite point at pericenter of the paper's orbit, east positive); below: "
+                               "orthographic; ring: subsatellite point ({}\u00b0, {}\u00b0); bars: {:g} km along the "
+                               "equator at the centre; {} R = {:g} km, 10\u00b0 = {}",
+                               fixed_text(map_lon, 0), fixed_text(lat, 0), bar_km, moon->name, radius_km,
                                si_text(std::numbers::pi / 18, Dimension::length, *moon))}};
+}
+
+/// figure_data.json's `units`: for the paper's orbit one frame for all; for another orientation
+/// the figures of the body in the orbit's frame, the crack circles in the body's.
+std::string figure_data_units(bool paper_orbit) {
+  return paper_orbit ? "lengths in R relative to the body's centre of mass in the orbital frame (orbital plane = "
+                       "equator, subsatellite point on +y, longitude +90); times in t_grav from pericenter; angles in "
+                       "degrees"
+                     : "lengths in R relative to the body's centre of mass; hemisphere, orbit and body_shape in the "
+                       "encounter's orbital frame (orbital plane = xy, subsatellite point on +y), crack_geometry in "
+                       "the body's frame of the maps (cracks.json); times in t_grav from pericenter; angles in degrees";
+}
+
+/// `c` seen in the frame of its encounter's orbit (turned by the transpose of orbit_rotation: the
+/// orbit in the xy plane, pericenter on +y, as the paper's): positions, velocities, the perturber
+/// and the recorded perturber offsets, with the record's orientation reset to the paper's.
+Checkpoint in_orbit_frame(const Checkpoint& c) {
+  Checkpoint out = c;
+  auto* record = std::get_if<EncounterRecord>(&out.stage.record);
+  if (!record || record->orbit.is_default()) return out;
+  const Matrix3 back = orbit_rotation(record->orbit).transpose();
+  for (std::vector<double>* flat : {&out.state.position, &out.state.velocity})
+    for (std::size_t i = 0; 3 * i < flat->size(); ++i) set_vec3(*flat, i, back * vec3_at(*flat, i));
+  for (std::array<double, 3>* v : {&out.state.perturber.position, &out.state.perturber.velocity}) {
+    const Vec3 turned = back * Vec3((*v)[0], (*v)[1], (*v)[2]);
+    *v = {turned.x(), turned.y(), turned.z()};
+  }
+  for (TimeseriesSample& sample : out.observables.timeseries) {
+    const Vec3 turned = back * Vec3(sample.perturber_offset[0], sample.perturber_offset[1], sample.perturber_offset[2]);
+    sample.perturber_offset = {turned.x(), turned.y(), turned.z()};
+  }
+  record->orbit = OrbitOrientation{};
+  return out;
 }
 
 }  // namespace
@@ -318,17 +356,31 @@ Json map_json(const MoonScale* moon) {
 Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord& record,
                       const std::vector<const Checkpoint*>& panels, const Json& titles, const std::string& state_hash,
                       const MoonScale* moon) {
+  const FractureSummary fractures = analyze_fractures(final_checkpoint);  // the circles: in the maps' (body's) frame
+  if (!record.orbit.is_default()) {
+    // The hemisphere, orbit and body figures are drawn in the encounter's orbital frame, as for the
+    // paper's orbit; the maps stay in the body's frame.
+    std::vector<Checkpoint> turned;
+    turned.reserve(panels.size());
+    std::vector<const Checkpoint*> turned_panels;
+    for (const Checkpoint* c : panels) turned.push_back(in_orbit_frame(*c)), turned_panels.push_back(&turned.back());
+    const Checkpoint turned_final = in_orbit_frame(final_checkpoint);
+    Json data = figure_data_json(turned_final, turned_final.stage.as<EncounterRecord>(), turned_panels, titles, state_hash,
+                                 moon);
+    data["crack_geometry"] = {{"circles", crack_circles_json(fractures.geometry)}};
+    data["map"] = map_json(moon, subsatellite_direction_of(record.orbit));
+    data["units"] = figure_data_units(false);
+    return data;
+  }
   const double tq = record.pericenter_time;
   std::vector<double> panel_times;
   for (const Checkpoint* c : panels) panel_times.push_back(c->state.time);
   Json slices = Json::array();
   for (const Checkpoint* c : panels) slices.push_back(body_slice_panel(*c, tq, moon));
-  const FractureSummary fractures = analyze_fractures(final_checkpoint.body, final_checkpoint.state);
   return {{"format", "tidalcrust-figure-data"},
           {"version", 1},
           {"state_hash", state_hash},
-          {"units", "lengths in R relative to the body's centre of mass in the orbital frame (orbital plane = equator, "
-                    "subsatellite point on +y, longitude +90); times in t_grav from pericenter; angles in degrees"},
+          {"units", figure_data_units(true)},
           {"figures", encounter_figure_names()},
           {"titles", titles},
           {"pericenter_time", tq},
@@ -338,7 +390,7 @@ Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord&
           {"conservation", conservation_json(final_checkpoint, tq)},
           {"body_shape", {{"slice_half_width", body_slice_half_width}, {"panels", slices}}},
           {"crack_geometry", {{"circles", crack_circles_json(fractures.geometry)}}},
-          {"map", map_json(moon)},
+          {"map", map_json(moon, subsatellite_direction_of(record.orbit))},
           {"time_axis",
            {{"label", time_axis_label(moon)},
             {"per_t_grav", moon ? model_to_output(moon->units, Dimension::time, 1) : 1.0},

@@ -57,11 +57,18 @@ std::vector<double> FractureSummary::angles_from_subsatellite_deg() const {
   return angles;
 }
 
-FractureSummary analyze_fractures(const Body& body, const State& state) {
+FractureSummary analyze_fractures(const Body& body, const State& state, const FractureScope& scope) {
   if (state.springs.failed.size() != body.spring_count() || state.position.size() != 3 * body.particle_count())
     throw InputError(fmt::format("state: {} failed flags and {} positions for a body of {} springs and {} particles",
                                  state.springs.failed.size(), state.position.size() / 3, body.spring_count(),
                                  body.particle_count()));
+  if (!scope.earlier.empty() && scope.earlier.size() != body.spring_count())
+    throw InputError(fmt::format("fracture scope: {} earlier-failure flags for a body of {} springs",
+                                 scope.earlier.size(), body.spring_count()));
+  const auto counted = [&](std::size_t s) {
+    return is_failed_shell_spring(body, state, s) && (scope.earlier.empty() || !scope.earlier[s]);
+  };
+  const Vec3& subsatellite = scope.subsatellite;
   const ShellTopology topology = shell_topology(body);
   const Vec3 center = body_center_of_mass(body, state);
   auto position = [&](std::int32_t i) { return Vec3(vec3_at(state.position, static_cast<std::size_t>(i)) - center); };
@@ -71,15 +78,19 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
   std::size_t on_subsatellite_hemisphere = 0;
   double angle_sum = 0;
   for (std::size_t s = 0; s < body.spring_count(); ++s) {
-    if (!is_failed_shell_spring(body, state, s)) continue;
+    if (!counted(s)) {
+      if (is_failed_shell_spring(body, state, s)) summary.earlier_failed.push_back(static_cast<std::int32_t>(s));
+      continue;
+    }
     FailedShellSpring f;
     f.spring = static_cast<std::int32_t>(s);
     f.midpoint = 0.5 * (position(body.springs[s][0]) + position(body.springs[s][1]));
     f.longitude_deg = longitude_deg(f.midpoint);
     f.latitude_deg = latitude_deg(f.midpoint);
-    f.angle_from_subsatellite_deg = angle_from_subsatellite_deg(f.midpoint);
-    f.crack_azimuth_deg = crack_azimuth_deg(f.midpoint, position(body.springs[s][1]) - position(body.springs[s][0]));
-    on_subsatellite_hemisphere += f.midpoint.dot(subsatellite_direction) > 0;
+    f.angle_from_subsatellite_deg = angle_from_subsatellite_deg(f.midpoint, subsatellite);
+    f.crack_azimuth_deg =
+        crack_azimuth_deg(f.midpoint, position(body.springs[s][1]) - position(body.springs[s][0]), subsatellite);
+    on_subsatellite_hemisphere += f.midpoint.dot(subsatellite) > 0;
     angle_sum += f.angle_from_subsatellite_deg;
     const auto bin = std::min(summary.angle_bins - 1,
                               static_cast<std::size_t>(f.angle_from_subsatellite_deg / summary.angle_bin_width_deg));
@@ -112,6 +123,10 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
       const std::int32_t s = topology.face_edge_spring[f][k];
       if (!is_failed_shell_spring(body, state, static_cast<std::size_t>(s))) continue;
       const Vec3 midpoint = 0.5 * (position(face[k]) + position(face[(k + 1) % 3]));
+      if (!counted(static_cast<std::size_t>(s))) {
+        summary.earlier_bars.push_back({static_cast<std::int32_t>(f), s, centroid, midpoint});
+        continue;
+      }
       summary.bars.push_back({static_cast<std::int32_t>(f), s, centroid, midpoint});
       if (first_failed < 0) first_failed = s;
       sets.unite(static_cast<std::size_t>(first_failed), static_cast<std::size_t>(s));
@@ -165,9 +180,29 @@ FractureSummary analyze_fractures(const Body& body, const State& state) {
     cluster_extents.push_back(cluster.extent);
   }
   for (const auto& f : summary.failed) azimuths.push_back(f.crack_azimuth_deg);
-  summary.geometry = crack_geometry(cluster_points, cluster_lengths, cluster_extents, azimuths);
+  summary.geometry = crack_geometry(cluster_points, cluster_lengths, cluster_extents, azimuths, subsatellite);
+  summary.subsatellite = subsatellite;
   return summary;
 }
+
+FractureScope fracture_scope(const Checkpoint& c) {
+  FractureScope scope;
+  const auto* record = std::get_if<EncounterRecord>(&c.stage.record);
+  if (!record) return scope;
+  scope.subsatellite = subsatellite_direction_of(record->orbit);
+  if (!record->encounter.after) return scope;
+  // An encounter of a history: what failed before it began is every failed spring its own
+  // failure log does not name.
+  scope.earlier.assign(c.body.spring_count(), false);
+  for (std::size_t s = 0; s < c.body.spring_count() && s < c.state.springs.failed.size(); ++s)
+    scope.earlier[s] = c.state.springs.failed[s] != 0;
+  for (const FailureEvent& e : c.observables.failures)
+    if (e.spring >= 0 && static_cast<std::size_t>(e.spring) < scope.earlier.size())
+      scope.earlier[static_cast<std::size_t>(e.spring)] = false;
+  return scope;
+}
+
+FractureSummary analyze_fractures(const Checkpoint& c) { return analyze_fractures(c.body, c.state, fracture_scope(c)); }
 
 Json failure_summary_json(const FractureSummary& summary) {
   const CrackGeometry& g = summary.geometry;
@@ -201,36 +236,43 @@ std::string_view failure_summary_unit(std::string_view key) {
 }
 
 Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash) {
-  // Each failed spring's bars (one per face it borders), in face order.
-  std::map<std::int32_t, std::vector<const CrackBar*>> bars_of_spring;
-  for (const auto& bar : summary.bars) bars_of_spring[bar.spring].push_back(&bar);
   const auto lon_lat = [](const Vec3& r) { return Json::array({longitude_deg(r), latitude_deg(r)}); };
-  Json cracks = Json::array();
-  for (std::size_t c = 0; c < summary.clusters.size(); ++c) {
-    const CrackCluster& cluster = summary.clusters[c];
+  // Each failed spring's polyline through its bars (one per face it borders, in face order):
+  // centroid, edge midpoint, the next centroid.
+  const auto polylines_of = [&](const std::vector<CrackBar>& all_bars, const std::vector<std::int32_t>& springs) {
+    std::map<std::int32_t, std::vector<const CrackBar*>> bars_of_spring;
+    for (const auto& bar : all_bars) bars_of_spring[bar.spring].push_back(&bar);
     Json polylines = Json::array();
-    for (const std::int32_t s : cluster.springs) {
+    for (const std::int32_t s : springs) {
       const auto& bars = bars_of_spring[s];
       Json line = Json::array();
       if (!bars.empty()) line.push_back(lon_lat(bars[0]->centroid)), line.push_back(lon_lat(bars[0]->edge_midpoint));
       for (std::size_t k = 1; k < bars.size(); ++k) line.push_back(lon_lat(bars[k]->centroid));
       polylines.push_back(std::move(line));
     }
+    return polylines;
+  };
+  Json cracks = Json::array();
+  for (std::size_t c = 0; c < summary.clusters.size(); ++c) {
+    const CrackCluster& cluster = summary.clusters[c];
     cracks.push_back({{"crack", c},
                       {"springs", cluster.springs},
                       {"length", cluster.length},
                       {"extent", cluster.extent},
-                      {"polylines", std::move(polylines)}});
+                      {"polylines", polylines_of(summary.bars, cluster.springs)}});
   }
   return {{"format", "tidalcrust-cracks"},
           {"version", 1},
-          {"frame", "the maps' orbital frame: planetocentric longitude and latitude of directions from the body's "
-                    "centre of mass; subsatellite point (the perturber at pericenter) at longitude +90, latitude 0; "
-                    "the orbital plane is the equator (docs/crack-geometry.md)"},
+          {"frame", "the maps' frame: planetocentric longitude and latitude of directions from the body's centre of "
+                    "mass; for the paper's orbit the subsatellite point (the perturber at pericenter) is at longitude "
+                    "+90, latitude 0 and the orbital plane is the equator; `subsatellite` gives this encounter's "
+                    "(docs/crack-geometry.md)"},
           {"units", {{"longitude", "deg"}, {"latitude", "deg"}, {"length", "R"}, {"extent", "R (unit sphere)"}}},
           {"state_hash", state_hash},
           {"crack_count", summary.clusters.size()},
-          {"cracks", std::move(cracks)}};
+          {"cracks", std::move(cracks)},
+          {"subsatellite", lon_lat(summary.subsatellite)},
+          {"earlier", {{"springs", summary.earlier_failed}, {"polylines", polylines_of(summary.earlier_bars, summary.earlier_failed)}}}};
 }
 
 }  // namespace tidalcrust

@@ -14,6 +14,8 @@
 #include "analysis/crack_geometry.hpp"
 #include "io/json.hpp"
 #include "model/body.hpp"
+#include "model/checkpoint.hpp"
+#include "physics/orbital_frame.hpp"
 #include "model/state.hpp"
 #include "base/vec3.hpp"
 
@@ -53,7 +55,13 @@ struct FractureSummary {
 
   std::size_t shell_springs = 0;
   std::vector<FailedShellSpring> failed;  ///< ascending spring index
+  /// Failed shell springs left out because they failed before the encounter (FractureScope::earlier:
+  /// an encounter of a history), ascending; the maps draw them apart.
+  std::vector<std::int32_t> earlier_failed;
+  /// The subsatellite direction the angles, azimuths and arc poles are measured from (a unit vector).
+  Vec3 subsatellite = subsatellite_direction;
   std::vector<CrackBar> bars;             ///< by face, then edge
+  std::vector<CrackBar> earlier_bars;     ///< the same for earlier_failed
   std::vector<CrackCluster> clusters;     ///< longest first (ties: lowest first spring)
   double fraction_shell = 0;        ///< failed / shell springs; NaN without shell springs
   double hemisphere_fraction = 0;   ///< share of failed springs with midpoint . (+y) > 0; NaN if none
@@ -81,9 +89,26 @@ struct FractureSummary {
   std::vector<double> angles_from_subsatellite_deg() const;
 };
 
-/// Analyses the failed shell springs of `state` (State::springs.failed, shell kind only).
-/// Throws InputError if the shell faces and springs do not match.
-FractureSummary analyze_fractures(const Body& body, const State& state);
+/// Which failed springs a FractureSummary counts and about which point.
+struct FractureScope {
+  /// The direction of the perturber at pericenter (unit vector): the encounter's orbit's
+  /// (subsatellite_direction_of); +y for the paper's orbit.
+  Vec3 subsatellite = subsatellite_direction;
+  /// [springs] true for a spring that failed before the encounter (an encounter of a history):
+  /// left out of every statistic, listed in FractureSummary::earlier_failed. Empty: none.
+  std::vector<bool> earlier;
+};
+
+/// The scope of an encounter checkpoint: its orbit's subsatellite direction, and for an encounter
+/// that came after another (EncounterRecord's encounter.after) the springs failed before it began:
+/// failed in the state and absent from its failure log. The default scope for other stages.
+FractureScope fracture_scope(const Checkpoint& c);
+
+/// Analyses the failed shell springs of `state` (State::springs.failed, shell kind only) within
+/// `scope`. Throws InputError if the shell faces and springs, or the scope's flags, do not match.
+FractureSummary analyze_fractures(const Body& body, const State& state, const FractureScope& scope = {});
+/// analyze_fractures of a checkpoint within its fracture_scope: what every report of an encounter uses.
+FractureSummary analyze_fractures(const Checkpoint& c);
 
 /// The `failures` object of summary.json, compare --json and inspect: count, fraction_shell,
 /// hemisphere_fraction, mean_angle_from_subsatellite_deg, median_angle_from_subsatellite_deg,
@@ -112,7 +137,10 @@ std::string_view failure_summary_unit(std::string_view key);
 /// [[lon, lat], ...] in degrees of the maps' orbital frame (directions from the centre of mass;
 /// longitude (-180, 180], subsatellite point at +90, orbital plane the equator): the centroid of
 /// its first face, the spring's midpoint, the centroid of its second face (2 vertices for a
-/// spring on one face only). A polyline is not cut at the antimeridian; readers do that.
+/// spring on one face only). A polyline is not cut at the antimeridian; readers do that. Then
+/// `subsatellite` ([lon, lat] of the encounter's subsatellite point) and `earlier` (the springs
+/// that failed before the encounter, an encounter of a history: `springs` and their `polylines`,
+/// empty lists otherwise).
 Json crack_polylines_json(const FractureSummary& summary, const std::string& state_hash);
 
 }  // namespace tidalcrust

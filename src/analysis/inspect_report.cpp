@@ -89,6 +89,8 @@ ReportSection record_section(const Checkpoint& c) {
       s.add(name, std::vector<double>(value.begin(), value.end()), unit);
     else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>)
       s.add(name, value);
+    else if constexpr (std::is_same_v<T, std::optional<std::string>>)
+      s.add(name, value.value_or(""));
     else if constexpr (Choice<T>)
       s.add(name, std::string(choice_name(value)));
     else
@@ -166,7 +168,7 @@ ReportSection& InspectReport::section(const std::string& name) {
 void add_failures_section(const Checkpoint& c, InspectReport& r) {
   if (!std::holds_alternative<EncounterRecord>(c.stage.record)) return;
   ReportSection& failures = r.section("failures");
-  const Json summary = failure_summary_json(analyze_fractures(c.body, c.state));
+  const Json summary = failure_summary_json(analyze_fractures(c));
   for (const auto& [key, value] : summary.items()) {
     const std::string unit(failure_summary_unit(key));
     if (value.is_number_integer()) failures.add(key, value.get<std::int64_t>(), unit);

@@ -89,7 +89,7 @@ ResolutionStudy build_resolution_study(const std::vector<std::string>& files) {
     row.particles = c.body.particle_count();
     row.dt = c.stage.clock.dt;
     row.state_hash = state_hash(c.state);
-    row.fractures = analyze_fractures(c.body, c.state);
+    row.fractures = analyze_fractures(c);
     study.rows.push_back(std::move(row));
   }
   std::stable_sort(study.rows.begin(), study.rows.end(),

@@ -97,6 +97,10 @@ Json summary_si_json(const MoonScale& moon, const Json& summary) {
   Json axis_times = Json::array();
   for (const Json& ratios : summary.at("principal_axis_ratios"))
     axis_times.push_back({{"time_from_pericenter_h", output_value(ratios.at("time_from_pericenter"), Dimension::time, u)}});
+  Json encounter_si = si_values(encounter, encounter_keys, u);
+  if (const auto orbit = encounter.find("orbit"); orbit != encounter.end() && orbit->contains("subsatellite_longitude_deg"))
+    encounter_si["subsatellite_planetocentric_longitude_deg"] =
+        planetocentric_longitude_deg(orbit->at("subsatellite_longitude_deg").get<double>());
   Json longitudes = Json::array();
   for (const Json& longitude : summary.at("failed_springs").at("longitude_deg"))
     longitudes.push_back(planetocentric_longitude_deg(longitude.get<double>()));
@@ -104,10 +108,11 @@ Json summary_si_json(const MoonScale& moon, const Json& summary) {
   return {{"units", si_units_text(moon)},
           {"moon", moon_json(moon)},
           {"map_frame",
-           "planetocentric: latitude from the orbital plane, north toward the orbit normal; longitude east-positive "
-           "from the subsatellite point at pericenter (the orbital frame's longitude - 90 deg), in (-180, 180]"},
+           "planetocentric: latitude from the body's orbital plane, north toward its orbit normal; longitude "
+           "east-positive from the subsatellite point at pericenter of the paper's orbit (the body frame's longitude "
+           "- 90 deg), in (-180, 180]"},
           {"time_from_pericenter_h", hours_from_pericenter(summary.at("time"), tq, u)},
-          {"encounter", si_values(encounter, encounter_keys, u)},
+          {"encounter", encounter_si},
           {"failures", failures_si_json(summary.at("failures"), u)},
           {"clusters", clusters},
           {"crack_geometry", {{"arcs", arcs}}},

@@ -33,7 +33,7 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 /// Fills the results of a finished encounter from its checkpoint.
 void fill_results(SweepRow& row, const Checkpoint& c) {
-  const FractureSummary fractures = analyze_fractures(c.body, c.state);
+  const FractureSummary fractures = analyze_fractures(c);
   const EnergyBudget budget = energy_budget(c.observables.timeseries, c.stage.as<EncounterRecord>().encounter);
   row.failures = fractures.count();
   row.failed_fraction = fractures.fraction_shell;
@@ -52,8 +52,11 @@ void fill_results(SweepRow& row, const Checkpoint& c) {
 }
 
 /// The row of one encounter: its status from encounter.h5 or its mid-stage checkpoint in `dir`.
-SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, const std::string& relaxed_hash,
-                       double youngs, const fs::path& dir) {
+/// `parent_hash`: the state it must have begun from (the relaxed body's, or for an encounter of a
+/// history the final state of the one it comes after; "" when that is not current), and
+/// `other_parent` the note of a row that began from another.
+SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, const std::string& parent_hash,
+                       const std::string& other_parent, double youngs, const fs::path& dir) {
   SweepRow row;
   row.encounter = spec;
   row.failure_strain = spec.failure_strain.value_or(encounter_config.shell.failure_strain);
@@ -70,10 +73,9 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
         row.status = SweepStatus::unreadable;
         row.note = file.string() + " is not a finished checkpoint";
       } else if (!same_fingerprint(c.stage.fingerprint, stage_fingerprint(encounter_config, StageId::encounter, &spec)) ||
-                 c.stage.parent_hash != relaxed_hash) {
+                 c.stage.parent_hash != parent_hash) {
         row.status = SweepStatus::stale;
-        row.note = c.stage.parent_hash != relaxed_hash ? "branched from another relaxed body; rerun to refresh"
-                                                       : "computed with other values; rerun to refresh";
+        row.note = c.stage.parent_hash != parent_hash ? other_parent : "computed with other values; rerun to refresh";
       } else {
         row.status = SweepStatus::finished;
         fill_results(row, c);
@@ -182,7 +184,8 @@ std::vector<EnsembleRow> ensemble_rows(const Config& config, const std::vector<S
 
 std::vector<CrackBoundary> crack_boundaries(const std::vector<SweepRow>& rows, double youngs) {
   return boundaries_along_q(
-      rows, youngs, [](const SweepRow& r) { return r.status == SweepStatus::finished; },
+      // A second pass of a history cracks a cracked crust: it is no point of the phase diagram.
+      rows, youngs, [](const SweepRow& r) { return r.status == SweepStatus::finished && !r.encounter.after; },
       [](const SweepRow& r) { return r.cracked(); }, [](CrackBoundary&, const std::vector<const SweepRow*>&) {});
 }
 
@@ -285,21 +288,42 @@ SweepReport build_sweep_report(const Config& config, const fs::path& root, doubl
   };
   std::map<std::uint64_t, BodyOfEncounters> bodies;
   bodies.emplace(config.workflow.seed, BodyOfEncounters{at_dt_factor(prepared(nullptr)), state_hash(relaxed.state)});
-  for (const auto& spec : config.encounters) {
-    const std::uint64_t seed = body_seed_of(config, spec);
-    auto body = bodies.find(seed);
-    if (body == bodies.end()) {
-      const fs::path own_relax = body_folder(root, config, &spec) / "relax.h5";
-      std::string hash;
-      try {
-        if (fs::exists(own_relax))
-          if (const Checkpoint c = read_checkpoint(own_relax); c.stage.complete) hash = state_hash(c.state);
-      } catch (const InputError&) {  // its encounters are then stale or missing rows, as of an unrun body
+  // The rows in the workflow's order; an encounter of a history once the one it comes after has
+  // its row (it is current only when that one is finished and it began from its final state).
+  report.rows.resize(config.encounters.size());
+  std::vector<bool> done(config.encounters.size(), false);
+  std::map<std::string, std::size_t> index_of;
+  for (std::size_t i = 0; i < config.encounters.size(); ++i) index_of[config.encounters[i].name] = i;
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t i = 0; i < config.encounters.size(); ++i) {
+      const Encounter& spec = config.encounters[i];
+      if (done[i]) continue;
+      const std::size_t before = spec.after ? index_of.at(*spec.after) : i;  // validate checked the name
+      if (spec.after && !done[before]) continue;
+      const std::uint64_t seed = body_seed_of(config, spec);
+      auto body = bodies.find(seed);
+      if (body == bodies.end()) {
+        const fs::path own_relax = body_folder(root, config, &spec) / "relax.h5";
+        std::string hash;
+        try {
+          if (fs::exists(own_relax))
+            if (const Checkpoint c = read_checkpoint(own_relax); c.stage.complete) hash = state_hash(c.state);
+        } catch (const InputError&) {  // its encounters are then stale or missing rows, as of an unrun body
+        }
+        body = bodies.emplace(seed, BodyOfEncounters{at_dt_factor(prepared(&spec)), hash}).first;
       }
-      body = bodies.emplace(seed, BodyOfEncounters{at_dt_factor(prepared(&spec)), hash}).first;
+      const SweepRow* first = spec.after ? &report.rows[before] : nullptr;
+      const std::string parent_hash =
+          !first ? body->second.relaxed_hash : first->status == SweepStatus::finished ? first->state_hash : std::string();
+      const std::string other_parent =
+          !first ? "branched from another relaxed body; rerun to refresh"
+                 : fmt::format("began from another state of {}{}; rerun to refresh", *spec.after,
+                               first->status == SweepStatus::finished ? "" : " (which is not current)");
+      report.rows[i] = encounter_row(body->second.config, spec, parent_hash, other_parent, report.youngs_modulus,
+                                     report.folder / spec.name);
+      done[i] = progress = true;
     }
-    report.rows.push_back(encounter_row(body->second.config, spec, body->second.relaxed_hash, report.youngs_modulus,
-                                        report.folder / spec.name));
   }
   report.ensembles = ensemble_rows(config, report.rows, report.youngs_modulus);
   if (config.ensemble) report.ensemble_vary = config.ensemble->vary;
@@ -314,13 +338,13 @@ std::string sweep_report_csv(const SweepReport& report) {
       "name,status,M2 [M],q [R],V_q [sqrt(GM/R)],eps_S [1],strain_eq5 [1],failures [1],failed_fraction [1],"
       "hemisphere_fraction [1],median_angle [deg],largest_network_length [R],energy_deposited [GM^2/R],"
       "energy_dissipated [GM^2/R],state_hash,note,concentricity [1],fitted_arcs [1],median_arc_radius [deg],"
-      "median_arc_pole_axis [deg],total_crack_length [R],cracks [1]";
+      "median_arc_pole_axis [deg],total_crack_length [R],cracks [1],after";
   if (report.moon)
     for (const auto& c : sweep_si_columns()) csv += fmt::format(",{} [{}]", c.csv_name, output_unit(c.dimension).symbol);
   csv += "\n";
   for (const auto& r : report.rows) {
     const bool done = r.status == SweepStatus::finished;
-    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", csv_text(r.encounter.name),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", csv_text(r.encounter.name),
                        status_name(r.status), r.encounter.perturber_mass, r.encounter.pericenter,
                        r.encounter.pericenter_speed, r.failure_strain, r.strain_estimate,
                        done ? std::to_string(r.failures) : "", csv_number(r.failed_fraction),
@@ -328,7 +352,8 @@ std::string sweep_report_csv(const SweepReport& report) {
                        csv_number(r.energy_deposited), csv_number(r.energy_dissipated), r.state_hash, csv_text(r.note),
                        csv_number(r.concentricity), done ? std::to_string(r.fitted_arcs) : "",
                        csv_number(r.median_arc_radius_deg), csv_number(r.median_arc_pole_axis_deg),
-                       csv_number(r.total_crack_length), done ? std::to_string(r.cracks) : "");
+                       csv_number(r.total_crack_length), done ? std::to_string(r.cracks) : "",
+                       csv_text(r.encounter.after.value_or("")));
     if (report.moon)
       for (const auto& c : sweep_si_columns())
         csv += "," + csv_number(model_to_output(report.moon->units, c.dimension, c.value(r)));
@@ -367,7 +392,8 @@ Json sweep_report_json(const SweepReport& report) {
                           {"median_arc_radius_deg", number(r.median_arc_radius_deg)},
                           {"median_arc_pole_axis_deg", number(r.median_arc_pole_axis_deg)},
                           {"total_crack_length", number(r.total_crack_length)},
-                          {"cracks", done ? Json(r.cracks) : Json(nullptr)}});
+                          {"cracks", done ? Json(r.cracks) : Json(nullptr)},
+                          {"after", r.encounter.after ? Json(*r.encounter.after) : Json(nullptr)}});
     if (report.moon) {
       Json si = Json::object();
       for (const auto& c : sweep_si_columns())

@@ -1,5 +1,5 @@
 #pragma once
-// 3-vectors for geometry outside the hot loops. State arrays stay flat [N*3] doubles.
+// 3-vectors and 3x3 matrices for geometry outside the hot loops. State arrays stay flat [N*3] doubles.
 #include <Eigen/Core>
 #include <cstddef>
 #include <vector>
@@ -7,6 +7,7 @@
 namespace tidalcrust {
 
 using Vec3 = Eigen::Vector3d;
+using Matrix3 = Eigen::Matrix3d;  ///< rotations of the frame (physics/orbital_frame.hpp)
 
 /// Reads particle i of a flat [N*3] array.
 inline Vec3 vec3_at(const std::vector<double>& flat, std::size_t i) {

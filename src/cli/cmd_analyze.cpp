@@ -38,7 +38,7 @@ int command_analyze(int argc, char** argv) {
   const auto figures = analyze_encounter(from, checkpoint, out);
   const std::string& name = stage_record<EncounterRecord>(checkpoint, from.string()).encounter.name;
   fmt::print("{}\n", fracture_summary_line(name.empty() ? from.stem().string() : name,
-                                           analyze_fractures(checkpoint.body, checkpoint.state)));
+                                           analyze_fractures(checkpoint)));
   if (const std::string warning = failure_trend_line(name.empty() ? from.stem().string() : name, checkpoint);
       !warning.empty())
     fmt::print("warning: {}\n", warning);

@@ -382,6 +382,10 @@ struct RecordWriter {
   void operator()(const char* name, const std::string& v, const char*, const char*) const {
     h5::write_string_attribute(group, name, v);
   }
+  /// An optional name: "" when absent (a name is never empty).
+  void operator()(const char* name, const std::optional<std::string>& v, const char*, const char*) const {
+    h5::write_string_attribute(group, name, v.value_or(""));
+  }
   template <Choice E>
   void operator()(const char* name, E v, const char*, const char*) const {  // by its name (model/choices.hpp)
     h5::write_string_attribute(group, name, std::string(choice_name(v)));
@@ -408,6 +412,10 @@ struct RecordReader {
   }
   void operator()(const char* name, std::string& v, const char*, const char*) const {
     v = h5::read_string_attribute(group, name);
+  }
+  void operator()(const char* name, std::optional<std::string>& v, const char*, const char*) const {
+    std::string text = h5::read_string_attribute(group, name);
+    v = text.empty() ? std::nullopt : std::optional<std::string>(std::move(text));
   }
   template <Choice E>
   void operator()(const char* name, E& v, const char*, const char*) const {

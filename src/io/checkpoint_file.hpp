@@ -13,10 +13,11 @@ namespace tidalcrust {
 /// 4: valid H5MD 1.1 (units, particles_group references, extensible time dimension, labels);
 /// the failure log and the timeseries moved from /observables to /checkpoint. 5: an encounter's
 /// record stores the shadow rule's shadow_distance. 6: and the griffith rule's flaw_length and
-/// growth_strain_factor.
+/// growth_strain_factor. 7: and the encounter history's `after` and the orbit's inclination,
+/// ascending_node and argument_of_pericenter.
 /// Every change of the layout or of how a stored value is derived is a new version with its
 /// upgrade step (io/checkpoint_upgrade.cpp); tests/reference/format-4/ must still be read.
-inline constexpr std::int64_t checkpoint_format_version = 6;
+inline constexpr std::int64_t checkpoint_format_version = 7;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
 /// The file carries its integrity record (/integrity: a digest of every object).

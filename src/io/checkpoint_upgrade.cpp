@@ -114,12 +114,17 @@ void layout_3_to_4(hid_t root) {
   if (h5::exists(root, "/observables")) h5::check(H5Ldelete(root, "/observables", H5P_DEFAULT), "cannot remove /observables");
 }
 
+/// True when the file holds an encounter's record (/checkpoint@stage = "encounter").
+bool is_encounter_record(hid_t root) {
+  if (!h5::exists(root, "/checkpoint/record")) return false;
+  h5::Group g = h5::open_group(root, "/checkpoint");
+  return has_attribute(g.get(), "stage") && h5::read_string_attribute(g.get(), "stage") == "encounter";
+}
+
 /// Adds the double attributes `names` = 0 to an encounter's record where it lacks them (the
 /// failure rules before them had no such parameter).
 void add_zero_encounter_record_attributes(hid_t root, std::initializer_list<const char*> names) {
-  if (!h5::exists(root, "/checkpoint/record")) return;
-  h5::Group g = h5::open_group(root, "/checkpoint");
-  if (!has_attribute(g.get(), "stage") || h5::read_string_attribute(g.get(), "stage") != "encounter") return;
+  if (!is_encounter_record(root)) return;
   h5::Group record = h5::open_group(root, "/checkpoint/record");
   for (const char* name : names)
     if (!has_attribute(record.get(), name)) h5::write_attribute<double>(record.get(), name, 0.0);
@@ -132,6 +137,18 @@ void layout_4_to_5(hid_t root) { add_zero_encounter_record_attributes(root, {"sh
 /// 5 -> 6 (2026-12-06, the griffith failure rule): an encounter's record gains `flaw_length` (R)
 /// and `growth_strain_factor`, 0 for the rules before it, which open no flaws.
 void layout_5_to_6(hid_t root) { add_zero_encounter_record_attributes(root, {"flaw_length", "growth_strain_factor"}); }
+
+/// 6 -> 7 (2026-12-07, encounter histories and orbit orientations, issue 25): an encounter's record
+/// gains `after` ("": it began from the relaxed body, as every encounter before it did) and the
+/// orbit's `inclination`, `ascending_node` and `argument_of_pericenter` (deg), 0, 0 and 90 for the
+/// one orbit encounters had before: pericenter on +y, angular momentum along +z.
+void layout_6_to_7(hid_t root) {
+  if (!is_encounter_record(root)) return;
+  h5::Group record = h5::open_group(root, "/checkpoint/record");
+  if (!has_attribute(record.get(), "after")) h5::write_string_attribute(record.get(), "after", "");
+  for (auto [name, value] : {std::pair{"inclination", 0.0}, {"ascending_node", 0.0}, {"argument_of_pericenter", 90.0}})
+    if (!has_attribute(record.get(), name)) h5::write_attribute<double>(record.get(), name, value);
+}
 
 /// One upgrade step, from format `from` to `from + 1`.
 struct UpgradeStep {
@@ -146,6 +163,7 @@ constexpr UpgradeStep upgrade_steps[] = {
     {3, layout_3_to_4, nullptr},
     {4, layout_4_to_5, nullptr},
     {5, layout_5_to_6, nullptr},
+    {6, layout_6_to_7, nullptr},
 };
 constexpr bool steps_are_consecutive() {
   for (std::size_t i = 0; i < std::size(upgrade_steps); ++i)

@@ -345,6 +345,20 @@ void visit_keys(E& e, V&& visit) {
                     "seed of the body this encounter branches from (its own body chain in body-seed<N>/); none: "
                     "workflow.seed, the workflow's body",
                     0, max_toml_integer});
+  // issue 25: encounter histories and the orbit's orientation (docs/encounter-history.md). Optional,
+  // so that encounters without them keep their stored text and fingerprints.
+  key(e.after, {"encounters", "after", reads(encounter), "-",
+                "name of the encounter whose final state this one begins from (its failures carried over); none: "
+                "the relaxed body"});
+  key(e.inclination, {"encounters", "inclination", reads(encounter), "deg",
+                      "i, the orbit's inclination to the xy plane of the maps; default 0 (180: retrograde)", 0, 180});
+  key(e.ascending_node, {"encounters", "ascending_node", reads(encounter), "deg",
+                         "Omega, longitude of the ascending node from +x; default 0", -360, 360});
+  key(e.argument_of_pericenter,
+      {"encounters", "argument_of_pericenter", reads(encounter), "deg",
+       "omega, from the ascending node to the pericenter; default 90 (with i = Omega = 0: the subsatellite point at "
+       "longitude 90, latitude 0)",
+       -360, 360});
 }
 
 /// The sections of Config in to_toml order (without "encounters").
@@ -1014,14 +1028,19 @@ void resolve_material(Config& c, const std::string& origin) {
 const Encounter& Config::find_encounter(const std::string& name) const {
   if (const std::string problem = path_name_problem(name); !problem.empty())
     throw InputError(fmt::format("encounter name {}", problem));
-  for (const auto& e : encounters)
-    if (e.name == name) return e;
+  if (const Encounter* e = encounter_or_null(name)) return *e;
   std::string known;  // the first 20 names: a sweep's 10,000 would not make one line
   for (std::size_t i = 0; i < std::min<std::size_t>(encounters.size(), 20); ++i)
     known += (known.empty() ? "" : ", ") + encounters[i].name;
   if (encounters.size() > 20) known += fmt::format(" and {} more", encounters.size() - 20);
   throw InputError(fmt::format("unknown encounter '{}' (this workflow has: {})", name,
                                known.empty() ? "none" : known));
+}
+
+const Encounter* Config::encounter_or_null(std::string_view name) const {
+  const auto found =
+      std::find_if(encounters.begin(), encounters.end(), [&](const Encounter& e) { return e.name == name; });
+  return found == encounters.end() ? nullptr : &*found;
 }
 
 std::vector<Encounter> Config::encounters_named(const std::string& name) const {
@@ -1088,6 +1107,8 @@ std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters,
     for (std::int64_t k = 0; k < ensemble.members; ++k) {
       Encounter& member = out.emplace_back(base);
       member.name = fmt::format("{}_m{}", base.name, k);
+      // A history runs per member: member k follows member k of the encounter it comes after.
+      if (base.after) member.after = fmt::format("{}_m{}", *base.after, k);
       member.pericenter = base.pericenter * (1.0 + ensemble_pericenter_offset(ensemble, k));
       if (ensemble.vary != EnsembleVariation::pericenter && k > 0) {
         // Seeds count from the encounter's own body; member 0 stays on it (and keeps its name of it).
@@ -1099,7 +1120,32 @@ std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters,
 }
 
 std::uint64_t body_seed_of(const Config& config, const Encounter& encounter) {
-  return encounter.body_seed.value_or(config.workflow.seed);
+  // An encounter of a history is on the body of the first encounter of its chain (the chain is
+  // checked by validate; the bound stops at a cycle of an unvalidated configuration).
+  const Encounter* first = &encounter;
+  for (std::size_t hops = 0; first->after && hops < config.encounters.size(); ++hops) {
+    const Encounter* before = config.encounter_or_null(*first->after);
+    if (!before) break;
+    first = before;
+  }
+  return first->body_seed.value_or(config.workflow.seed);
+}
+
+void check_encounter_histories(const Config& config, const std::string& origin) {
+  for (const Encounter& e : config.encounters) {
+    if (!e.after) continue;
+    const std::string where = fmt::format("{}: encounter '{}': after = \"{}\"", origin, e.name, *e.after);
+    const Encounter* before = config.encounter_or_null(*e.after);
+    if (!before) throw InputError(where + ": no encounter of that name in the workflow");
+    std::set<std::string_view> seen{e.name};
+    for (const Encounter* step = before; step; step = step->after ? config.encounter_or_null(*step->after) : nullptr)
+      if (!seen.insert(step->name).second)
+        throw InputError(fmt::format("{}: the history returns to '{}' (a cycle)", where, step->name));
+    if (e.body_seed && *e.body_seed != body_seed_of(config, *before))
+      throw InputError(fmt::format("{}: body_seed = {} differs from the body of '{}' (seed {}), which this encounter "
+                                   "continues; leave body_seed out",
+                                   where, *e.body_seed, before->name, body_seed_of(config, *before)));
+  }
 }
 
 Config body_config_of(const Config& config, const Encounter& encounter) {
@@ -1179,6 +1225,7 @@ void validate(const Config& config, const std::string& origin) {
     if (!names.insert(e.name).second)
       throw InputError(fmt::format("{}: encounter name '{}' appears twice", origin, e.name));
   }
+  check_encounter_histories(config, origin);
 }
 
 Config parse_config(const std::string& toml_text, const std::string& origin) {

@@ -255,13 +255,16 @@ struct Config {
 
   /// The encounter with this name; InputError listing the known names otherwise.
   const Encounter& find_encounter(const std::string& name) const;
+  /// The encounter with this name, or nullptr.
+  const Encounter* encounter_or_null(std::string_view name) const;
   /// The encounters `run --only NAME` means: the encounter of that name, or, for the name of an
   /// [ensemble]'s base encounter, all its members (NAME_m0, NAME_m1, ...) in order. InputError as
   /// find_encounter when there is neither.
   std::vector<Encounter> encounters_named(const std::string& name) const;
 };
 
-/// The seed of the body `encounter` branches from: its body_seed, or workflow.seed.
+/// The seed of the body `encounter` branches from: its body_seed, or workflow.seed; for an
+/// encounter with `after`, that of the first encounter of its history.
 std::uint64_t body_seed_of(const Config& config, const Encounter& encounter);
 /// The configuration of the body chain `encounter` branches from: `config` with workflow.seed =
 /// body_seed_of (the same configuration when the encounter is on the workflow's body).

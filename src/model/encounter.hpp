@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace tidalcrust {
 
@@ -31,7 +32,47 @@ struct Encounter {
   /// output folder's body-seed<N>/); none: the workflow's body (body/, workflow.seed). An
   /// [ensemble] that varies the body sets it for its members (docs/ensembles.md).
   std::optional<std::uint64_t> body_seed;
+  /// The encounter whose final state this one begins from (an encounter history, issue 25:
+  /// failed springs stay failed, the perturber of that pass is replaced by this one's); none:
+  /// the relaxed body. Its body is that encounter's (body_seed follows the chain).
+  std::optional<std::string> after;
+  /// Orientation of the orbit in the body's frame (the frame of the maps, physics/orbital_frame.hpp:
+  /// xy the reference plane, +x the reference direction), standard orbital elements in degrees:
+  /// inclination i (0: prograde in the xy plane, 180: retrograde), longitude of the ascending node
+  /// Omega, argument of pericenter omega. None: i = 0, Omega = 0, omega = 90 deg, the orbit of the
+  /// paper's maps (pericenter on +y, angular momentum along +z). orbit_orientation resolves them.
+  std::optional<double> inclination;
+  std::optional<double> ascending_node;
+  std::optional<double> argument_of_pericenter;
   bool operator==(const Encounter&) const = default;
 };
+
+/// An encounter of this name, M2, q and V_q, every optional key unset.
+inline Encounter encounter_of(std::string name, double perturber_mass, double pericenter, double pericenter_speed) {
+  Encounter e;
+  e.name = std::move(name);
+  e.perturber_mass = perturber_mass;
+  e.pericenter = pericenter;
+  e.pericenter_speed = pericenter_speed;
+  return e;
+}
+
+/// The orientation of an encounter's orbit in the body's frame, degrees (Encounter::inclination,
+/// ascending_node, argument_of_pericenter with their defaults filled in).
+struct OrbitOrientation {
+  double inclination = 0;              ///< i, deg
+  double ascending_node = 0;           ///< Omega, deg
+  double argument_of_pericenter = 90;  ///< omega, deg
+  /// True for the paper's orbit (0, 0, 90): begin_encounter then rotates nothing, so encounters
+  /// without the keys keep their bits.
+  bool is_default() const { return inclination == 0 && ascending_node == 0 && argument_of_pericenter == 90; }
+  bool operator==(const OrbitOrientation&) const = default;
+};
+
+inline OrbitOrientation orbit_orientation(const Encounter& e) {
+  const OrbitOrientation d;
+  return {e.inclination.value_or(d.inclination), e.ascending_node.value_or(d.ascending_node),
+          e.argument_of_pericenter.value_or(d.argument_of_pericenter)};
+}
 
 }  // namespace tidalcrust

@@ -85,7 +85,8 @@ struct EnergyLedger {
 /// Stage 4 (encounter, paper sections 2.6, 2.9): the perturber, the failure rule and schedules
 /// fixed when the encounter begins, and what the run measured.
 struct EncounterRecord {
-  Encounter encounter;                ///< name, M2, q, V_q (failure_strain: see below)
+  Encounter encounter;                ///< name, M2, q, V_q, after (failure_strain, orientation: see below)
+  OrbitOrientation orbit;             ///< the orbit's orientation used (orbit_orientation of the encounter), deg
   double failure_strain = 0;          ///< eps_S used
   double failed_stiffness_factor = 0; ///< F_Sk used
   double damping = 0;                 ///< gamma, 1/t_grav
@@ -154,6 +155,10 @@ void visit_fields(Record& r, Visit&& visit) {
   visit("perturber_mass", r.encounter.perturber_mass, "M", "M2");
   visit("pericenter", r.encounter.pericenter, "R", "q");
   visit("pericenter_speed", r.encounter.pericenter_speed, "sqrt(GM/R)", "V_q");
+  visit("after", r.encounter.after, "", "the encounter this one began from (\"\": the relaxed body)");
+  visit("inclination", r.orbit.inclination, "deg", "i of the orbit in the body's frame");
+  visit("ascending_node", r.orbit.ascending_node, "deg", "Omega of the orbit");
+  visit("argument_of_pericenter", r.orbit.argument_of_pericenter, "deg", "omega of the orbit");
   visit("failure_strain", r.failure_strain, "1", "eps_S");
   visit("failed_stiffness_factor", r.failed_stiffness_factor, "1", "F_Sk");
   visit("damping", r.damping, "1/t_grav", "gamma");

@@ -12,7 +12,7 @@ inline constexpr double ice_youngs_modulus_GPa = 0.9;
 
 /// The encounter of the section 1.1 estimates when none is given: an equal-mass perturber on a
 /// parabolic orbit grazing at q = 2 R (V_q = sqrt(2 G (M + M2)/q) = sqrt(2)).
-inline Encounter grazing_parabolic_encounter() { return Encounter{"grazing", 1.0, 2.0, 1.4142135623730951, {}, {}, {}}; }
+inline Encounter grazing_parabolic_encounter() { return encounter_of("grazing", 1.0, 2.0, 1.4142135623730951); }
 
 struct EncounterEstimates {
   double delta_v = 0;        ///< eq. 3: Delta v = 2 m R / (q^2 V_q), v_c (Press's eta if parabolic)

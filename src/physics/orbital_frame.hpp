@@ -5,13 +5,26 @@
 // taken relative to the body's centre of mass, because the body moves.
 #include "base/vec3.hpp"
 #include "model/center_of_mass.hpp"  // the frame's origin: body_center_of_mass
+#include "model/encounter.hpp"
 
 namespace tidalcrust {
 
-/// Direction of the perturber at pericenter, seen from the body's centre of mass.
+/// Direction of the perturber at pericenter, seen from the body's centre of mass, for the paper's
+/// orbit (an encounter without orientation keys): subsatellite_direction_of gives it for any orbit.
 inline const Vec3 subsatellite_direction{0.0, 1.0, 0.0};
 /// Its longitude in the orbital frame, degrees.
 inline constexpr double subsatellite_longitude_deg = 90;
+
+/// The rotation that carries the paper's orbit (pericenter on +y, motion at pericenter along -x,
+/// angular momentum along +z; physics/two_body_orbit.hpp) onto the orbit of orientation `o` in the
+/// body's frame: Rz(Omega) Rx(i) Rz(omega - 90 deg), the standard perifocal-to-reference rotation
+/// Rz(Omega) Rx(i) Rz(omega) (e.g. Murray & Dermott 1999, eq. 2.122) after the paper's orbit is
+/// turned back to perifocal axes (pericenter on +x). Exactly the identity for the default (0, 0, 90).
+Matrix3 orbit_rotation(const OrbitOrientation& o);
+
+/// Direction of the perturber at pericenter for an orbit of orientation `o`: orbit_rotation(o) (+y);
+/// exactly subsatellite_direction for the default orientation.
+Vec3 subsatellite_direction_of(const OrbitOrientation& o);
 
 /// Longitude in degrees, (-180, 180], of a point r relative to the centre of mass; +y is +90.
 double longitude_deg(const Vec3& r);
@@ -25,7 +38,7 @@ double latitude_deg(const Vec3& r);
 /// Latitude is the orbital frame's.
 double planetocentric_longitude_deg(double orbital_longitude_deg);
 
-/// Angle in degrees, [0, 180], between r and the subsatellite direction.
-double angle_from_subsatellite_deg(const Vec3& r);
+/// Angle in degrees, [0, 180], between r and the subsatellite direction `subsatellite` (a unit vector).
+double angle_from_subsatellite_deg(const Vec3& r, const Vec3& subsatellite = subsatellite_direction);
 
 }  // namespace tidalcrust

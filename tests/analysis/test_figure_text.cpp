@@ -34,7 +34,7 @@ TEST(FigureText, PanelAtPericenterReadsZero) {
 }
 
 TEST(FigureText, EncounterTitlesNameUnitsAndTheTimeStep) {
-  const Encounter strong{"strong", 0.5, 1.84, 1.6, std::nullopt, std::nullopt, std::nullopt};
+  const Encounter strong = encounter_of("strong", 0.5, 1.84, 1.6);
   // Branched from a relaxed body at step 750, t = 3 (dt 0.004): full and half time step.
   const StepClock full{3.0, 750, 0.004}, half{3.0, 750, 0.002};
   const std::string full_title = encounter_figure_title("strong: perturber orbit", strong, full);

@@ -85,13 +85,14 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
   const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
   ASSERT_EQ(rows.size(), 5u) << "a header and one row per encounter";
   const auto& header = rows[0];
-  ASSERT_EQ(header.size(), 22u);
+  ASSERT_EQ(header.size(), 23u);
   EXPECT_EQ(header[3], "q [R]");
   EXPECT_EQ(header[11], "largest_network_length [R]");
   EXPECT_EQ(header[15], "note");
   EXPECT_EQ(header[16], "concentricity [1]");  // the crack geometry after the others
   EXPECT_EQ(header[20], "total_crack_length [R]");  // then the crack sizes
   EXPECT_EQ(header[21], "cracks [1]");
+  EXPECT_EQ(header[22], "after");  // the encounter an encounter of a history comes after
   const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
   EXPECT_EQ(json["counts"]["finished"], 2);
   EXPECT_EQ(json["counts"]["unfinished"], 1);
@@ -109,7 +110,7 @@ TEST(Report, TableHoldsEveryEncounterWithTheCheckpointsValues) {
     EXPECT_EQ(row[1], statuses[i]);
     EXPECT_EQ(entry["name"], names[i]);
     EXPECT_EQ(entry["status"], statuses[i]);
-    const Encounter spec{names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8, {}, {}, {}};
+    const Encounter spec = encounter_of(names[i], i < 2 ? 0.5 : 1.0, i % 2 ? 1.9 : 1.6, 1.8);
     EXPECT_EQ(row[5], "0.002");
     EXPECT_EQ(row[6], fmt::format("{}", estimate_encounter(spec, youngs).strain)) << names[i];
     if (statuses[i] != "finished") {
@@ -199,39 +200,39 @@ TEST(Report, AMoonsTableHasItsSiColumnsAfterTheModelOnes) {
   const auto rows = csv_rows(read_file(out / "report" / "sweep.csv"));
   ASSERT_EQ(rows.size(), 2u);
   const auto& header = rows[0];
-  ASSERT_EQ(header.size(), 29u);
-  EXPECT_EQ(header[21], "cracks [1]");  // the model columns as before, then SI
+  ASSERT_EQ(header.size(), 30u);
+  EXPECT_EQ(header[22], "after");  // the model columns as before, then SI
   const std::vector<std::string> si_header = {"M2 [kg]", "q [km]", "V_q [km/s]", "largest_network_length [km]",
                                               "total_crack_length [km]", "energy_deposited [J]",
                                               "energy_dissipated [J]"};
-  EXPECT_EQ(std::vector<std::string>(header.begin() + 22, header.end()), si_header);
+  EXPECT_EQ(std::vector<std::string>(header.begin() + 23, header.end()), si_header);
   const auto& row = rows[1];
   ASSERT_EQ(row.size(), header.size());
   const auto cell = [&](std::size_t i) { return std::stod(row.at(i)); };
-  EXPECT_NEAR(cell(22), cell(2) * M_kg, 1e-12 * M_kg);
-  EXPECT_NEAR(cell(23), 1200, 1e-9);
-  EXPECT_NEAR(cell(23), cell(3) * R_km, 1e-9);
-  EXPECT_NEAR(cell(24), 0.45, 1e-12);
-  EXPECT_NEAR(cell(24), cell(4) * v_c_km_s, 1e-12);
-  EXPECT_NEAR(cell(25), cell(11) * R_km, 1e-9 * cell(25));
-  EXPECT_NEAR(cell(26), cell(20) * R_km, 1e-9 * cell(26));
-  EXPECT_NEAR(cell(27), cell(12) * energy_J, 1e-9 * std::abs(cell(27)));
-  EXPECT_GT(cell(26), 0);
+  EXPECT_NEAR(cell(23), cell(2) * M_kg, 1e-12 * M_kg);
+  EXPECT_NEAR(cell(24), 1200, 1e-9);
+  EXPECT_NEAR(cell(24), cell(3) * R_km, 1e-9);
+  EXPECT_NEAR(cell(25), 0.45, 1e-12);
+  EXPECT_NEAR(cell(25), cell(4) * v_c_km_s, 1e-12);
+  EXPECT_NEAR(cell(26), cell(11) * R_km, 1e-9 * cell(26));
+  EXPECT_NEAR(cell(27), cell(20) * R_km, 1e-9 * cell(27));
+  EXPECT_NEAR(cell(28), cell(12) * energy_J, 1e-9 * std::abs(cell(28)));
+  EXPECT_GT(cell(27), 0);
   const Json json = Json::parse(read_file(out / "report" / "sweep.json"));
   EXPECT_EQ(json["si"]["moon"]["radius_km"], R_km);
   const Json& e = json["encounters"][0];
-  EXPECT_EQ(e["si"]["total_crack_length_km"].get<double>(), cell(26));
-  EXPECT_EQ(e["si"]["pericenter_km"].get<double>(), cell(23));
+  EXPECT_EQ(e["si"]["total_crack_length_km"].get<double>(), cell(27));
+  EXPECT_EQ(e["si"]["pericenter_km"].get<double>(), cell(24));
 
   // The same numbers in the encounter's summary.json and in inspect.
   const Json summary = Json::parse(read_file(out / "A" / "analysis" / "summary.json"));
-  EXPECT_EQ(summary["si"]["failures"]["total_crack_length_km"].get<double>(), cell(26));
-  EXPECT_EQ(summary["si"]["encounter"]["pericenter_km"].get<double>(), cell(23));
+  EXPECT_EQ(summary["si"]["failures"]["total_crack_length_km"].get<double>(), cell(27));
+  EXPECT_EQ(summary["si"]["encounter"]["pericenter_km"].get<double>(), cell(24));
   const auto inspected = run_cli("inspect --json " + quoted(out / "A" / "encounter.h5"));
   ASSERT_EQ(inspected.exit_code, 0) << inspected.err;
   const Json inspect = Json::parse(inspected.out);
-  EXPECT_EQ(inspect["si"]["failures"]["total_crack_length_km"].get<double>(), cell(26));
-  EXPECT_EQ(inspect["si"]["record"]["pericenter_km"].get<double>(), cell(23));
+  EXPECT_EQ(inspect["si"]["failures"]["total_crack_length_km"].get<double>(), cell(27));
+  EXPECT_EQ(inspect["si"]["record"]["pericenter_km"].get<double>(), cell(24));
   const auto table = run_cli("inspect " + quoted(out / "A" / "encounter.h5"));
   EXPECT_NE(table.out.find(" sqrt(GM/R) = 0.45 km/s"), std::string::npos) << table.out;
 }

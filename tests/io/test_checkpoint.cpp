@@ -49,6 +49,8 @@ std::string record_bytes(const StageRecord& record) {
     out += name;
     if constexpr (std::is_same_v<T, std::string>) {
       out += value;
+    } else if constexpr (std::is_same_v<T, std::optional<std::string>>) {
+      out += value.value_or("");
     } else if constexpr (std::is_arithmetic_v<T>) {
       out.append(reinterpret_cast<const char*>(&value), sizeof value);
     } else if constexpr (Choice<T>) {
@@ -295,7 +297,7 @@ TEST(Checkpoint, FileFollowsTheH5mdLayout) {
       else
         EXPECT_GT(H5Aexists(record.get(), name), 0) << name;
     });
-    EXPECT_EQ(fields, 27u);  // 18 + the energy budget's three accumulators + the local failure rule's three + shadow_distance + the griffith rule's two
+    EXPECT_EQ(fields, 31u);  // 18 + the energy budget's three accumulators + the local failure rule's three + shadow_distance + the griffith rule's two + after and the orbit's three angles
   }
   EXPECT_EQ(h5::read_string_dataset(root, "/parameters/config"), c.config_toml);
   {

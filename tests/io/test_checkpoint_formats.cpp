@@ -104,6 +104,9 @@ TEST(StoredCheckpoints, EachFileReadsWithItsStoredValues) {
       if (!std::holds_alternative<EncounterRecord>(c.stage.record)) continue;
       const auto& record = c.stage.as<EncounterRecord>();
       EXPECT_EQ(kind_of(record.failure_rule), FailureRuleKind::local) << what;  // as stored: format 3 files already had the local rule
+      // Before format 7 every encounter began from the relaxed body on the paper's orbit.
+      EXPECT_FALSE(record.encounter.after) << what;
+      EXPECT_TRUE(record.orbit.is_default()) << what;
       ASSERT_FALSE(c.observables.timeseries.empty()) << what;
       // Format 3 did not record the energy budget: NaN after the upgrade, never a made-up 0.
       const bool budget = format >= 4;

@@ -174,7 +174,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
         << key.section << "." << key.name;
   }
   EXPECT_NE(text.find("\n[integrator]\ndt = "), std::string::npos);
-  EXPECT_EQ(describe_keys(Encounter{}, config).size(), 7u);
+  EXPECT_EQ(describe_keys(Encounter{}, config).size(), 11u);
   EXPECT_EQ(integer_key_value(config, "relax", "checkpoint_interval"), config.relax.checkpoint_interval);
   EXPECT_THROW(integer_key_value(config, "relax", "damping"), InternalError);  // not an integer key
 }
@@ -660,4 +660,51 @@ TEST(Config, SnapshotIntervalIsCheckedAgainstTheTimeStep) {
       << shorter;
   const std::string negative = message_of("[encounter]\nsnapshot_interval = -1\n");
   EXPECT_NE(negative.find("bad.toml: encounter.snapshot_interval = -1 is out of range"), std::string::npos) << negative;
+}
+
+// issue 25 item 4: an encounter history. `after` names another encounter of the workflow (no
+// cycle); the encounter is on that one's body; an ensemble runs the history per member; the
+// orientation keys and `after` are written back only when given (so that encounters without them
+// keep their stored text and fingerprints).
+TEST(Config, AnEncounterHistoryNamesEncountersOfTheWorkflowWithoutACycle) {
+  const std::string a = "[[encounters]]\nname = \"A\"\n";
+  const std::pair<std::string, const char*> cases[] = {
+      {a + "[[encounters]]\nname = \"B\"\nafter = \"C\"\n", "encounter 'B': after = \"C\": no encounter of that name"},
+      {a + "after = \"A\"\n", "encounter 'A': after = \"A\": the history returns to 'A' (a cycle)"},
+      {a + "after = \"B\"\n[[encounters]]\nname = \"B\"\nafter = \"A\"\n", "the history returns to"},
+      {"[workflow]\nseed = 2\n" + a + "[[encounters]]\nname = \"B\"\nafter = \"A\"\nbody_seed = 5\n",
+       "encounter 'B': after = \"A\": body_seed = 5 differs from the body of 'A' (seed 2)"},
+      {a + "inclination = 181\n", "encounter 'A': inclination = 181 is out of range [0, 180] (deg)"},
+      {a + "argument_of_pericenter = -400\n", "argument_of_pericenter = -400 is out of range [-360, 360] (deg)"},
+      {a + "after = 3\n", "'after' must be"},
+  };
+  for (const auto& [text, expected] : cases)
+    EXPECT_NE(one_line_error(text).find(expected), std::string::npos) << text << "\n" << message_of(text);
+
+  const Config config = parse_config("[workflow]\nseed = 4\n[[encounters]]\nname = \"A\"\nbody_seed = 9\n"
+                                     "[[encounters]]\nname = \"B\"\nafter = \"A\"\ninclination = 60.0\n"
+                                     "[[encounters]]\nname = \"C\"\nafter = \"B\"\n",
+                                     "h.toml");
+  EXPECT_EQ(body_seed_of(config, config.find_encounter("C")), 9u);  // the body of the history's first encounter
+  EXPECT_EQ(config.find_encounter("B").after, "A");
+  EXPECT_EQ(orbit_orientation(config.find_encounter("B")), (OrbitOrientation{60, 0, 90}));
+  EXPECT_TRUE(orbit_orientation(config.find_encounter("C")).is_default());
+  const std::string text = to_toml(config);
+  EXPECT_EQ(parse_config(text, "again.toml").encounters, config.encounters);
+  EXPECT_NE(text.find("\nafter = 'A'"), std::string::npos);
+  EXPECT_NE(text.find("inclination = 60.0"), std::string::npos);
+  EXPECT_EQ(text.find("ascending_node"), std::string::npos);
+  EXPECT_EQ(text.find("argument_of_pericenter"), std::string::npos);
+
+  // An ensemble: member k of B comes after member k of A, on member k's body.
+  Config ensemble = parse_config("[[encounters]]\nname = \"A\"\n[[encounters]]\nname = \"B\"\nafter = \"A\"\n"
+                                 "[ensemble]\nmembers = 3\nvary = \"both\"\n",
+                                 "e.toml");
+  validate(ensemble, "e.toml");
+  ASSERT_EQ(ensemble.encounters.size(), 6u);
+  for (int k = 0; k < 3; ++k) {
+    const Encounter& b = ensemble.find_encounter(fmt::format("B_m{}", k));
+    EXPECT_EQ(b.after, fmt::format("A_m{}", k));
+    EXPECT_EQ(body_seed_of(ensemble, b), body_seed_of(ensemble, ensemble.find_encounter(fmt::format("A_m{}", k))));
+  }
 }

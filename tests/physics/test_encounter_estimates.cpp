@@ -26,7 +26,7 @@ TEST(EncounterEstimates, GrazingParabolicEqualMassGivesStrainOfOrderTenPercent) 
 }
 
 TEST(EncounterEstimates, EquationsAreMutuallyConsistent) {
-  const Encounter g{"T5", 0.5, 1.84, 1.60, {}, {}, {}};
+  const Encounter g = encounter_of("T5", 0.5, 1.84, 1.60);
   const double E = 3.0;  // e_g
   const auto est = estimate_encounter(g, E);
   const double tidal = 0.5 / (1.84 * 1.84) / 1.60;  // (R/q)^2 (m/M) (v_c/V_q)
@@ -64,12 +64,12 @@ TEST(EncounterEstimates, PhysicalUnitsForDione) {
 }
 
 TEST(EncounterEstimates, RejectsBadInput) {
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 0.0, 1.4, {}, {}, {}}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, -2.0, 1.4, {}, {}, {}}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", -1.0, 2.0, 1.4, {}, {}, {}}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 2.0, 0.0, {}, {}, {}}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", std::nan(""), 2.0, 1.4, {}, {}, {}}, 1.0), InputError);
-  EXPECT_THROW(estimate_encounter(Encounter{"bad", 1.0, 2.0, 1.4, {}, {}, {}}, 0.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", 1.0, 0.0, 1.4), 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", 1.0, -2.0, 1.4), 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", -1.0, 2.0, 1.4), 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", 1.0, 2.0, 0.0), 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", std::nan(""), 2.0, 1.4), 1.0), InputError);
+  EXPECT_THROW(estimate_encounter(encounter_of("bad", 1.0, 2.0, 1.4), 0.0), InputError);
   EXPECT_THROW(youngs_in_e_g(-0.9, body_scales(find_table1_body("Rhea"))), InputError);
-  EXPECT_NO_THROW(estimate_encounter(Encounter{"bad", 0.0, 2.0, 1.4, {}, {}, {}}, 1.0));  // no perturber: zero strain
+  EXPECT_NO_THROW(estimate_encounter(encounter_of("bad", 0.0, 2.0, 1.4), 1.0));  // no perturber: zero strain
 }

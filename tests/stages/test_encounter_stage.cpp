@@ -420,9 +420,9 @@ TEST(EncounterStage, UnresolvableEncountersAreRefusedNamingDtAndTheEncounter) {
   ASSERT_EQ(config.integrator.dt, 0.004);
   const Checkpoint& parent = quick_parent();
   const auto parabolic = [](double m2, double q) { return std::sqrt(2.0 * (1.0 + m2) / q); };
-  const Encounter cases[] = {{"fast", 1e9, 1.84, 33100, {}, {}, {}},
-                             {"heavy", 1e6, 1.84, parabolic(1e6, 1.84), {}, {}, {}},
-                             {"extreme", 1e300, 1.84, parabolic(1e300, 1.84), {}, {}, {}}};
+  const Encounter cases[] = {encounter_of("fast", 1e9, 1.84, 33100),
+                             encounter_of("heavy", 1e6, 1.84, parabolic(1e6, 1.84)),
+                             encounter_of("extreme", 1e300, 1.84, parabolic(1e300, 1.84))};
   for (const Encounter& spec : cases) {
     const std::string message = rejection(parent, config, spec);
     EXPECT_NE(message.find("encounter '" + spec.name + "'"), std::string::npos) << message;

@@ -29,7 +29,7 @@ struct BudgetRun {
 
 /// The quick workflow's "strong" encounter (the T5 orbit: M2 = 0.5, q = 1.84, V_q = 1.6; ~900
 /// steps of dt = 0.004) from the relaxed quick body.
-const Encounter strong{"strong", 0.5, 1.84, 1.6, {}, {}, {}};
+const Encounter strong = encounter_of("strong", 0.5, 1.84, 1.6);
 
 /// The strong encounter at damping gamma, failure strain eps_S (failures checked every step),
 /// time step dt * dt_factor, sampled every 0.04 t_grav.

@@ -12,7 +12,8 @@ namespace tidalcrust::test_support {
 inline Checkpoint synthetic_checkpoint() {
   Checkpoint c;
   EncounterRecord record;
-  record.encounter = {"T5 synthetic \"test\" & <body>", 0.5, 1.84, 1.6, 0.002, {}, {}};
+  record.encounter = encounter_of("T5 synthetic \"test\" & <body>", 0.5, 1.84, 1.6);
+  record.encounter.failure_strain = 0.002;
   record.failure_strain = 0.002;
   record.failed_stiffness_factor = 0.005;
   record.damping = 0.01;

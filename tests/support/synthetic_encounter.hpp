@@ -19,7 +19,7 @@ inline Checkpoint synthetic_encounter(int level = 2) {
   const auto& nodes = sphere.nodes;
   Checkpoint c;
   EncounterRecord record;
-  record.encounter = {"T5", 0.5, 1.84, 1.6, {}, {}, {}};
+  record.encounter = encounter_of("T5", 0.5, 1.84, 1.6);
   record.pericenter_time = 1.2;
   record.min_distance = 1.85;
   record.speed_at_min = 1.59;

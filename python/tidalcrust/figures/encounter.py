@@ -37,6 +37,7 @@ FIGURE_DATA_FORMAT = "tidalcrust-figure-data"
 FIGURE_DATA_VERSION = 1
 #: Colours shared by the figures (restyle by passing your own Axes and changing the artists).
 CRACK_COLOR = "black"
+EARLIER_CRACK_COLOR = "0.6"  # cracks of the encounters before this one (an encounter history)
 SURFACE_COLOR = "#ede6d8"
 SUBSATELLITE_COLOR = "#f2c200"
 PERTURBER_COLOR = "#c0209a"
@@ -47,8 +48,8 @@ VIEWS = ("overview", "mollweide", "equirectangular", "orthographic", "antipode")
 #: The map frame of figure_data.json's `map` without a [moon] (and of files written before it).
 ORBITAL_MAP = {"frame": "orbital", "longitude_shift_deg": 0.0, "subsatellite": list(SUBSATELLITE_LON_LAT),
                "scale_bar": None,
-               "note": "top: Mollweide (equal-area), longitude and latitude in degrees, equator = orbital plane; "
-                       "below: orthographic; ring: subsatellite point (90\u00b0, 0\u00b0)"}
+               "note": "top: Mollweide (equal-area), longitude and latitude in degrees in the body's frame; below: "
+                       "orthographic; ring: subsatellite point"}
 
 
 def _analysis_folder(path: str | os.PathLike) -> Path:
@@ -135,8 +136,9 @@ def _time_in_axis_units(ax, data: dict, times, label: bool = True):
 def projection(view: str, subsatellite=SUBSATELLITE_LON_LAT) -> ccrs.Projection:
     """The cartopy projection of a map view: "mollweide" (global, equal-area, no polar
     stretching), "equirectangular" (longitude and latitude as x and y), "orthographic" (the
-    hemisphere centred on the subsatellite point, at `subsatellite` (lon, lat) of the map's frame:
-    map_frame(path)["subsatellite"]) or "antipode" (the other one)."""
+    hemisphere centred on the subsatellite point `subsatellite`, (lon, lat) in degrees of the map's
+    frame: cracks.json's `subsatellite`, (90, 0) for the paper's orbit, shifted as map_frame(path)
+    says) or "antipode" (the other one)."""
     if view == "mollweide":
         return ccrs.Mollweide(globe=UNIT_GLOBE)
     if view == "equirectangular":
@@ -233,9 +235,16 @@ def _scale_bar(ax, proj: ccrs.Projection, bar: dict) -> None:
             gid="scale_bar_label")
 
 
+def _subsatellite(cracks: dict, frame: dict = ORBITAL_MAP) -> tuple[float, float]:
+    """The encounter's subsatellite point (lon, lat) of a cracks.json ((90, 0) in files before it),
+    in the map's frame (its longitude shifted by frame["longitude_shift_deg"])."""
+    lon, lat = cracks.get("subsatellite", SUBSATELLITE_LON_LAT)
+    return (lon + frame["longitude_shift_deg"] + 180.0) % 360.0 - 180.0, lat
+
+
 def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0,
               frame: dict = ORBITAL_MAP):
-    proj = projection(view, frame["subsatellite"])
+    proj = projection(view, _subsatellite(cracks, frame))
     data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
     ax.set_global()
     if mosaic is not None:
@@ -257,10 +266,15 @@ def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180
             ax.text(lon, -1, f"{lon}\u00b0", fontsize=6, color="0.35", ha="center", va="top", transform=data_crs)
         for lat in (-60, -30, 30, 60):
             ax.text(2, lat, f"{lat}\u00b0", fontsize=6, color="0.35", ha="left", va="bottom", transform=data_crs)
+    earlier = cracks.get("earlier", {}).get("polylines", [])
+    if earlier:  # an encounter of a history: the cracks it began with, under its own
+        ax.add_collection(LineCollection(_project_lines(earlier, proj, frame["longitude_shift_deg"])[0],
+                                         colors=EARLIER_CRACK_COLOR, linewidths=linewidth, capstyle="round",
+                                         gid="earlier_cracks", zorder=2))
     ax.add_collection(crack_collection(cracks, proj, linewidth=linewidth, longitude_shift=frame["longitude_shift_deg"]))
     if frame.get("scale_bar"):
         _scale_bar(ax, proj, frame["scale_bar"])
-    ax.plot(*frame["subsatellite"], marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
+    ax.plot(*_subsatellite(cracks, frame), marker="o", markersize=11, markerfacecolor="none", markeredgewidth=2,
             markeredgecolor=SUBSATELLITE_COLOR, transform=data_crs, gid="subsatellite", zorder=4)
     return ax
 
@@ -286,17 +300,19 @@ def fracture_map(path: str | os.PathLike, view: str = "overview", ax=None, mosai
                  else f"{cracks['crack_count']} cracks")
     if view == "overview":
         fig = plt.figure(figsize=(9, 8.2))
-        top = fig.add_axes([0.04, 0.42, 0.92, 0.46], projection=projection("mollweide", frame["subsatellite"]))
+        top = fig.add_axes([0.04, 0.42, 0.92, 0.46], projection=projection("mollweide"))
         _map_axes(top, "mollweide", cracks, mosaic, mosaic_extent, linewidth, frame)
         for k, (v, label) in enumerate((("orthographic", "hemisphere centred on the subsatellite point"),
                                         ("antipode", "hemisphere centred on its antipode"))):
-            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34], projection=projection(v, frame["subsatellite"]))
+            sub = fig.add_axes([0.06 + 0.48 * k, 0.04, 0.4, 0.34],
+                               projection=projection(v, _subsatellite(cracks, frame)))
             _map_axes(sub, v, cracks, mosaic, mosaic_extent, linewidth, frame)
             sub.set_title(label, fontsize=8)
-        fig.text(0.5, 0.01, frame["note"], ha="center", fontsize=7, wrap=True, gid="note")
+        history = "; grey: cracks of the earlier encounters" if cracks.get("earlier", {}).get("polylines") else ""
+        fig.text(0.5, 0.01, frame["note"] + history, ha="center", fontsize=7, wrap=True, gid="note")
         _title(fig, title)
         return fig
-    proj = projection(view, frame["subsatellite"])
+    proj = projection(view, _subsatellite(cracks, frame))
     if ax is None:
         fig = plt.figure(figsize=(9, 5) if view in ("equirectangular", "mollweide") else (5.5, 5.5))
         ax = fig.add_subplot(1, 1, 1, projection=proj)
