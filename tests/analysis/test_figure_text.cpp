@@ -62,7 +62,7 @@ TEST(FigureText, AMoonsTextsGiveSiBesideTheModelUnits) {
   EXPECT_EQ(time_from_pericenter_text(1.84, &tethys),
             "t \u2212 t_peri = " + signed_fixed_text(1.84 * t_grav_h, 2) + " h (+1.84 t_grav)");
   EXPECT_EQ(time_from_pericenter_text(-1e-17, &tethys), "t \u2212 t_peri = 0.00 h (0.00 t_grav)");
-  const Encounter t5{"T5", 0.5, 1.84, 1.6, std::nullopt, std::nullopt, std::nullopt};
+  const Encounter t5 = encounter_of("T5", 0.5, 1.84, 1.6);
   const StepClock clock{3.0, 750, 0.002};
   EXPECT_EQ(encounter_si_text(t5, clock, tethys),
             "Tethys: M\u2082 = 3.1e+20 kg, q = 977 km, V_q = 0.4466 km/s; dt = " +

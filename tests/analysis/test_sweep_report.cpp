@@ -24,7 +24,7 @@ std::vector<std::string> cells(const std::string& line) {
 TEST(SweepReport, AMoonsEnsembleTableHasItsStatisticsInSiLast) {
   SweepReport report;
   EnsembleRow row;
-  row.encounter = {"T5", 0.5, 1.84, 1.6, {}, {}, {}};
+  row.encounter = encounter_of("T5", 0.5, 1.84, 1.6);
   row.members = row.finished = 3;
   for (std::size_t i = 0; i < ensemble_statistics().size(); ++i)
     row.statistics.push_back({3, 1.0 + static_cast<double>(i), 0.25, 0.1, 0.5, 2.5 + static_cast<double>(i), 1, 0});
