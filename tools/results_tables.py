@@ -1105,6 +1105,40 @@ def crust_coupling_l5(p):
         "--set resolution.shell_level=3 --measure tide,ringdown"])
 
 
+MOON_RUNS = [("Tethys", "tethys", ["T5", "close", "close-second"]), ("Dione", "dione", ["T5"])]
+
+
+@full_table("moons")
+def moons(p):
+    """The moons in SI (issue 25): each encounter of workflows/tethys.toml and dione.toml, a later
+    pass of a history with the number of springs failed before it."""
+    rows, finals = [], []
+    for moon, folder, names in MOON_RUNS:
+        for name in names:
+            s = summary(p, p.work / folder / name)
+            e, f, si = s["encounter"], s["failures"], s["si"]
+            history = s.get("history")
+            orbit = e["orbit"]
+            finals.append(p.work / folder / name / "encounter.h5")
+            rows.append([moon, name, history["after"] if history else "-",
+                         f"{fixed(orbit['subsatellite_longitude_deg'], 0)}, {fixed(orbit['subsatellite_latitude_deg'], 0)}",
+                         sig(si["encounter"]["perturber_mass_kg"], 2) + " kg",
+                         f"{fixed(si['encounter']['pericenter_km'], 0)} km",
+                         f"{fixed(si['encounter']['pericenter_speed_km_s'], 3)} km/s",
+                         count(f["count"]), count(history["earlier_failed"]) if history else "-",
+                         f"{fixed(si['failures']['total_crack_length_km'], 0)} km",
+                         f"{fixed(si['failures']['largest_network_length_km'], 0)} km" if f["count"] else "-",
+                         count(f["clusters"]), pct(f["hemisphere_fraction"]) if f["count"] else "-",
+                         fixed(f["median_angle_from_subsatellite_deg"], 1) + " deg" if f["count"] else "-"])
+    return (commands("tidalcrust run workflows/tethys.toml --out tethys",
+                     "tidalcrust run workflows/dione.toml --out dione")
+            + measured_line(p, *finals)
+            + table(["moon", "encounter", "after", "subsatellite point (lon, lat; deg, the maps' frame)", "M2", "q",
+                     "V_q", "failed shell springs (this pass)", "failed before", "total crack length",
+                     "largest network", "cracks (clusters)", "on the pericenter hemisphere",
+                     "median angle from the subsatellite point"], rows))
+
+
 def median(values):
     v = sorted(values)
     n = len(v)

@@ -90,7 +90,7 @@ ReportSection record_section(const Checkpoint& c) {
     else if constexpr (std::is_same_v<T, bool> || std::is_same_v<T, std::string>)
       s.add(name, value);
     else if constexpr (std::is_same_v<T, std::optional<std::string>>)
-      s.add(name, value.value_or(""));
+      s.add(name, value.value_or("none"));  // `after` of an encounter begun from the relaxed body
     else if constexpr (Choice<T>)
       s.add(name, std::string(choice_name(value)));
     else
