@@ -1121,7 +1121,8 @@ def moons(p):
             orbit = e["orbit"]
             finals.append(p.work / folder / name / "encounter.h5")
             rows.append([moon, name, history["after"] if history else "-",
-                         f"{fixed(orbit['subsatellite_longitude_deg'], 0)}, {fixed(orbit['subsatellite_latitude_deg'], 0)}",
+                         f"{fixed(si['encounter']['subsatellite_planetocentric_longitude_deg'], 0)}, "
+                         f"{fixed(orbit['subsatellite_latitude_deg'], 0)}",
                          sig(si["encounter"]["perturber_mass_kg"], 2) + " kg",
                          f"{fixed(si['encounter']['pericenter_km'], 0)} km",
                          f"{fixed(si['encounter']['pericenter_speed_km_s'], 3)} km/s",
@@ -1133,7 +1134,7 @@ def moons(p):
     return (commands("tidalcrust run workflows/tethys.toml --out tethys",
                      "tidalcrust run workflows/dione.toml --out dione")
             + measured_line(p, *finals)
-            + table(["moon", "encounter", "after", "subsatellite point (lon, lat; deg, the maps' frame)", "M2", "q",
+            + table(["moon", "encounter", "after", "subsatellite point (planetocentric lon, lat; deg)", "M2", "q",
                      "V_q", "failed shell springs (this pass)", "failed before", "total crack length",
                      "largest network", "cracks (clusters)", "on the pericenter hemisphere",
                      "median angle from the subsatellite point"], rows))

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import os
+import textwrap
 from pathlib import Path
 
 import cartopy.crs as ccrs
@@ -91,6 +92,9 @@ def _number(value, spec: str) -> str:
 
 def _title(fig, title) -> None:
     if title:
+        # A line wider than the figure (about 11 characters per inch at this size) is wrapped, not clipped.
+        width = max(40, int(11 * fig.get_figwidth()))
+        title = "\n".join(textwrap.fill(line, width) for line in title.split("\n"))
         fig.suptitle(title, fontsize=10)
         # A moon's third title line (SI) and axes on top (t_grav, km): room above the subplots.
         lines = title.count("\n") + 1
