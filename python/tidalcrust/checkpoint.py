@@ -19,7 +19,7 @@ UNITS_NOTE = ("model units G = M = R = 1: lengths in R (the body's radius), mass
               "t_grav = sqrt(R^3/(G M)), velocities in sqrt(G M/R), energies in G M^2/R; the file's H5MD "
               "unit strings (nm, ps, 14983000 kg) stand for R, t_grav and M and are not converted")
 
-READABLE_FORMATS = (4, 5, 6, 7)
+READABLE_FORMATS = (4, 5, 6, 7, 8)
 
 # Units of the timeseries columns (docs/checkpoint-layout.md).
 _TIMESERIES_UNITS = {
