@@ -174,6 +174,18 @@ def _subsatellite(cracks: dict) -> tuple[float, float]:
     return tuple(cracks.get("subsatellite", SUBSATELLITE_LON_LAT))
 
 
+def _crust_field(ax, cracks: dict, data_crs) -> None:
+    """A crust that varies (cracks.json's `crust`, docs/crust.md) under the cracks: the thickness factor
+    at the shell nodes (brown thin, green thick) and the strength factor at the springs (red weak,
+    blue strong), each shaded symmetrically about 1; nothing for a uniform crust."""
+    for kind, cmap, size in (("thickness", "BrBG", 7), ("strength", "RdBu", 2)):
+        field = cracks.get("crust", {}).get(kind, {})
+        if field.get("factor"):
+            half = max(1e-6, max(abs(f - 1) for f in field["factor"]))
+            ax.scatter(field["lon"], field["lat"], c=field["factor"], s=size, cmap=cmap, vmin=1 - half, vmax=1 + half,
+                       linewidths=0, transform=data_crs, gid=f"crust_{kind}", zorder=1)
+
+
 def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0):
     proj = projection(view, _subsatellite(cracks))
     data_crs = ccrs.PlateCarree(globe=UNIT_GLOBE)
@@ -197,6 +209,7 @@ def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180
             ax.text(lon, -1, f"{lon}\u00b0", fontsize=6, color="0.35", ha="center", va="top", transform=data_crs)
         for lat in (-60, -30, 30, 60):
             ax.text(2, lat, f"{lat}\u00b0", fontsize=6, color="0.35", ha="left", va="bottom", transform=data_crs)
+    _crust_field(ax, cracks, data_crs)
     earlier = cracks.get("earlier", {}).get("polylines", [])
     if earlier:  # an encounter of a history: the cracks it began with, under its own
         ax.add_collection(LineCollection(_project_lines(earlier, proj)[0], colors=EARLIER_CRACK_COLOR,
