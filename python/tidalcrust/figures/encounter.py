@@ -177,13 +177,15 @@ def _subsatellite(cracks: dict) -> tuple[float, float]:
 def _crust_field(ax, cracks: dict, data_crs) -> None:
     """A crust that varies (cracks.json's `crust`, docs/crust.md) under the cracks: the thickness factor
     at the shell nodes (brown thin, green thick) and the strength factor at the springs (red weak,
-    blue strong), each shaded symmetrically about 1; nothing for a uniform crust."""
+    blue strong), each shaded symmetrically about 1 where it is not 1; nothing for a uniform crust."""
     for kind, cmap, size in (("thickness", "BrBG", 7), ("strength", "RdBu", 2)):
         field = cracks.get("crust", {}).get(kind, {})
-        if field.get("factor"):
-            half = max(1e-6, max(abs(f - 1) for f in field["factor"]))
-            ax.scatter(field["lon"], field["lat"], c=field["factor"], s=size, cmap=cmap, vmin=1 - half, vmax=1 + half,
-                       linewidths=0, transform=data_crs, gid=f"crust_{kind}", zorder=1)
+        shown = [k for k, f in enumerate(field.get("factor", [])) if f != 1]  # a weak line: only the line
+        if shown:
+            factor = [field["factor"][k] for k in shown]
+            half = max(abs(f - 1) for f in factor)
+            ax.scatter([field["lon"][k] for k in shown], [field["lat"][k] for k in shown], c=factor, s=size, cmap=cmap,
+                       vmin=1 - half, vmax=1 + half, linewidths=0, transform=data_crs, gid=f"crust_{kind}", zorder=1)
 
 
 def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0):
@@ -247,6 +249,9 @@ def fracture_map(path: str | os.PathLike, view: str = "overview", ax=None, mosai
             sub.set_title(label, fontsize=8)
         lon, lat = _subsatellite(cracks)
         history = "; grey: cracks of the earlier encounters" if cracks.get("earlier", {}).get("polylines") else ""
+        crust = cracks.get("crust", {})
+        history += "; dots: thickness, brown thin" if crust.get("thickness", {}).get("factor") else ""
+        history += "; dots: strength, red weak" if crust.get("strength", {}).get("factor") else ""
         fig.text(0.5, 0.01, "top: Mollweide (equal-area), longitude and latitude in degrees in the body's frame; below: "
                  f"orthographic; ring: subsatellite point ({lon:.0f}\u00b0, {lat:.0f}\u00b0){history}", ha="center",
                  fontsize=7)
