@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 #include "base/vec3.hpp"
 #include "model/center_of_mass.hpp"
@@ -31,11 +32,18 @@ Json number_or_null(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr
 std::vector<double> shell_thickness_factors(const Body& body) {
   double sum = 0;
   std::size_t nodes = 0;
+  std::optional<double> common;  // the one shell node mass of a uniform crust
+  bool uniform = true;
   for (std::size_t i = 0; i < body.particle_count(); ++i)
-    if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) sum += body.mass[i], ++nodes;
+    if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) {
+      sum += body.mass[i], ++nodes;
+      if (!common) common = body.mass[i];
+      uniform = uniform && body.mass[i] == *common;
+    }
   std::vector<double> t(body.particle_count(), 0.0);
   if (nodes == 0) return t;
-  const double mean = sum / static_cast<double>(nodes);
+  // A uniform crust's factors are exactly 1 (sum / count need not give its node mass back).
+  const double mean = uniform ? *common : sum / static_cast<double>(nodes);
   for (std::size_t i = 0; i < body.particle_count(); ++i)
     if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) t[i] = body.mass[i] / mean;
   return t;

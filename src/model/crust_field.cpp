@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -252,8 +253,9 @@ CrustMap read_crust_map(const std::filesystem::path& file) {
       header = true;
       continue;
     }
-    if (cells.size() != 4 && cells.size() < static_cast<std::size_t>(*std::max_element(column_of.begin(), column_of.end())) + 1)
-      throw InputError(fmt::format("{}: {} cells, the header has more", where(), cells.size()));
+    const auto last_column = static_cast<std::size_t>(*std::max_element(column_of.begin(), column_of.end()));
+    if (cells.size() <= last_column)
+      throw InputError(fmt::format("{}: {} cells, fewer than the header's columns", where(), cells.size()));
     std::array<double, 4> v{};
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const auto value = number_of(cells[static_cast<std::size_t>(column_of[k])]);
