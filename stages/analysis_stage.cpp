@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/crust_statistics.hpp"
 #include "analysis/conservation_drift.hpp"
 #include "analysis/energy_budget.hpp"
 #include "analysis/failure_trend.hpp"
@@ -251,7 +252,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"skipped_snapshots", skipped_snapshots},
       {"principal_axis_ratios", shape_list},
       {"figures", figure_names},
-      {"crack_geometry", crack_geometry_json(fractures.geometry)}};
+      {"crack_geometry", crack_geometry_json(fractures.geometry)},
+      {"crust", crust_statistics_json(crust_statistics(checkpoint.body, fractures))}};
   // A [moon] workflow's values in SI beside the model's, last (readers rely on the order before it).
   if (moon) summary["si"] = summary_si_json(*moon, summary);
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis
@@ -260,7 +262,9 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   // figure_data.json (what the figures draw besides those two) before them too. The figures are
   // drawn last, by the Python package, from these files: the numbers never depend on it.
   const std::string hash = state_hash(checkpoint.state);
-  write_file_atomically(out / "cracks.json", json_text(crack_polylines_json(fractures, hash)));
+  Json cracks = crack_polylines_json(fractures, hash);
+  cracks["crust"] = crust_field_json(checkpoint.body, checkpoint.state);  // drawn under the cracks
+  write_file_atomically(out / "cracks.json", json_text(cracks));
   write_file_atomically(out / "figure_data.json", figure_data_json(checkpoint, record, panels, titles, hash, moon ? &*moon : nullptr).dump() + "\n");
   write_file_atomically(out / "summary.json", json_text(summary));
   // Figures of an earlier analysis are removed first, so that a figure process that fails leaves

@@ -33,6 +33,7 @@ import json
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -1185,6 +1186,62 @@ def speed_here(p):
             + table(["body", "N", "gravity", "runs", "full step (ms)", "the other step (ms)",
                      "speed-up (median of the runs' ratios)", "tree force error median / p99",
                      "portable kernel / fast", "peak memory"], rows))
+
+
+# A crust that varies (issue 25, docs/crust.md): T5 on welded-L3 as 5-member ensembles.
+CRUST_RUNS = [
+    ("crust-L3-uniform", "uniform", ""),
+    ("crust-L3-thin-north", "thickness t = 1 - 0.5 z (thin north)", "--set \"crust.thickness_harmonics='c10 = -0.5'\""),
+    ("crust-L3-weak-north", "strength f = 1 - 0.5 z (weak north)", "--set \"crust.strength_harmonics='c10 = -0.5'\""),
+    ("crust-L3-thin-near", "thickness t = 1 - 0.5 y (thin toward the perturber)",
+     "--set \"crust.thickness_harmonics='s11 = -0.5'\""),
+    ("crust-L3-weak-near", "strength f = 1 - 0.5 y (weak toward the perturber)",
+     "--set \"crust.strength_harmonics='s11 = -0.5'\""),
+    ("crust-L3-weak-line", "weak great circle f = 0.5 within 5 deg (pole lon 0, lat 0)",
+     "--set \"crust.weak_lines='pole_lon = 0 pole_lat = 0 half_width = 5 factor = 0.5'\""),
+]
+
+
+def mean_sd(values, digits):
+    """mean +- sample sd of the members' values ("-" without two of them)."""
+    values = [v for v in values if v is not None]
+    if len(values) < 2:
+        return "-"
+    return f"{fixed(statistics.mean(values), digits)} +- {fixed(statistics.stdev(values), digits)}"
+
+
+@full_table("crust-variation")
+def crust_variation(p):
+    """T5 on welded-L3, 5-member ensembles (members at perturbed pericenters), with a uniform crust,
+    thickness and strength dichotomies north-south and near-far, and a weak great circle: per crust
+    the relaxed body's probe, the failed count, the shares of the failures on the subsatellite
+    hemisphere (summary.json failures.hemisphere_fraction) and in the north (failed_springs
+    latitude > 0), and the failure and spring shares of the weak and thin parts (summary.json crust)."""
+    present = [r for r in CRUST_RUNS if (p.work / r[0] / "T5_m0" / "analysis" / "summary.json").is_file()]
+    lines = commands(*[f"tidalcrust run workflows/welded-L3.toml --set ensemble.members=5 {s} --threads 1 --out {f}".replace("  ", " ")
+                       for f, _, s in CRUST_RUNS])
+    lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f, _, _ in present])
+    rows = []
+    for folder, label, _ in present:
+        relax = p.inspect(p.work / folder / "body" / "relax.h5")["record"]
+        members = [p.load(m) for m in sorted((p.work / folder).glob("T5_m*/analysis/summary.json"))]
+        failures = [m["failures"] for m in members]
+        north = [sum(1 for x in m["failed_springs"]["latitude_deg"] if x > 0) / len(m["failed_springs"]["latitude_deg"])
+                 if m["failed_springs"]["latitude_deg"] else None for m in members]
+
+        def part(name):
+            if not members[0]["crust"][name]["springs"]:
+                return "-"
+            shares = lambda key: [m["crust"][name][key] for m in members]
+            return (f"{mean_sd(shares('failure_share'), 3)} of the failures on {fixed(shares('spring_share')[0], 3)} "
+                    f"of the springs: {mean_sd(shares('capture_ratio'), 2)}x")
+        rows.append([label, f"{relax['probe_failures']} ({sci(relax['probe_max_shell_strain'])})", str(len(members)),
+                     mean_sd([f["count"] for f in failures], 1), mean_sd([f["hemisphere_fraction"] for f in failures], 3),
+                     mean_sd(north, 3), part("weak"), part("thin")])
+    lines += table(["crust", "probe failures (largest strain)", "members", "failed shell springs",
+                    "share on the subsatellite hemisphere", "share in the north", "weak part (f < 1)",
+                    "thin part (t < 1)"], rows)
+    return lines
 
 
 # ---------------------------------------------------------------- pages

@@ -19,6 +19,7 @@
 #include "bodies/shell_hinges.hpp"
 #include "bodies/welded_coupling.hpp"
 #include "forces/hinge_geometry.hpp"
+#include "model/crust_field.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -121,6 +122,52 @@ void add_shell_hinges(BuiltBody& out, const Icosphere& shell, std::int32_t shell
   }
 }
 
+/// The [crust] field sampled into the body (docs/crust.md). Thickness: t at each shell node, divided
+/// by its mean over the nodes (so that the crust's mass stays M_S and its mean thickness h_S),
+/// scales the node's mass (rho_S h); t at a shell spring's midpoint its stiffness (k_S = (sqrt 3 / 2)
+/// E_S h, eq. 20); t^3 at the midpoint of a hinge's edge its k_e (4 D_F, D_F ~ E_S h^3, eq. 23).
+/// Strength: the factor at a shell spring's midpoint (directions from the origin, the built body's
+/// centre). Every other spring keeps factor 1; a uniform crust changes nothing else.
+void vary_crust(BuiltBody& out, const Config& config) {
+  Body& body = out.body;
+  body.strength_factor.assign(body.spring_count(), 1.0);
+  if (!config.crust.given()) return;
+  const CrustField field = make_crust_field(config.crust, "crust");
+  const auto at = [&](std::int32_t i) { return vec3_at(out.state.position, static_cast<std::size_t>(i)); };
+  const auto positive = [](double value, const Vec3& where, const char* what, const char* keys) {
+    if (value > 0) return value;
+    throw InputError(fmt::format("{}: the crust's {} factor is {:g} <= 0 at lon {:.1f}, lat {:.1f} deg", keys, what, value,
+                                 std::atan2(where.y(), where.x()) * 180 / std::numbers::pi,
+                                 std::asin(where.normalized().z()) * 180 / std::numbers::pi));
+  };
+  constexpr const char* thickness_keys = "crust.thickness_harmonics (with crust.map_file)";
+  constexpr const char* strength_keys = "crust.strength_harmonics (with crust.map_file, crust.weak_lines)";
+  const auto thickness = [&](const Vec3& x) { return positive(field.thickness_factor(x), x, "thickness", thickness_keys); };
+  if (field.thickness_varies()) {
+    double sum = 0;
+    std::size_t nodes = 0;
+    for (std::size_t i = 0; i < body.particle_count(); ++i)
+      if (body.species[i] == static_cast<std::uint8_t>(Species::shell))
+        sum += thickness(at(static_cast<std::int32_t>(i))), ++nodes;
+    const double mean = sum / static_cast<double>(nodes);
+    for (std::size_t i = 0; i < body.particle_count(); ++i)
+      if (body.species[i] == static_cast<std::uint8_t>(Species::shell))
+        body.mass[i] *= thickness(at(static_cast<std::int32_t>(i))) / mean;
+    for (std::size_t n = 0; n < body.spring_count(); ++n)
+      if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell))
+        out.state.springs.stiffness[n] *= thickness(0.5 * (at(body.springs[n][0]) + at(body.springs[n][1]))) / mean;
+    for (std::size_t h = 0; h < body.hinge_count(); ++h) {
+      const double t = thickness(0.5 * (at(body.hinges[h][2]) + at(body.hinges[h][3]))) / mean;
+      body.hinge_stiffness[h] *= t * t * t;
+    }
+  }
+  for (std::size_t n = 0; n < body.spring_count(); ++n)
+    if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell)) {
+      const Vec3 mid = 0.5 * (at(body.springs[n][0]) + at(body.springs[n][1]));
+      body.strength_factor[n] = positive(field.strength_factor(mid), mid, "strength", strength_keys);
+    }
+}
+
 /// The keys that set the stiffness of each spring kind and of the hinges, and of the node
 /// masses, as messages name them.
 std::string stiffness_keys(const Config& config, std::string_view element) {
@@ -208,6 +255,7 @@ BuiltBody build_body(const Config& config) {
   if (config.shell.enabled) add_cross_springs(out, config, interior, shell, k);
   out.state.springs.failed.assign(out.body.spring_count(), 0);
   add_shell_hinges(out, shell, shell_offset, k.bending);
+  vary_crust(out, config);
 
   std::vector<Vec3> positions(interior.nodes);
   positions.insert(positions.end(), shell.nodes.begin(), shell.nodes.end());

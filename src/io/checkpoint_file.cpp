@@ -61,6 +61,7 @@ constexpr const char* rest_length = "/checkpoint/springs/rest_length";
 constexpr const char* spring_stiffness = "/checkpoint/springs/stiffness";
 constexpr const char* spring_kind = "/checkpoint/springs/kind";
 constexpr const char* spring_failed = "/checkpoint/springs/failed";
+constexpr const char* strength_factor = "/checkpoint/springs/strength_factor";
 constexpr const char* rest_angle = "/checkpoint/hinges/rest_angle";
 constexpr const char* hinge_stiffness = "/checkpoint/hinges/stiffness";
 constexpr const char* perturber = "/checkpoint/perturber";
@@ -153,6 +154,7 @@ void visit_element_arrays(C& c, Visit&& visit) {
   visit(path::spring_stiffness, c.state.springs.stiffness, Shape{Rows::springs});
   visit(path::spring_kind, c.body.spring_kind, Shape{Rows::springs});
   visit(path::spring_failed, c.state.springs.failed, Shape{Rows::springs});
+  visit(path::strength_factor, c.body.strength_factor, Shape{Rows::springs});
   visit(path::hinges, c.body.hinges, Shape{Rows::hinges, 4});
   visit(path::rest_angle, c.state.hinges.rest_angle, Shape{Rows::hinges});
   visit(path::hinge_stiffness, c.body.hinge_stiffness, Shape{Rows::hinges});
@@ -272,6 +274,8 @@ std::string consistency_problem(const Checkpoint& c) {
       return fmt::format("{} row {}: kind {} is not 0, 1 or 2", path::spring_kind, r, +c.body.spring_kind[r]);
     if (c.state.springs.failed[r] > 1)
       return fmt::format("{} row {}: flag {} is not 0 or 1", path::spring_failed, r, +c.state.springs.failed[r]);
+    if (!(c.body.strength_factor[r] > 0) || !std::isfinite(c.body.strength_factor[r]))
+      return fmt::format("{} row {}: factor {} is not finite and > 0", path::strength_factor, r, c.body.strength_factor[r]);
   }
   for (std::size_t r = 0; r < c.observables.failures.size(); ++r) {
     auto s = c.observables.failures[r].spring;
@@ -615,7 +619,8 @@ std::string xdmf_text(const Checkpoint& c, const std::string& h5_name) {
     x += grid("springs", "Polyline", ns, " NodesPerElement=\"2\"", heavy(fmt::format("{} 2", ns), "Int", 4, path::springs),
               attribute("failed", "Cell", ns, "UChar", 1, path::spring_failed) +
                   attribute("kind", "Cell", ns, "UChar", 1, path::spring_kind) +
-                  attribute("stiffness", "Cell", ns, "Float", 8, path::spring_stiffness));
+                  attribute("stiffness", "Cell", ns, "Float", 8, path::spring_stiffness) +
+                  attribute("strength_factor", "Cell", ns, "Float", 8, path::strength_factor));
   if (nf > 0) x += grid("shell", "Triangle", nf, "", heavy(fmt::format("{} 3", nf), "Int", 4, path::faces), "");
   x += "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return x;

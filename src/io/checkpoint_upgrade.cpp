@@ -150,6 +150,17 @@ void layout_6_to_7(hid_t root) {
     if (!has_attribute(record.get(), name)) h5::write_attribute<double>(record.get(), name, value);
 }
 
+/// 7 -> 8 (2026-12-08, a crust that varies, issue 25): the springs gain `strength_factor` (a shell
+/// spring fails beyond eps_S times it), 1 for every spring: every crust before it was uniform.
+void layout_7_to_8(hid_t root) {
+  const char* springs = "/connectivity/springs";
+  const char* factor = "/checkpoint/springs/strength_factor";
+  if (!h5::exists(root, springs) || h5::exists(root, factor)) return;  // the reader names a missing one
+  const auto dims = h5::read_dataset<std::int32_t>(root, springs).dims;
+  if (dims.empty()) return;
+  h5::write_dataset(root, factor, std::vector<double>(dims[0], 1.0), {dims[0]});
+}
+
 /// One upgrade step, from format `from` to `from + 1`.
 struct UpgradeStep {
   std::int64_t from;
@@ -164,6 +175,7 @@ constexpr UpgradeStep upgrade_steps[] = {
     {4, layout_4_to_5, nullptr},
     {5, layout_5_to_6, nullptr},
     {6, layout_6_to_7, nullptr},
+    {7, layout_7_to_8, nullptr},
 };
 constexpr bool steps_are_consecutive() {
   for (std::size_t i = 0; i < std::size(upgrade_steps); ++i)

@@ -25,11 +25,17 @@ struct Body {
   std::vector<std::array<std::int32_t, 4>> hinges;
   std::vector<double> hinge_stiffness;               ///< [Nh] k_e in G M^2 / R^2 (a force; eq. 22)
   std::vector<std::array<std::int32_t, 3>> faces;    ///< [Nf] shell triangles, outward CCW
+  /// [Ns] a shell spring fails beyond eps_S * strength_factor: the crust's strength sampled at the
+  /// spring's midpoint as built ([crust], docs/crust.md); 1 for every other spring and for a
+  /// uniform crust. Empty stands for all 1 (a body put together by hand); failure_strain_factor.
+  std::vector<double> strength_factor;
   double softening = 0.0;  ///< Plummer softening length in R (1/100 of min initial spacing)
 
   std::size_t particle_count() const { return mass.size(); }
   std::size_t spring_count() const { return springs.size(); }
   std::size_t hinge_count() const { return hinges.size(); }
+  /// The factor on eps_S of spring n (strength_factor, 1 when it is empty).
+  double failure_strain_factor(std::size_t n) const { return strength_factor.empty() ? 1.0 : strength_factor[n]; }
   std::size_t count_species(Species s) const {
     std::size_t n = 0;
     for (auto v : species) n += (v == static_cast<std::uint8_t>(s));

@@ -322,6 +322,29 @@ void visit_keys(C& c, V&& visit) {
   key(c.moon.core_density, {"moon", "core_density", reads(build, stretch), "kg/m^3", "rho_c, the core's density (with core_radius)"});
   key(c.moon.core_youngs_modulus, {"moon", "core_youngs_modulus", reads(build, stretch), "Pa",
                                    "E_c, the core's Young's modulus; default E_I"});
+
+  // issue 25: [crust], a crust that varies over the surface (docs/crust.md, model/crust_field.hpp); all
+  // optional. The builder samples the field into the body (node masses, spring and hinge
+  // stiffnesses, each shell spring's strength factor), so only build reads them: the later stages
+  // read the body.
+  key(c.crust.thickness_harmonics,
+      {"crust", "thickness_harmonics", reads(build), "-",
+       "thickness h_S t(x), t = 1 + sum of real harmonics (Schmidt): \"c10 = 0.5\" thick north, \"s11 = 0.5\" thick "
+       "toward +y (lon 90)"});
+  key(c.crust.strength_harmonics,
+      {"crust", "strength_harmonics", reads(build), "-",
+       "failure strain eps_S f(x), f = 1 + sum of real harmonics (Schmidt), as thickness_harmonics"});
+  key(c.crust.weak_lines,
+      {"crust", "weak_lines", reads(build), "-",
+       "circles of lowered strength, ';' between lines: \"pole_lon = 0, pole_lat = 0, radius = 90, half_width = 4, "
+       "factor = 0.5\" (deg; radius 90: a great circle)"});
+  key(c.crust.map_file,
+      {"crust", "map_file", reads(build), "-",
+       "CSV lon,lat,thickness_factor,strength_factor on a regular lat/lon grid; multiplies t and f (its content "
+       "is map_digest)"});
+  key(c.crust.map_digest,
+      {"crust", "map_digest", reads(build), "-",
+       "XXH3-64 of map_file's bytes, recorded when the workflow is read (a changed file is refused)"});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4). The encounter stage reads its own table
@@ -976,6 +999,15 @@ double material_flexural_rigidity(const MaterialConfig& m) {
   return E * h * h * h / (12 * (1 - nu * nu));
 }
 
+void resolve_crust(Config& c, const std::filesystem::path& relative_to) {
+  if (!c.crust.map_file || c.crust.map_digest) return;
+  std::filesystem::path file(*c.crust.map_file);
+  if (file.is_relative()) file = std::filesystem::absolute(relative_to / file);
+  c.crust.map_file = file.lexically_normal().string();
+  read_crust_map(*c.crust.map_file);  // a bad table is refused now, naming its line, before anything runs
+  c.crust.map_digest = crust_map_digest(*c.crust.map_file);
+}
+
 void resolve_material(Config& c, const std::string& origin) {
   if (!c.from_material()) return;
   // The material's own ranges first: a bad value must be named, not the key derived from it.
@@ -1184,6 +1216,13 @@ void validate(const Config& config, const std::string& origin) {
   if (!config.core.present() && (config.core.density_ratio || config.core.modulus_ratio))
     throw InputError(fmt::format("{}: core.{} needs core.radius ([core] needs core.radius)", origin,
                                  config.core.density_ratio ? "density_ratio" : "modulus_ratio"));
+  // The [crust] grammar (model/crust_field.hpp); the map file was read by resolve_crust.
+  const std::string crust = origin + ": crust";
+  if (config.crust.thickness_harmonics) parse_harmonics(*config.crust.thickness_harmonics, crust + ".thickness_harmonics");
+  if (config.crust.strength_harmonics) parse_harmonics(*config.crust.strength_harmonics, crust + ".strength_harmonics");
+  if (config.crust.weak_lines) parse_weak_lines(*config.crust.weak_lines, crust + ".weak_lines");
+  if (config.crust.given() && !config.shell.enabled)
+    throw InputError(fmt::format("{}: [crust] needs a crust (shell.enabled = true)", crust));
   if (config.workflow.name.empty())
     throw InputError(fmt::format("{}: workflow.name must not be empty", origin));
   if (const std::string problem = path_name_problem(config.workflow.name); !problem.empty())
@@ -1228,7 +1267,7 @@ void validate(const Config& config, const std::string& origin) {
   check_encounter_histories(config, origin);
 }
 
-Config parse_config(const std::string& toml_text, const std::string& origin) {
+Config parse_config(const std::string& toml_text, const std::string& origin, const std::filesystem::path& relative_to) {
   check_toml_nesting(toml_text, origin);
   toml::table root;
   try {
@@ -1293,6 +1332,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin) {
   const toml::table* stretch = root["stretch"].as_table();
   if (config.from_material() && !(stretch && stretch->get("hydrostatic_support") != nullptr))
     config.stretch.hydrostatic_support = HydrostaticSupport::compress;
+  resolve_crust(config, relative_to);
   validate(config, origin);
   return config;
 }
@@ -1304,7 +1344,7 @@ Config load_config(const std::filesystem::path& file) {
     std::stringstream buffer;
     buffer << in.rdbuf();
     if (in.bad()) throw InputError(fmt::format("{}: cannot read configuration file: {}", file.string(), std::strerror(errno)));
-    return parse_config(buffer.str(), file.string());
+    return parse_config(buffer.str(), file.string(), file.parent_path());
   } catch (const std::bad_alloc&) {
     throw InputError(fmt::format("{}: not enough memory to read the configuration file", file.string()));
   }
@@ -1370,6 +1410,8 @@ void apply_override(Config& config, const std::string& assignment) {
     if (!set_key(config, section, key, node, "--set", "--set"))
       throw InputError(fmt::format("{}: unknown key '{}.{}'", where, section, key));
     refuse_derived_key(config, section, key, where);
+    if (section == "crust" && key == "map_file") config.crust.map_digest.reset();  // the new file's
+    resolve_crust(config, {});
     resolve_moon(config, where);  // a value [moon] filled: given again only with the same value
     if (section == "integrator" && key == "dt") config.choose_dt = false;
     // Members of an ensemble that varies the body branch from seeds counted from workflow.seed.

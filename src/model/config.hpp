@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "model/choices.hpp"
+#include "model/crust_field.hpp"
 #include "model/encounter.hpp"
 #include "model/moon_units.hpp"
 #include "model/stage_records.hpp"
@@ -246,6 +247,8 @@ struct Config {
   /// The [moon] table (docs/moon.md): the moon in SI. Given, it fills [material] and [core]
   /// (resolve_moon); the resolved text keeps both.
   MoonConfig moon;
+  /// The [crust] table (docs/crust.md): a crust whose thickness and strength vary over the surface.
+  CrustConfig crust;
   /// No integrator.dt given in a [material] workflow: dt is chosen from the stability bound of
   /// the stretched body (stages/time_step.hpp); to_toml leaves dt out while this is set.
   bool choose_dt = false;
@@ -270,8 +273,11 @@ std::uint64_t body_seed_of(const Config& config, const Encounter& encounter);
 /// body_seed_of (the same configuration when the encounter is on the workflow's body).
 Config body_config_of(const Config& config, const Encounter& encounter);
 
-/// Parses TOML text. `origin` (a file name) prefixes every error message.
-Config parse_config(const std::string& toml_text, const std::string& origin);
+/// Parses TOML text. `origin` (a file name) prefixes every error message. A relative
+/// crust.map_file is taken relative to `relative_to` (load_config: the workflow file's folder;
+/// empty: the current folder) and stored absolute.
+Config parse_config(const std::string& toml_text, const std::string& origin,
+                    const std::filesystem::path& relative_to = {});
 /// Reads and parses a TOML file; a missing file is an InputError.
 Config load_config(const std::filesystem::path& file);
 /// Applies one "section.key=value" or "encounters.NAME.key=value" override (value in TOML
@@ -352,6 +358,11 @@ void resolve_moon(Config& config, const std::string& origin);
 std::optional<MoonScale> output_moon(const Config& config, const std::string& origin);
 /// The same of a checkpoint's stored (resolved) configuration text; none for an empty text.
 std::optional<MoonScale> stored_moon(const std::string& config_toml, const std::string& origin);
+/// Makes crust.map_file absolute (relative to `relative_to`, empty: the current folder), reads it
+/// (read_crust_map: InputError naming the file and line) and records its digest in
+/// crust.map_digest, unless a digest is recorded already (a stored configuration); no-op without
+/// crust.map_file.
+void resolve_crust(Config& config, const std::filesystem::path& relative_to);
 /// Poisson ratio of the random isotropic network (Kot 2015), also taken for the crust's D_F.
 inline constexpr double material_poisson_ratio = 0.25;
 /// The crust's E_2D (e_g R) and D_F (e_g R^3) of a [material] body.

@@ -194,15 +194,24 @@ struct CrackGrowth {
 /// a crack fails with every spring across its flaw (springs_across_flaw).
 std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
-  std::vector<std::pair<double, std::size_t>> candidates;
+  // A spring of strength factor f fails beyond f eps_S; candidates go by strain / f, the most
+  // over-strained first (for f = 1, as for every spring of a uniform crust, exactly by strain).
+  struct Candidate {
+    double overstrain;  ///< strain / f
+    std::size_t n;
+    double strain;
+  };
+  std::vector<Candidate> candidates;
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     if (!is_unfailed_shell(body, state, n)) continue;
     const double strain = spring_strain(body, state, n);
-    if (strain > threshold.failure_strain) candidates.emplace_back(strain, n);
+    const double f = body.failure_strain_factor(n);
+    if (strain > threshold.failure_strain * f) candidates.push_back({strain / f, n, strain});
   }
   if (candidates.empty()) return 0;
-  std::sort(candidates.begin(), candidates.end(),
-            [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.overstrain > b.overstrain || (a.overstrain == b.overstrain && a.n < b.n);
+  });
   // Midpoints of the failures still relaxing (the log is in step order: scan from its end).
   std::vector<Vec3> relaxing;
   for (auto e = log.rbegin(); e != log.rend() && e->step > state.step - rule.relaxation_steps; ++e)
@@ -222,7 +231,7 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     if (cracks) cracks->add(body, state, n);
     ++failed;
   };
-  for (const auto& [strain, n] : candidates) {
+  for (const auto& [overstrain, n, strain] : candidates) {
     if (state.springs.failed[n]) continue;  // across an earlier flaw of this check
     const Vec3 mid = spring_midpoint(body, state, n);
     const bool excluded =
@@ -230,7 +239,8 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     if (excluded) continue;
     const CrackRole role = cracks ? cracks->role(mid) : CrackRole::starts;
     if (role == CrackRole::shadowed) continue;
-    if (growth.flaw_length > 0 && role == CrackRole::extends && !(strain > growth_strain)) continue;
+    if (growth.flaw_length > 0 && role == CrackRole::extends && !(strain > growth_strain * body.failure_strain_factor(n)))
+      continue;
     if (growth.flaw_length > 0 && role == CrackRole::starts) {
       if (!center) center = body_center_of_mass(body, state);
       const std::vector<std::size_t> flaw = springs_across_flaw(body, state, n, *center, growth.flaw_length);
@@ -316,12 +326,16 @@ std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& 
 
 std::optional<FailureEvent> fail_most_strained_shell_spring(const Body& body, State& state, double failure_strain,
                                                             double failed_stiffness_factor) {
+  // The most over-strained beyond its own f eps_S (strain / f; exactly the strain where f = 1).
   std::optional<std::size_t> worst;
-  double worst_strain = failure_strain;
+  double worst_overstrain = 0, worst_strain = 0;
   for (std::size_t n = 0; n < body.spring_count(); ++n) {
     if (!is_unfailed_shell(body, state, n)) continue;
     const double strain = spring_strain(body, state, n);
-    if (strain > worst_strain) {  // strict: ties keep the lowest index
+    const double f = body.failure_strain_factor(n);
+    if (!(strain > failure_strain * f)) continue;
+    if (!worst || strain / f > worst_overstrain) {  // strict: ties keep the lowest index
+      worst_overstrain = strain / f;
       worst_strain = strain;
       worst = n;
     }

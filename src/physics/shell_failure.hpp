@@ -4,7 +4,9 @@
 // strained one fails, one check every t_fail steps. "local" (docs/failure-rule.md): every
 // over-strained spring may fail, most strained first, but at most one per crack neighbourhood
 // (radius r_ex) per relaxation interval (set in time from the shell's elastic crossing time).
-// Used by the encounter stage and the stability probe.
+// Used by the encounter stage and the stability probe. A crust that varies (docs/crust.md): every
+// rule compares a shell spring's strain with f eps_S (f = Body::failure_strain_factor) and orders
+// candidates by strain / f; for f = 1 exactly as before.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -30,8 +32,8 @@ double max_abs_shell_strain(const Body& body, const State& state);
 /// quantity the failure rule compares with eps_S.
 double max_shell_tension(const Body& body, const State& state);
 
-/// One failure check: among the unfailed shell springs with strain > failure_strain (eps_S),
-/// the most strained one (lowest index on ties) fails: stiffness *= failed_stiffness_factor
+/// One failure check: among the unfailed shell springs with strain > f failure_strain (eps_S times
+/// the spring's strength factor f), the most over-strained one (strain / f; lowest index on ties) fails: stiffness *= failed_stiffness_factor
 /// (F_Sk), failed = 1. Returns the event (time, step, strain, midpoint, the elastic energy
 /// (1 - F_Sk) k (L - L0)^2/2 the drop removed) or nothing when no
 /// spring exceeds eps_S. The caller decides when to check (every t_fail steps).

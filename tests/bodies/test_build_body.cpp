@@ -188,3 +188,85 @@ TEST(BuildBody, UnintegrableScalesAreRefusedNamingTheKey) {
     }
   }
 }
+
+// A crust that varies (docs/crust.md): the builder samples [crust] into the body. A uniform crust
+// has strength factor 1 everywhere; a thickness dichotomy toward +y (s11 = 0.5) makes the +y shell
+// nodes heavier and their springs and hinges stiffer (t and t^3 of the node-mean-normalised
+// factor), keeps the crust's mass, and a weak line lowers the strength of the springs on it only.
+TEST(BuildBody, ACrustThatVariesIsSampledIntoMassesStiffnessesAndStrengths) {
+  const Config plain = test_support::small_body_config();
+  const BuiltBody uniform = build_body(plain);
+  ASSERT_EQ(uniform.body.strength_factor.size(), uniform.body.spring_count());
+  for (double f : uniform.body.strength_factor) EXPECT_EQ(f, 1.0);
+
+  Config config = plain;
+  config.crust.thickness_harmonics = "s11 = 0.5";
+  config.crust.weak_lines = "pole_lon = 0, pole_lat = 0, half_width = 6, factor = 0.4";
+  const BuiltBody varied = build_body(config);
+  const Body& b = varied.body;
+  ASSERT_EQ(b.spring_count(), uniform.body.spring_count());
+  double shell_mass = 0, total = 0, heaviest_y = -2, lightest_y = 2, heaviest = 0, lightest = 1;
+  for (std::size_t i = 0; i < b.particle_count(); ++i) {
+    total += b.mass[i];
+    if (b.species[i] != static_cast<std::uint8_t>(Species::shell)) {
+      EXPECT_EQ(b.mass[i], uniform.body.mass[i]);  // the interior as before
+      continue;
+    }
+    shell_mass += b.mass[i];
+    const Vec3 p = position(varied, i);
+    EXPECT_NEAR(b.mass[i] / uniform.body.mass[i], 1 + 0.5 * p.y(), 1e-12) << i;  // the icosphere's node mean of y is 0
+    if (b.mass[i] > heaviest) heaviest = b.mass[i], heaviest_y = p.y();
+    if (b.mass[i] < lightest) lightest = b.mass[i], lightest_y = p.y();
+  }
+  EXPECT_NEAR(shell_mass, config.shell.mass, 1e-14);
+  EXPECT_NEAR(total, 1.0, 1e-14);
+  EXPECT_GT(heaviest_y, 0.99);
+  EXPECT_LT(lightest_y, -0.99);
+  std::size_t weak = 0, shell = 0;
+  for (std::size_t n = 0; n < b.spring_count(); ++n) {
+    const Vec3 mid = 0.5 * (position(varied, static_cast<std::size_t>(b.springs[n][0])) +
+                            position(varied, static_cast<std::size_t>(b.springs[n][1])));
+    if (b.spring_kind[n] != static_cast<std::uint8_t>(SpringKind::shell)) {
+      EXPECT_EQ(b.strength_factor[n], 1.0);
+      EXPECT_EQ(varied.state.springs.stiffness[n], uniform.state.springs.stiffness[n]);
+      continue;
+    }
+    ++shell;
+    const double t = 1 + 0.5 * mid.y() / mid.norm();
+    EXPECT_NEAR(varied.state.springs.stiffness[n], uniform.state.springs.stiffness[n] * t, 1e-12) << n;
+    const double from_pole = std::acos(mid.normalized().x()) * 180 / M_PI;
+    EXPECT_EQ(b.strength_factor[n], std::abs(from_pole - 90) <= 6 ? 0.4 : 1.0) << n;
+    weak += b.strength_factor[n] < 1;
+  }
+  EXPECT_GT(weak, shell / 20);  // a 12-degree band: ~10% of the sphere
+  EXPECT_LT(weak, shell / 6);
+  for (std::size_t h = 0; h < b.hinge_count(); ++h) {
+    const Vec3 mid = 0.5 * (position(varied, static_cast<std::size_t>(b.hinges[h][2])) +
+                            position(varied, static_cast<std::size_t>(b.hinges[h][3])));
+    const double t = 1 + 0.5 * mid.y() / mid.norm();
+    EXPECT_NEAR(b.hinge_stiffness[h], uniform.body.hinge_stiffness[h] * t * t * t, 1e-12) << h;
+  }
+}
+
+TEST(BuildBody, ACrustFactorThatIsNotPositiveSomewhereIsRefusedNamingTheKey) {
+  Config config = test_support::small_body_config();
+  config.crust.thickness_harmonics = "c10 = 1.2";  // < 0 south of lat -56 deg
+  try {
+    build_body(config);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("crust.thickness_harmonics (with crust.map_file): the crust's thickness factor "
+                                          "is -0.",
+                                          0),
+              0u)
+        << e.what();
+  }
+  config.crust.thickness_harmonics.reset();
+  config.crust.strength_harmonics = "s11 = -1.2";  // < 0 within 34 deg of +y
+  try {
+    build_body(config);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("crust.strength_harmonics"), std::string::npos) << e.what();
+  }
+}

@@ -125,8 +125,10 @@ TEST_F(CompareResolutionCli, OutWritesJsonCsvAndOneMapPerLevel) {
   for (const int level : {1, 2}) {
     const Json& panel = row["panels"][static_cast<std::size_t>(level - 1)];
     EXPECT_EQ(panel["title"].get<std::string>().rfind("level " + std::to_string(level) + ",", 0), 0u) << panel["title"];
-    EXPECT_EQ(panel["cracks"],
-              Json::parse(read_file(encounter(level).parent_path() / "analysis" / "cracks.json")));
+    // The crust's field (docs/crust.md), which analyze adds to cracks.json, is not drawn on these maps.
+    Json cracks = Json::parse(read_file(encounter(level).parent_path() / "analysis" / "cracks.json"));
+    cracks.erase("crust");
+    EXPECT_EQ(panel["cracks"], cracks);
   }
 }
 

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -23,6 +25,7 @@
 #include "support/bad_checkpoints.hpp"
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
+#include "support/force_test_bodies.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -265,4 +268,46 @@ TEST(CheckpointFormats, AnUpgradedCheckpointIsWrittenInTheCurrentFormat) {
   EXPECT_EQ(state_hash(again.state), state_hash(old.state));
   EXPECT_EQ(again.stage.fingerprint, old.stage.fingerprint);
   EXPECT_EQ(again.observables.failures.size(), old.observables.failures.size());
+}
+
+// Format 8 (a crust that varies, docs/crust.md): each spring's strength factor is stored and read
+// back bit for bit; a format-7 file, and every older one, reads as a uniform crust (factor 1 for
+// every spring).
+TEST(CheckpointFormats, StrengthFactorsRoundTripAndFormat7ReadsAsAUniformCrust) {
+  const ScratchFolder scratch("formats_strength");
+  Config config = small_body_config();
+  config.crust.strength_harmonics = "s11 = -0.3, c20 = 0.1";
+  config.crust.weak_lines = "pole_lon = 30, pole_lat = 20, radius = 60, half_width = 5, factor = 0.45";
+  const Checkpoint built = build_stage(config);
+  const fs::path file = scratch.path / "built.h5";
+  write_checkpoint(file, built);
+  const Checkpoint back = read_checkpoint(file);
+  ASSERT_EQ(back.body.strength_factor.size(), built.body.spring_count());
+  for (std::size_t n = 0; n < built.body.spring_count(); ++n)
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(back.body.strength_factor[n]),
+              std::bit_cast<std::uint64_t>(built.body.strength_factor[n]))
+        << n;
+  EXPECT_LT(*std::min_element(back.body.strength_factor.begin(), back.body.strength_factor.end()), 0.45 * 0.8);
+
+  const fs::path seven = edited_copy(file, scratch.path, "seven.h5", [](hid_t f) {
+    h5::check(H5Ldelete(f, "/checkpoint/springs/strength_factor", H5P_DEFAULT), "delete strength_factor");
+    overwrite_attribute(f, "/checkpoint", "format_version", std::int64_t{7});
+  });
+  const Checkpoint old = read_checkpoint(seven);
+  EXPECT_EQ(old.provenance.format_version, 7);
+  EXPECT_EQ(state_hash(old.state), state_hash(built.state));
+  ASSERT_EQ(old.body.strength_factor.size(), built.body.spring_count());
+  for (const double f : old.body.strength_factor) ASSERT_EQ(f, 1.0);
+  for (const std::int64_t format : stored_formats) {
+    const Checkpoint stored = read_checkpoint(stored_file(format, "relax"));
+    ASSERT_EQ(stored.body.strength_factor.size(), stored.body.spring_count()) << format;
+    for (const double f : stored.body.strength_factor) ASSERT_EQ(f, 1.0) << format;
+  }
+  // A factor that is not > 0 is refused naming the dataset.
+  const fs::path zero = edited_copy(file, scratch.path, "zero.h5", [](hid_t f) {
+    overwrite_element(f, "/checkpoint/springs/strength_factor", 3, 0.0);
+  });
+  EXPECT_NE(checkpoint_read_error(zero).find("/checkpoint/springs/strength_factor row 3: factor 0 is not finite and > 0"),
+            std::string::npos)
+      << checkpoint_read_error(zero);
 }

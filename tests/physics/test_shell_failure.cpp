@@ -157,6 +157,28 @@ TEST(PaperFailureRule, OneSpringPerCheckEveryFailInterval) {
   EXPECT_EQ(log.at(0).spring, 1);
 }
 
+// A crust that varies (docs/crust.md): a shell spring fails beyond eps_S times its strength factor,
+// and the most over-strained (strain / factor) goes first. Row: strains 1%, 3%, 2%, 0.05% at eps_S
+// 0.1%; spring 3 weakened to 0.25 (fails at 0.025%: 2x over) and spring 1 strengthened to 40 (4%).
+TEST(LocalFailureRule, EachSpringFailsBeyondItsOwnFactorTimesEpsSMostOverStrainedFirst) {
+  Row r;
+  r.body.strength_factor = {1.0, 40.0, 1.0, 0.25};
+  std::vector<FailureEvent> log;
+  EXPECT_EQ(apply_failure_rule(r.local(1, 1e-9), Row::threshold, r.body, r.state, 0, log), 3u);
+  ASSERT_EQ(log.size(), 3u);
+  EXPECT_EQ(log[0].spring, 2);  // 20x over
+  EXPECT_EQ(log[1].spring, 0);  // 10x over
+  EXPECT_EQ(log[2].spring, 3);  // 2x over
+  EXPECT_NEAR(log[2].strain, 0.0005, 1e-12);  // the log keeps the strain itself
+  EXPECT_EQ(r.state.springs.failed, (std::vector<std::uint8_t>{1, 0, 1, 1}));  // spring 1: 3% < 4%
+
+  Row paper;  // the paper's rule: one per check, the most over-strained
+  paper.body.strength_factor = {1.0, 40.0, 1.0, 0.25};
+  std::vector<FailureEvent> one;
+  EXPECT_EQ(apply_failure_rule(PaperFailureRule{1}, Row::threshold, paper.body, paper.state, 0, one), 1u);
+  EXPECT_EQ(one.at(0).spring, 2);
+}
+
 TEST(FailureRuleSchedule, LocalIntervalIsCrossingTimesInStepsConvertedOnce) {
   Config config;
   config.encounter.failure_rule = FailureRuleKind::local;

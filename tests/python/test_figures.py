@@ -95,6 +95,22 @@ class AnalysisFigures(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "view 'sideways'"):
             figures.fracture_map(self.encounter, "sideways")
 
+    def test_fracture_map_shades_a_crust_that_varies_under_the_cracks(self):
+        # The small run's crust is uniform: nothing is drawn for it (cracks.json's crust lists are empty).
+        self.assertEqual(self.cracks["crust"]["strength"]["factor"], [])
+        fig = figures.fracture_map(self.encounter, "mollweide")
+        self.assertEqual([c for c in fig.axes[0].collections if (c.get_gid() or "").startswith("crust_")], [])
+        # A strength field (docs/crust.md) is one scatter of its points, coloured by the factor, under the cracks.
+        varied = dict(self.cracks, crust={"thickness": {"lon": [], "lat": [], "factor": []},
+                                          "strength": {"lon": [0.0, 90.0, 180.0], "lat": [0.0, 10.0, -10.0],
+                                                       "factor": [0.5, 1.0, 1.5]}})
+        fig = plt.figure()
+        ax = fig.add_subplot(1, 1, 1, projection=figures.projection("mollweide"))
+        figures.encounter._map_axes(ax, "mollweide", varied)
+        shade = by_gid(ax.collections, "crust_strength")
+        np.testing.assert_array_equal(shade.get_array(), [0.5, 1.5])  # the points of factor 1 are the plain surface
+        self.assertLess(shade.get_zorder(), by_gid(ax.collections, "cracks").get_zorder())
+
     def test_crack_geometry_draws_the_fitted_arcs_and_the_rose(self):
         fig = figures.crack_geometry(self.encounter)
         g = self.summary["crack_geometry"]

@@ -39,8 +39,13 @@ TEST(AnalysisStage, SummaryOfAQuickEncounterHasTheCrackGeometry) {
   analyze_encounter(file, c, out);
 
   const Json summary = Json::parse(read_file(out / "summary.json"));
-  // The new keys come last, in summary.json and in its failures object.
-  ASSERT_EQ(summary.back(), summary["crack_geometry"]);
+  // The new keys come last, in summary.json and in its failures object: the crust's (docs/crust.md),
+  // for this uniform crust factors of exactly 1 and no weak or thin part.
+  ASSERT_EQ(summary.back(), summary["crust"]);
+  EXPECT_FALSE(summary["crust"]["varies"].get<bool>());
+  EXPECT_EQ(summary["crust"]["thickness_factor_min"].get<double>(), 1.0);
+  EXPECT_EQ(summary["crust"]["weak"]["springs"].get<int>(), 0);
+  EXPECT_TRUE(summary["crust"]["weak"]["capture_ratio"].is_null());
   EXPECT_EQ(summary["failures"].back(), summary["failures"]["longest_arc_misfit_deg"]);
   const Json& failures = summary["failures"];
   std::printf("[ info ] quick-balanced strong: %s\n", failures.dump().c_str());

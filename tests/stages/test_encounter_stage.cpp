@@ -20,7 +20,9 @@
 #include "stages/analysis_stage.hpp"
 #include "stages/encounter_stage.hpp"
 #include "base/errors.hpp"
+#include "analysis/crust_statistics.hpp"
 #include "analysis/fracture_analysis.hpp"
+#include "model/crust_field.hpp"
 #include "physics/orbital_frame.hpp"
 #include "stages/relax_stage.hpp"
 #include "io/state_hash.hpp"
@@ -480,10 +482,11 @@ TEST(FractureSummaryLine, FailuresGiveTheirStatistics) {
 /// Runs the quick body's "strong" encounter under `config` straight through, and again interrupted
 /// at its middle failure's step (a mid-stage file written right at a failure) and resumed from
 /// that file: the two must end in the same state and failure log. Returns the straight run.
-Checkpoint run_and_check_resume(const Config& config, const std::string& scratch_name) {
+Checkpoint run_and_check_resume(const Config& config, const std::string& scratch_name,
+                                const Checkpoint& parent = quick_parent()) {
   const Encounter spec = config.find_encounter("strong");
   const ScratchFolder scratch(scratch_name);
-  Checkpoint straight = begin_encounter(quick_parent(), config, spec);
+  Checkpoint straight = begin_encounter(parent, config, spec);
   Checkpoint resumed = straight;
   EXPECT_EQ(run_encounter(straight, config, quiet_loop()), LoopOutcome::finished);
   const auto& failures = straight.observables.failures;
@@ -542,6 +545,28 @@ TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
   for (const auto& e : failures) first_step += e.step == failures.front().step ? 1 : 0;
   EXPECT_GE(first_step, 3u);
   EXPECT_GT(failures.front().strain, record.failure_strain);  // the candidate that opened it
+}
+
+// A crust that varies (docs/crust.md): the quick body's crust given a strength dichotomy (weak toward
+// the perturber, s11 = -0.3) and a weak great circle through the subsatellite point. The encounter
+// reads each spring's factor from the body (stored in the mid-stage file: format 8) and resumes bit
+// for bit; the weak parts take more than their share of the failures.
+TEST(EncounterStage, AVaryingCrustResumesBitIdenticallyAndItsWeakPartsFailMore) {
+  const Config config = quick_config();
+  Checkpoint parent = quick_parent();
+  CrustConfig crust;
+  crust.strength_harmonics = "s11 = -0.3";
+  crust.weak_lines = "pole_lon = 0, pole_lat = 0, half_width = 6, factor = 0.5";
+  const CrustField field = make_crust_field(crust, "crust");
+  for (std::size_t n = 0; n < parent.body.spring_count(); ++n)
+    if (parent.body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell))
+      parent.body.strength_factor[n] = field.strength_factor(
+          0.5 * (vec3_at(parent.state.position, static_cast<std::size_t>(parent.body.springs[n][0])) +
+                 vec3_at(parent.state.position, static_cast<std::size_t>(parent.body.springs[n][1]))));
+  const Checkpoint done = run_and_check_resume(config, "encounter_varying_crust", parent);
+  const CrustStatistics stats = crust_statistics(done.body, analyze_fractures(done));
+  EXPECT_TRUE(stats.varies);
+  EXPECT_GT(stats.weak.capture_ratio, 1.2) << stats.weak.failure_share << " of the failures on " << stats.weak.spring_share;
 }
 
 }  // namespace

@@ -374,6 +374,28 @@ TEST(RelaxStage, ASurfaceLoadCompressesTheWeldedCrustAsTheLithostaticFormulaSays
   EXPECT_LT(ratio, 1.3);
 }
 
+// A crust that varies (docs/crust.md) on the welded quick body: a thickness dichotomy toward +y
+// (t from 0.5 to 1.5: node masses, spring and hinge stiffnesses), a strength dichotomy (f from 0.6
+// to 1.4) and a weak great circle (f = 0.5) relax as the uniform crust does: the balanced support
+// carries each node's own weight, and the probe, at eps_S = 5e-4 (1.5e-4 where the great circle
+// crosses the weak side), fails nothing.
+TEST(RelaxStage, AVaryingWeldedCrustRelaxesAndItsProbeFailsNothing) {
+  Config config = load_config(workflow_file("quick-welded.toml"));
+  config.shell.failure_strain = 5e-4;
+  config.crust.thickness_harmonics = "s11 = 0.5";
+  config.crust.strength_harmonics = "s11 = -0.4";
+  config.crust.weak_lines = "pole_lon = 0, pole_lat = 0, half_width = 5, factor = 0.5";
+  validate(config, "varying");
+  Checkpoint c = begin_relax(stretch_stage(build_stage(config), config), config);
+  ASSERT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);
+  const auto& r = c.stage.as<RelaxRecord>();
+  EXPECT_EQ(r.probe_failure_strain, 5e-4);
+  EXPECT_EQ(r.probe_failures, 0);
+  EXPECT_LT(r.probe_max_shell_strain, 1e-4) << "the largest crust strain the probe saw";
+  EXPECT_LT(r.internal_kinetic_energy, 1e-6);
+  EXPECT_LT(*std::min_element(c.body.strength_factor.begin(), c.body.strength_factor.end()), 0.31);
+}
+
 TEST(RelaxStage, ALithostaticCrustOnThePapersCouplingIsAClearError) {
   Config config = quick_config();  // cross.coupling = "paper"
   apply_override(config, "relax.crust_support=lithostatic");

@@ -139,6 +139,7 @@ inline Checkpoint random_cluster(std::uint64_t seed) {
     state.springs.stiffness.push_back(kind == SpringKind::shell ? 0.06 : kind == SpringKind::interior ? 0.1 : 0.05);
     state.springs.failed.push_back(0);
   }
+  body.strength_factor.assign(body.spring_count(), 1.0);  // a uniform crust
   for (const auto& h : body.hinges) {
     const double theta = hinge_angle(vec3_at(state.position, static_cast<std::size_t>(h[0])),
                                      vec3_at(state.position, static_cast<std::size_t>(h[1])),

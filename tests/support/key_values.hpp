@@ -29,6 +29,14 @@ inline std::vector<std::string> other_key_values(const KeyInfo& key) {
   // encounters.after: another encounter of the workflow (paper-T's T1; the tiny bodies of
   // KeyReaders have one encounter only, so it is tried in the fingerprint test alone).
   if (key.section == "encounters" && key.name == "after") return {"T1"};
+  // [crust] (docs/crust.md): other fields, a map of tests/support; a digest alone builds nothing else.
+  if (key.section == "crust" && key.name == "thickness_harmonics") return {"'c10 = 0.3'", "'s11 = 0.2'"};
+  if (key.section == "crust" && key.name == "strength_harmonics") return {"'s11 = -0.3'", "'c10 = 0.2'"};
+  if (key.section == "crust" && key.name == "weak_lines")
+    return {"'pole_lon = 0, pole_lat = 0, half_width = 20, factor = 0.5'"};
+  if (key.section == "crust" && key.name == "map_file")
+    return {"'" + std::string(TIDALCRUST_SOURCE_DIR) + "/tests/support/crust-map.csv'"};
+  if (key.section == "crust" && key.name == "map_digest") return {"'0123456789abcdef'"};
   if (key.type == "string") return {"renamed"};  // workflow.name, encounters.name
   std::vector<std::string> out;
   if (key.type == "choice") {

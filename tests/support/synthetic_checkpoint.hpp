@@ -43,6 +43,7 @@ inline Checkpoint synthetic_checkpoint() {
   b.species = {0, 1, 1, 1, 1};
   b.springs = {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {1, 2}, {2, 3}, {3, 1}, {1, 4}, {2, 4}, {3, 4}};
   b.spring_kind = {2, 2, 2, 2, 1, 1, 1, 1, 1, 1};
+  b.strength_factor.assign(b.springs.size(), 1.0);  // a uniform crust
   b.hinges = {{3, 4, 1, 2}, {1, 4, 2, 3}, {2, 4, 3, 1}};
   b.faces = {{1, 2, 3}, {1, 4, 2}, {2, 4, 3}, {3, 4, 1}};
   b.softening = 1e-3;

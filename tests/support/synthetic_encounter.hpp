@@ -55,6 +55,7 @@ inline Checkpoint synthetic_encounter(int level = 2) {
   s.springs.rest_length.assign(ns, 0.1);
   s.springs.stiffness.assign(ns, 0.06);
   s.springs.failed.assign(ns, 0);
+  b.strength_factor.assign(ns, 1.0);  // a uniform crust
   s.perturber.present = true;
   s.perturber.mass = 0.5;
   s.perturber.position = {0, 5, 0};

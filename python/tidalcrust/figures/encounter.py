@@ -239,11 +239,31 @@ def _scale_bar(ax, proj: ccrs.Projection, bar: dict) -> None:
             gid="scale_bar_label")
 
 
+def _crust_field(ax, cracks: dict, data_crs, frame: dict = ORBITAL_MAP) -> None:
+    """A crust that varies (cracks.json's `crust`, docs/crust.md) under the cracks: the thickness factor
+    at the shell nodes (brown thin, green thick) and the strength factor at the springs (red weak,
+    blue strong), each shaded symmetrically about 1 where it is not 1; nothing for a uniform crust."""
+    for kind, cmap, size in (("thickness", "BrBG", 7), ("strength", "RdBu", 2)):
+        field = cracks.get("crust", {}).get(kind, {})
+        shown = [k for k, f in enumerate(field.get("factor", [])) if f != 1]  # a weak line: only the line
+        if shown:
+            factor = [field["factor"][k] for k in shown]
+            half = max(abs(f - 1) for f in factor)
+            ax.scatter([_in_map_frame(field["lon"][k], frame) for k in shown], [field["lat"][k] for k in shown],
+                       c=factor, s=size, cmap=cmap, vmin=1 - half, vmax=1 + half, linewidths=0, transform=data_crs,
+                       gid=f"crust_{kind}", zorder=1)
+
+
+def _in_map_frame(lon: float, frame: dict) -> float:
+    """A longitude of cracks.json (the body frame) in the map's frame, (-180, 180]."""
+    return (lon + frame["longitude_shift_deg"] + 180.0) % 360.0 - 180.0
+
+
 def _subsatellite(cracks: dict, frame: dict = ORBITAL_MAP) -> tuple[float, float]:
     """The encounter's subsatellite point (lon, lat) of a cracks.json ((90, 0) in files before it),
     in the map's frame (its longitude shifted by frame["longitude_shift_deg"])."""
     lon, lat = cracks.get("subsatellite", SUBSATELLITE_LON_LAT)
-    return (lon + frame["longitude_shift_deg"] + 180.0) % 360.0 - 180.0, lat
+    return _in_map_frame(lon, frame), lat
 
 
 def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180, -90, 90), linewidth: float = 1.0,
@@ -270,6 +290,7 @@ def _map_axes(ax, view: str, cracks: dict, mosaic=None, mosaic_extent=(-180, 180
             ax.text(lon, -1, f"{lon}\u00b0", fontsize=6, color="0.35", ha="center", va="top", transform=data_crs)
         for lat in (-60, -30, 30, 60):
             ax.text(2, lat, f"{lat}\u00b0", fontsize=6, color="0.35", ha="left", va="bottom", transform=data_crs)
+    _crust_field(ax, cracks, data_crs, frame)
     earlier = cracks.get("earlier", {}).get("polylines", [])
     if earlier:  # an encounter of a history: the cracks it began with, under its own
         ax.add_collection(LineCollection(_project_lines(earlier, proj, frame["longitude_shift_deg"])[0],
@@ -313,6 +334,9 @@ def fracture_map(path: str | os.PathLike, view: str = "overview", ax=None, mosai
             _map_axes(sub, v, cracks, mosaic, mosaic_extent, linewidth, frame)
             sub.set_title(label, fontsize=8)
         history = "; grey: cracks of the earlier encounters" if cracks.get("earlier", {}).get("polylines") else ""
+        crust = cracks.get("crust", {})
+        history += "; dots: thickness, brown thin" if crust.get("thickness", {}).get("factor") else ""
+        history += "; dots: strength, red weak" if crust.get("strength", {}).get("factor") else ""
         fig.text(0.5, 0.01, frame["note"] + history, ha="center", fontsize=7, wrap=True, gid="note")
         _title(fig, title)
         return fig
