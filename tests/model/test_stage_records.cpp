@@ -56,5 +56,5 @@ TEST(StageRecord, EveryFieldIsVisitedOnceWithAUnit) {
   check(BuildRecord{}, 3);
   check(StretchRecord{}, 9);
   check(RelaxRecord{}, 13);
-  check(EncounterRecord{}, 27);  // 18 + the energy budget's three accumulators + the local rule's three + shadow_distance + flaw_length, growth_strain_factor
+  check(EncounterRecord{}, 31);  // 18 + the energy budget's three accumulators + the local rule's three + shadow_distance + flaw_length, growth_strain_factor + after and the orbit's three angles
 }
