@@ -135,10 +135,10 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
   // First every encounter that began from a relaxed body: superseded when that is another one.
   // Then the encounters of histories (`after`), each once the one it comes after is settled:
   // superseded when that one's final checkpoint is gone or holds another state than it began from.
-  const auto remove_encounter = [&](const fs::path& dir) {
+  const auto remove_encounter = [&](const fs::path& dir, const std::string& why) {
     for (const auto& name : files) remove_stage_outputs(dir / name, false);
     fs::remove_all(dir / "analysis", ec);
-    say(ctx, fmt::format("{}: removed the encounter, which branched from another relaxed body", dir.string()));
+    say(ctx, fmt::format("{}: removed the encounter, which {}", dir.string(), why));
   };
   // The first stage's checkpoint of `dir`, read under its lock (held by `lock`); nullopt when
   // absent, locked by another process, unreadable, or of another body.
@@ -170,7 +170,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
     const std::optional<Checkpoint> first = read_first(dir, lock);
     if (!first) continue;
     if (const auto after = after_of(*first)) history.emplace(dir, dir.parent_path() / *after);
-    else if (first->stage.parent_hash != relaxed_hash) remove_encounter(dir);
+    else if (first->stage.parent_hash != relaxed_hash) remove_encounter(dir, "branched from another relaxed body");
   }
   std::set<fs::path> settled;
   for (bool progress = true; progress && settled.size() < history.size();) {
@@ -189,7 +189,7 @@ void remove_superseded_encounters(const RunContext& ctx, const fs::path& root, c
       } catch (const InputError&) {
         continue;  // unreadable: run reports it when it reaches it
       }
-      remove_encounter(dir);
+      remove_encounter(dir, fmt::format("began from another state of {}", before.filename().string()));
     }
   }
   if (every_folder_checked) write_file_atomically(superseded_check_file(body_dir), relaxed_hash + "\n");
