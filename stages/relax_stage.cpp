@@ -76,7 +76,8 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
   const RelaxConfig& relax = config.relax;
   const std::int64_t start = checkpoint.stage.clock.start_step;
   const std::int64_t creep_end = record.creep_end_step;
-  const bool balanced = relax.crust_support != CrustSupport::paper;  // balanced or lithostatic
+  // balanced or lithostatic; a floating crust creeps as the paper's (no cross springs to balance).
+  const bool balanced = relax.crust_support == CrustSupport::balanced || relax.crust_support == CrustSupport::lithostatic;
   auto after_step = [&](Checkpoint& c) {
     const std::int64_t done = c.state.step - start;
     if (balanced) {
@@ -160,7 +161,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   record.creep_end_step =
       std::max(clock.start_step, c.stage.end_step - steps_for_duration(config.relax.settle_duration, clock.dt));
   if (record.creep_end_step == clock.start_step) {  // settle only
-    if (config.relax.crust_support != CrustSupport::paper) {
+    if (config.relax.crust_support == CrustSupport::balanced || config.relax.crust_support == CrustSupport::lithostatic) {
       ForceField forces(c.body, force_options(config, record.damping));
       support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else {

@@ -16,7 +16,15 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   // The stretch factor is found from forces that include self-gravity.
   out.stage.gravity_kernel = gravity_kernel_label(config.gravity.kernel);
 
-  record = stretch_springs(built.body, built.state, config, out.state.springs);
+  if (built.body.liquid.present()) {
+    // The liquid starts at its hydrostatic pressure, and the stretch solves with it holding the crust.
+    State with_liquid = built.state;
+    set_hydrostatic_liquid_density(built.body, with_liquid);
+    out.state.liquid_reference_density = with_liquid.liquid_reference_density;
+    record = stretch_springs(built.body, with_liquid, config, out.state.springs);
+  } else {
+    record = stretch_springs(built.body, built.state, config, out.state.springs);
+  }
   record.dt_max = derive_quantities(out.body, out.state, config.interior.radius).dt_max;
   return out;
 }

@@ -17,6 +17,7 @@
 #include "bodies/material_body.hpp"
 #include "bodies/neighbor_grid.hpp"
 #include "bodies/shell_hinges.hpp"
+#include "bodies/ocean_layer.hpp"
 #include "bodies/welded_coupling.hpp"
 #include "forces/hinge_geometry.hpp"
 #include "model/crust_field.hpp"
@@ -256,6 +257,9 @@ BuiltBody build_body(const Config& config) {
   out.state.springs.failed.assign(out.body.spring_count(), 0);
   add_shell_hinges(out, shell, shell_offset, k.bending);
   vary_crust(out, config);
+  if (config.ocean.present())
+    add_ocean(out, *config.ocean.thickness,
+              config.ocean.bulk_modulus ? *config.ocean.bulk_modulus : *config.material.youngs_modulus / 1.5);
 
   std::vector<Vec3> positions(interior.nodes);
   positions.insert(positions.end(), shell.nodes.begin(), shell.nodes.end());

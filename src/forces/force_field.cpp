@@ -59,6 +59,7 @@ ForceField::ForceField(const Body& body, ForceOptions options)
     tree_.emplace(body.mass, body.softening, options.force_error);
   else
     gravity_.emplace(body.mass, body.softening, options.gravity_kernel);
+  if (body.liquid.present()) liquid_.emplace(body);
   const std::size_t n = body.particle_count(), ns = body.spring_count(), nh = body.hinge_count();
   TIDALCRUST_ASSERT(body.spring_kind.size() == ns,
                     fmt::format("body has {} springs but {} spring kinds", ns, body.spring_kind.size()));
@@ -169,6 +170,8 @@ void ForceField::gather(std::size_t p, bool with_gravity, double* acceleration) 
     const double* fh = hinge_force_.data() + 3 * static_cast<std::size_t>(hinge_entry_[static_cast<std::size_t>(e)]);
     for (int k = 0; k < 3; ++k) f[k] += fh[k];
   }
+  if (liquid_)
+    for (int k = 0; k < 3; ++k) f[k] += liquid_->forces()[3 * p + k];
   const double inv_mass = 1.0 / body_.mass[p];
   double g[3] = {0, 0, 0};
   if (with_gravity) {
@@ -227,10 +230,15 @@ void ForceField::check_sizes(const SpringState& springs, const HingeState& hinge
 }
 
 ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
-                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
+                                const HingeState& hinges, const Perturber& perturber,
+                                const std::vector<double>& liquid_reference_density, Accelerations& out) {
   check_sizes(springs, hinges);
   const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
   out.body.resize(3 * n);
+  // The liquid's two passes (densities, then pair forces) need all positions first: before the rest.
+  if (liquid_)
+    liquid_->compute(position, velocity, liquid_reference_density, options_.damping,
+                     n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
   if (self_gravity) {
@@ -286,10 +294,15 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
 }
 
 Energies ForceField::energies(const double* position, const double* velocity, const SpringState& springs,
-                              const HingeState& hinges, const Perturber& perturber) {
+                              const HingeState& hinges, const Perturber& perturber,
+                              const std::vector<double>& liquid_reference_density) {
   check_sizes(springs, hinges);
   refresh_half_rest_angles(hinges);
   Energies e;
+  if (liquid_) {
+    e.liquid = liquid_->energy(position, liquid_reference_density);
+    e.damping_power += liquid_->damping_power(position, velocity, options_.damping);
+  }
   for_each_spring(0, body_.spring_count(), position, velocity, springs,
                   [&e](std::size_t, const double*, const SpringForceEnergy& spring) {
                     e.spring += spring.energy;
@@ -315,6 +328,7 @@ StepWork ForceField::work_of_step(const double* start, const double* half, const
         d_dot_change += (half[i + k] - half[j + k]) * ((end[i + k] - start[i + k]) - (end[j + k] - start[j + k]));
       work.damping_removed += spring_damping_[s] * d_dot_change;
     }
+    if (liquid_) work.damping_removed += liquid_->damping_work(start, end);
   }
   for (std::size_t h = 0; h < body_.hinge_count(); ++h) {
     if (hinge_work_rate_[h] == 0) continue;  // at rest angle (or k_e = 0): no work
@@ -349,7 +363,7 @@ std::string ForceField::describe(const ForceAlarms& alarms, const double* positi
       }
     }
     what = fmt::format("particle {} ({}) has a non-finite acceleration, first from {}", p,
-                       body_.species[p] == static_cast<std::uint8_t>(Species::shell) ? "shell" : "interior", source);
+                       species_name(body_.species[p]), source);
   } else {
     what = "no force alarm";
   }

@@ -24,6 +24,7 @@
 #include "model/config.hpp"
 #include "forces/gravity.hpp"
 #include "forces/hinge_force.hpp"
+#include "forces/liquid_pressure.hpp"
 #include "forces/spring_force.hpp"
 #include "forces/tree_gravity.hpp"
 #include "model/state.hpp"
@@ -74,8 +75,10 @@ struct Energies {
   double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)
   double self_gravity = 0;  ///< sum over pairs of -m_i m_j / sqrt(r^2 + eps^2); 0 with self-gravity off
   double perturber = 0;     ///< sum over particles of -M2 m_i / sqrt(r^2 + eps^2); 0 without a perturber
-  double damping_power = 0; ///< sum over springs of gamma mu (d.dv)^2/L^2 >= 0, G M^2/R per t_grav
-  double potential() const { return spring + hinge + self_gravity + perturber; }
+  double liquid = 0;        ///< energy of the liquid layer's particles (LiquidPressure); 0 without one
+  /// sum over springs of gamma mu (d.dv)^2/L^2 >= 0, and the liquid pairs' damping, G M^2/R per t_grav
+  double damping_power = 0;
+  double potential() const { return spring + hinge + self_gravity + perturber + liquid; }
 };
 
 /// Work done in one leapfrog step by the forces that have no potential (docs/energy-budget.md),
@@ -84,7 +87,8 @@ struct Energies {
 struct StepWork {
   /// Energy the spring damping took out of the motion: sum over springs of
   /// c_d (d_half . Delta d), c_d = gamma mu (d_half . dv_start)/L_half^2 the damping coefficient
-  /// of the step (start-of-step velocities, as the kick uses them); >= 0 up to O(dt^2).
+  /// of the step (start-of-step velocities, as the kick uses them); >= 0 up to O(dt^2). With a
+  /// liquid layer, plus its pairs' damping force times each particle's Delta x.
   double damping_removed = 0;
   /// Work of the hinge forces beyond minus the change of the hinge energy E_h: sum over hinges
   /// of (E_h/C)(half step) * (C(end) - C(start)), the midpoint rule for the integral of (E_h/C) dC.
@@ -97,21 +101,25 @@ class ForceField {
   explicit ForceField(const Body& body, ForceOptions options = {});
 
   /// Accelerations at positions [N*3] (R) and velocities [N*3] (sqrt(GM/R); they enter
-  /// only through spring damping). Returns the blow-up alarms of this pass.
+  /// only through damping). `liquid_reference_density` [N] (State::liquid_reference_density; empty
+  /// without a liquid layer). Returns the blow-up alarms of this pass.
   ForceAlarms compute(const double* position, const double* velocity, const SpringState& springs,
-                      const HingeState& hinges, const Perturber& perturber, Accelerations& out);
+                      const HingeState& hinges, const Perturber& perturber,
+                      const std::vector<double>& liquid_reference_density, Accelerations& out);
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
-                   state.perturber, out);
+                   state.perturber, state.liquid_reference_density, out);
   }
 
   /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
   /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
   /// O(N^2): for diagnostics, not every step). Checks the sizes like compute().
   Energies energies(const double* position, const double* velocity, const SpringState& springs,
-                    const HingeState& hinges, const Perturber& perturber);
+                    const HingeState& hinges, const Perturber& perturber,
+                    const std::vector<double>& liquid_reference_density);
   Energies energies(const State& state) {
-    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
+    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber,
+                    state.liquid_reference_density);
   }
 
   /// The work of the non-conservative forces in the step from positions `start` to `end` [N*3]
@@ -170,6 +178,7 @@ class ForceField {
   ForceOptions options_;
   std::optional<DirectGravity> gravity_;  ///< the self-gravity method in use: one of the two
   std::optional<TreeGravity> tree_;
+  std::optional<LiquidPressure> liquid_;  ///< present for a body with a liquid layer
   std::vector<double> reduced_mass_;    ///< [Ns] m_i m_j/(m_i+m_j)
   std::vector<std::uint8_t> nonlinear_; ///< [Ns] 1 where eq. 26 applies
   CrossSoftening cross_;                ///< eq. 26 parameters

@@ -267,8 +267,33 @@ std::string consistency_problem(const Checkpoint& c) {
   for (std::size_t r = 0; r < c.body.faces.size(); ++r)
     for (auto i : c.body.faces[r])
       if (auto p = index_problem(path::faces, r, i); !p.empty()) return p;
+  const std::uint8_t highest_species = c.body.liquid.present() ? 2 : 1;
   for (std::size_t r = 0; r < n; ++r)
-    if (c.body.species[r] > 1) return fmt::format("{} row {}: species {} is not 0 or 1", path::species, r, +c.body.species[r]);
+    if (c.body.species[r] > highest_species)
+      return fmt::format("{} row {}: species {} is not {}", path::species, r, +c.body.species[r],
+                         c.body.liquid.present() ? "0, 1 or 2" : "0 or 1 (2, liquid, needs /checkpoint/liquid)");
+  if (c.body.liquid.present()) {
+    const auto& liquid = c.body.liquid;
+    if (!std::isfinite(liquid.support_radius) || !(liquid.bulk_modulus > 0) || !std::isfinite(liquid.bulk_modulus))
+      return fmt::format("/checkpoint/liquid: support_radius {} and bulk_modulus {} must be finite and > 0",
+                         liquid.support_radius, liquid.bulk_modulus);
+    if (liquid.density_weight.size() != n || c.state.liquid_reference_density.size() != n)
+      return fmt::format("/checkpoint/liquid: density_weight and reference_density have {} and {} values, expected N = {}",
+                         liquid.density_weight.size(), c.state.liquid_reference_density.size(), n);
+    for (std::size_t r = 0; r < n; ++r) {
+      const bool is_liquid = c.body.species[r] == 2;
+      if (!(liquid.density_weight[r] >= 0) || !std::isfinite(liquid.density_weight[r]) ||
+          (is_liquid && !(liquid.density_weight[r] > 0)))
+        return fmt::format("/checkpoint/liquid/density_weight row {}: {} is not finite and >= 0 (> 0 for a liquid "
+                           "particle)", r, liquid.density_weight[r]);
+      const double n0 = c.state.liquid_reference_density[r];
+      if (is_liquid ? !(n0 > 0 && std::isfinite(n0)) : n0 != 0)
+        return fmt::format("/checkpoint/liquid/reference_density row {}: {} is not {}", r, n0,
+                           is_liquid ? "finite and > 0 (a liquid particle)" : "0 (a solid particle)");
+    }
+  } else if (!c.state.liquid_reference_density.empty()) {
+    return "the state has liquid reference densities but the body no liquid layer";
+  }
   for (std::size_t r = 0; r < ns; ++r) {
     if (c.body.spring_kind[r] > 2)
       return fmt::format("{} row {}: kind {} is not 0, 1 or 2", path::spring_kind, r, +c.body.spring_kind[r]);
@@ -331,13 +356,18 @@ void edit_object(hid_t root, const char* object_path, Edit edit) {
 
 /// The H5MD metadata of the stored arrays: units, the particles group of each connectivity
 /// list, and the names of the integer codes of species and spring kinds (labels[i] names code i).
-void write_h5md_metadata(hid_t root, const UnitStrings& unit) {
+void write_h5md_metadata(hid_t root, const UnitStrings& unit, bool liquid) {
   for (auto [dataset, u] : {std::pair{path::position, &unit.length}, std::pair{path::position_time, &unit.time},
                             std::pair{path::velocity, &unit.velocity}, std::pair{path::mass, &unit.mass}})
     edit_object(root, dataset, [&](hid_t id) { h5::write_vl_string_attribute(id, "unit", *u); });
   for (const char* list : {path::springs, path::hinges, path::faces})
     edit_object(root, list, [](hid_t id) { h5::write_object_reference_attribute(id, "particles_group", path::particles_group); });
-  edit_object(root, path::species, [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell"}); });
+  // "liquid" only where there is one: every other file keeps its bytes.
+  edit_object(root, path::species, [&](hid_t id) {
+    h5::write_string_array_attribute(id, "labels",
+                                     liquid ? std::vector<std::string>{"interior", "shell", "liquid"}
+                                            : std::vector<std::string>{"interior", "shell"});
+  });
   edit_object(root, path::spring_kind,
               [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell", "cross"}); });
 }
@@ -367,7 +397,7 @@ void write_body_and_state(hid_t root, const Checkpoint& c, const UnitStrings& un
     if (shape.time_slice) h5::write_extensible_dataset(root, dataset, flat_data(values), dims);
     else h5::write_dataset(root, dataset, flat_data(values), dims);
   });
-  write_h5md_metadata(root, unit);
+  write_h5md_metadata(root, unit, c.body.liquid.present());
 }
 
 /// Writes one stage-record field under /checkpoint/record: numbers and flags as attributes,
@@ -439,6 +469,34 @@ struct RecordReader {
   }
 };
 
+/// /checkpoint/liquid, only for a body with a liquid layer (docs/checkpoint-layout.md): the
+/// kernel support and bulk modulus (attributes), each particle's density weight (the body) and
+/// reference density (the state), [N] each. read_liquid_layer reads it back.
+void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const std::vector<double>& reference_density) {
+  h5::Group group = h5::create_group(checkpoint, "liquid");
+  h5::write_attribute<double>(group.get(), "support_radius", liquid.support_radius);
+  h5::write_attribute<double>(group.get(), "bulk_modulus", liquid.bulk_modulus);
+  h5::write_dataset(group.get(), "density_weight", liquid.density_weight.data(), {liquid.density_weight.size()});
+  h5::write_dataset(group.get(), "reference_density", reference_density.data(), {reference_density.size()});
+}
+
+/// Reads /checkpoint/liquid when the file has it (else the body has no liquid layer); the
+/// consistency check then checks its values against the particles.
+void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
+  if (H5Lexists(checkpoint, "liquid", H5P_DEFAULT) <= 0) return;
+  h5::Group group = h5::open_group(checkpoint, "liquid");
+  body.liquid.support_radius = h5::read_attribute<double>(group.get(), "support_radius");
+  body.liquid.bulk_modulus = h5::read_attribute<double>(group.get(), "bulk_modulus");
+  // One-dimensional [N]: the consistency check compares the counts with the particles.
+  for (auto [name, values] : {std::pair{"density_weight", &body.liquid.density_weight},
+                              std::pair{"reference_density", &state.liquid_reference_density}}) {
+    auto array = h5::read_dataset<double>(group.get(), name);
+    if (array.dims.size() != 1)
+      throw h5::Error(fmt::format("dataset /checkpoint/liquid/{} has {} dimensions, expected 1 [N]", name, array.dims.size()));
+    *values = std::move(array.values);
+  }
+}
+
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
   h5::Group group = h5::open_group(root, "/checkpoint");
   hid_t g = group.get();
@@ -459,6 +517,7 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
   h5::write_string_attribute(g, "gravity_kernel_changes", c.stage.gravity_kernel_changes);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
+  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid, c.state.liquid_reference_density);
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
     h5::write_dataset<double>(perturber.get(), "mass", &c.state.perturber.mass, {});
@@ -744,6 +803,7 @@ void read_stage_info(hid_t root, Checkpoint& c) {
                              std::pair{"gravity_kernel_changes", &c.stage.gravity_kernel_changes}})
     if (H5Aexists(g.get(), name) > 0) *value = h5::read_string_attribute(g.get(), name);
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
+  read_liquid_layer(g.get(), c.body, c.state);
   h5::Group record = h5::open_group(g.get(), "record");
   std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);
 }

@@ -9,8 +9,29 @@
 
 namespace tidalcrust {
 
-enum class Species : std::uint8_t { interior = 0, shell = 1 };
+/// interior: a node of the interior network; shell: a crust node; liquid: a particle of a liquid
+/// layer (an ocean), which has no springs and feels pressure only (LiquidLayer).
+enum class Species : std::uint8_t { interior = 0, shell = 1, liquid = 2 };
+
+/// "interior", "shell" or "liquid" for a Species value (messages, the checkpoint's species labels).
+inline const char* species_name(std::uint8_t species) {
+  return species == static_cast<std::uint8_t>(Species::shell)    ? "shell"
+         : species == static_cast<std::uint8_t>(Species::liquid) ? "liquid"
+                                                                  : "interior";
+}
 enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2 };
+
+/// A liquid layer (docs/ocean.md; forces/liquid_pressure.hpp): the liquid particles
+/// (Species::liquid) interact with each other and with the solid particles at the layer's boundary
+/// through their number density alone, which gives the layer a bulk modulus and no shear modulus.
+struct LiquidLayer {
+  double support_radius = 0;  ///< H, the support of the Wendland C2 kernel, R; 0: no liquid layer
+  double bulk_modulus = 0;    ///< K, e_g (G M^2/R^4)
+  /// [N] weight of each particle in a liquid particle's density sum: 1 for a liquid particle and
+  /// for a solid particle at the layer's boundary, 0 for a particle the liquid does not touch.
+  std::vector<double> density_weight;
+  bool present() const { return support_radius > 0; }
+};
 
 struct Body {
   std::vector<double> mass;                          ///< [N] in units of the body mass M
@@ -30,6 +51,7 @@ struct Body {
   /// uniform crust. Empty stands for all 1 (a body put together by hand); failure_strain_factor.
   std::vector<double> strength_factor;
   double softening = 0.0;  ///< Plummer softening length in R (1/100 of min initial spacing)
+  LiquidLayer liquid;      ///< an ocean between the crust and the solid interior; absent by default
 
   std::size_t particle_count() const { return mass.size(); }
   std::size_t spring_count() const { return springs.size(); }

@@ -39,6 +39,7 @@ enum class CrustSupport {
   paper,     ///< section 2.8: the crust carries the cross springs' tangential push
   balanced,  ///< cross-spring rest lengths chosen so that they alone carry each shell node's weight
   lithostatic,  ///< balanced, but the crust keeps the compression its weight gives on a welded interior
+  floating,  ///< the crust floats on an ocean ([ocean]): its rest lengths creep to the current lengths, no cross springs
 };
 template <>
 struct ChoiceTable<CrustSupport> {
@@ -47,6 +48,7 @@ struct ChoiceTable<CrustSupport> {
       ChoiceRow<CrustSupport>{CrustSupport::balanced, "balanced", "no crust pre-stress"},
       ChoiceRow<CrustSupport>{CrustSupport::lithostatic, "lithostatic",
                               "crust compressed by its own weight; welded crust only"},
+      ChoiceRow<CrustSupport>{CrustSupport::floating, "floating", "crust floats on an ocean; [ocean] only"},
   };
 };
 

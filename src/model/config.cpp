@@ -299,6 +299,14 @@ void visit_keys(C& c, V&& visit) {
   key(c.core.modulus_ratio,
       {"core", "modulus_ratio", reads(build, stretch), "-", "E_core / E_mantle; default 1", 0, 1000, true});
 
+  // issue 26: [ocean], a liquid layer under the crust (docs/ocean.md); optional. The builder turns
+  // the interior nodes within `thickness` of the shell into liquid particles; the stretch sets
+  // their reference densities from the hydrostatic pressure and K.
+  key(c.ocean.thickness, {"ocean", "thickness", reads(build, stretch), "R",
+                          "from the crust down to the ocean floor (unset: no ocean)", 0, 0.9, true});
+  key(c.ocean.bulk_modulus, {"ocean", "bulk_modulus", reads(build, stretch), "e_g",
+                             "K of the liquid; default the interior's, E_I / 1.5 (nu = 1/4)", 0, 1e6, true});
+
   // issue 25: [moon], the moon in SI (docs/moon.md); all optional. Quantities are strings with their
   // unit (the key's unit is the SI unit they are converted to). They fill [material] and [core]
   // (resolve_moon): each declares the stages that read the values it fills.
@@ -1216,6 +1224,21 @@ void validate(const Config& config, const std::string& origin) {
   if (!config.core.present() && (config.core.density_ratio || config.core.modulus_ratio))
     throw InputError(fmt::format("{}: core.{} needs core.radius ([core] needs core.radius)", origin,
                                  config.core.density_ratio ? "density_ratio" : "modulus_ratio"));
+  if (config.ocean.present() != (config.relax.crust_support == CrustSupport::floating))
+    throw InputError(fmt::format("{}: {}", origin,
+                                 config.ocean.present()
+                                     ? "a crust on an ocean floats: [ocean] needs relax.crust_support = \"floating\""
+                                     : "relax.crust_support = \"floating\" needs an ocean to float on ([ocean] thickness)"));
+  if (config.ocean.present() && !config.shell.enabled)
+    throw InputError(fmt::format("{}: [ocean] needs a crust to float (shell.enabled = true)", origin));
+  if (config.ocean.present() && !config.from_material() && !config.ocean.bulk_modulus)
+    throw InputError(fmt::format("{}: ocean.bulk_modulus is needed without [material] (its default is the "
+                                 "interior's, from material.youngs_modulus)", origin));
+  if (!config.ocean.present() && config.ocean.bulk_modulus)
+    throw InputError(fmt::format("{}: ocean.bulk_modulus needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
+  if (config.ocean.present() && config.core.present() && *config.core.radius >= 1 - *config.ocean.thickness)
+    throw InputError(fmt::format("{}: core.radius = {} reaches into the ocean (its floor lies at 1 - ocean.thickness "
+                                 "= {})", origin, *config.core.radius, 1 - *config.ocean.thickness));
   // The [crust] grammar (model/crust_field.hpp); the map file was read by resolve_crust.
   const std::string crust = origin + ": crust";
   if (config.crust.thickness_harmonics) parse_harmonics(*config.crust.thickness_harmonics, crust + ".thickness_harmonics");

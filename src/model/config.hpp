@@ -174,6 +174,15 @@ struct CoreConfig {
 };
 // ---- end of issue 12 ---------------------------------------------------------------------------
 
+/// A liquid layer under the crust (docs/ocean.md; issue 26): the interior nodes deeper than the
+/// shell by less than `thickness` become liquid particles (forces/liquid_pressure.hpp), which
+/// have no springs; the crust floats on them.
+struct OceanConfig {
+  std::optional<double> thickness;      ///< from the shell down to the ocean floor, R (unset: no ocean)
+  std::optional<double> bulk_modulus;   ///< K of the liquid, e_g; default the interior's K = E_I / (3 (1 - 2 nu)) at nu = 1/4
+  bool present() const { return thickness.has_value() && *thickness > 0; }
+};
+
 /// A [sweep] table (docs/cluster.md): the axes of a product of encounters, each as the list of
 /// its values (a range {from, to, count} of the file is kept as the values it gives). Stored
 /// as itself in every checkpoint's configuration (to_toml), so that a checkpoint's size does not
@@ -249,6 +258,8 @@ struct Config {
   MoonConfig moon;
   /// The [crust] table (docs/crust.md): a crust whose thickness and strength vary over the surface.
   CrustConfig crust;
+  /// The [ocean] table (docs/ocean.md): a liquid layer under the crust.
+  OceanConfig ocean;
   /// No integrator.dt given in a [material] workflow: dt is chosen from the stability bound of
   /// the stretched body (stages/time_step.hpp); to_toml leaves dt out while this is set.
   bool choose_dt = false;
