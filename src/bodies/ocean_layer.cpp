@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "base/errors.hpp"
@@ -59,13 +60,26 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
   const double volume = 4.0 / 3.0 * std::numbers::pi * (top * top * top - floor_radius * floor_radius * floor_radius);
   const double support = liquid_support_spacings * std::cbrt(volume / static_cast<double>(liquid_count));
   body.liquid.support_radius = support;
+  // Liquid particles count in the density sums; a solid particle within a contact reach of the
+  // liquid as built touches it at its closest liquid particle's distance (no force as built).
+  const double spacing = support / liquid_support_spacings;
   body.liquid.density_weight.assign(n, 0.0);
+  body.liquid.contact_radius.assign(n, 0.0);
+  body.liquid.contact_stiffness = bulk_modulus * spacing;
   NeighborGrid grid(Vec3::Constant(-1.5), Vec3::Constant(1.5), support);
   for (std::size_t i = 0; i < n; ++i)
-    if (body.species[i] == liquid) grid.insert(vec3_at(state.position, i));
-  for (std::size_t i = 0; i < n; ++i)
-    if (body.species[i] == liquid || grid.any_closer_than(vec3_at(state.position, i), 1.5 * support))
+    if (body.species[i] == liquid) {
+      grid.insert(vec3_at(state.position, i));
       body.liquid.density_weight[i] = 1.0;
+    }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (body.species[i] == liquid) continue;
+    const Vec3 x = vec3_at(state.position, i);
+    double closest = std::numeric_limits<double>::infinity();
+    for (const std::int32_t j : grid.closer_than(x, liquid_contact_reach * spacing))
+      closest = std::min(closest, (grid.point(j) - x).norm());
+    if (std::isfinite(closest)) body.liquid.contact_radius[i] = closest;
+  }
   body.liquid.bulk_modulus = bulk_modulus;  // for the density sums below; calibrated at the end
   const LiquidPressure pressure(body);
   state.liquid_reference_density = pressure.densities(state.position.data(), false);

@@ -12,11 +12,19 @@ constexpr std::int64_t cell_bits = 21;  // cells per axis < 2^21: keys fit in 63
 constexpr std::int64_t cell_limit = (std::int64_t{1} << cell_bits) - 1;
 }  // namespace
 
-LiquidPressure::LiquidPressure(const Body& body) : body_(body), kernel_{body.liquid.support_radius} {
-  TIDALCRUST_ASSERT(body.liquid.present() && body.liquid.density_weight.size() == body.particle_count(),
-                    "a liquid layer needs one density weight per particle");
+LiquidPressure::LiquidPressure(const Body& body)
+    : body_(body),
+      kernel_{body.liquid.support_radius},
+      contact_{body.liquid.contact_stiffness} {
+  TIDALCRUST_ASSERT(body.liquid.present() && body.liquid.density_weight.size() == body.particle_count() &&
+                        body.liquid.contact_radius.size() == body.particle_count(),
+                    "a liquid layer needs one density weight and one contact radius per particle");
   for (std::size_t i = 0; i < body.particle_count(); ++i)
-    if (body.liquid.density_weight[i] > 0) reachable_.push_back(static_cast<std::int32_t>(i));
+    if (body.liquid.density_weight[i] > 0 || body.liquid.contact_radius[i] > 0) {
+      TIDALCRUST_ASSERT(body.liquid.contact_radius[i] < body.liquid.support_radius,
+                        "a contact radius lies within the liquid kernel's reach (the neighbour search)");
+      reachable_.push_back(static_cast<std::int32_t>(i));
+    }
   force_.assign(3 * body.particle_count(), 0.0);
   damping_force_.assign(3 * body.particle_count(), 0.0);
   density_.assign(body.particle_count(), 0.0);
@@ -135,7 +143,9 @@ void LiquidPressure::compute(const double* position, const double* velocity,
         const double d[3] = {xa[0] - xb[0], xa[1] - xb[1], xa[2] - xb[2]};
         const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         // -d/dx_a of e_a(n_a) + e_b(n_b) through this pair: -(e'_a w_b + e'_b w_a) W'(r) d/r.
-        const double c = -(slope[a] * w[b] + slope[b] * w[a]) * kernel_.derivative(r) / r;
+        double c = -(slope[a] * w[b] + slope[b] * w[a]) * kernel_.derivative(r) / r;
+        if (body_.species[a] != liquid) c += contact_.coefficient(r, body_.liquid.contact_radius[a]);
+        else if (body_.species[b] != liquid) c += contact_.coefficient(r, body_.liquid.contact_radius[b]);
         const double* vb = velocity + 3 * b;
         const double d_dot_dv = d[0] * (va[0] - vb[0]) + d[1] * (va[1] - vb[1]) + d[2] * (va[2] - vb[2]);
         const double mu = mass[a] * mass[b] / (mass[a] + mass[b]);
@@ -157,8 +167,19 @@ double LiquidPressure::energy(const double* position, const std::vector<double>&
   const std::vector<double> n = densities(position, false);
   const std::uint8_t liquid = static_cast<std::uint8_t>(Species::liquid);
   double e = 0;
-  for (std::size_t a = 0; a < body_.particle_count(); ++a)
-    if (body_.species[a] == liquid) e += LiquidEquationOfState{reference_density[a], body_.liquid.bulk_modulus}.energy(n[a]);
+  std::vector<std::int32_t> near;
+  for (std::size_t a = 0; a < body_.particle_count(); ++a) {
+    if (body_.species[a] != liquid) continue;
+    e += LiquidEquationOfState{reference_density[a], body_.liquid.bulk_modulus}.energy(n[a]);
+    neighbours(a, position, near);  // the cells of densities() above
+    for (const std::int32_t b : near) {
+      if (body_.species[static_cast<std::size_t>(b)] == liquid) continue;
+      const double* xa = position + 3 * a;
+      const double* xb = position + 3 * b;
+      const double d0 = xa[0] - xb[0], d1 = xa[1] - xb[1], d2 = xa[2] - xb[2];
+      e += contact_.energy(std::sqrt(d0 * d0 + d1 * d1 + d2 * d2), body_.liquid.contact_radius[static_cast<std::size_t>(b)]);
+    }
+  }
   return e;
 }
 

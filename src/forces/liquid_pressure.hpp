@@ -60,6 +60,21 @@ struct LiquidEquationOfState {
   double energy_slope(double n) const { return pressure(n) / (n * n); }
 };
 
+/// The contact between a liquid particle and a solid one at distance r (R), contact radius delta
+/// (R) and stiffness k (G M^2/R^3): energy (k/2)(delta - r)^2 for r < delta, 0 beyond; the force on
+/// the liquid particle is k (delta - r) along (x_liquid - x_solid)/r, the solid one feels the
+/// opposite. Why contact and not the density sum: in equilibrium the contacts must carry the
+/// liquid's pressure onto the walls exactly (momentum balance of the liquid), whereas a single
+/// layer of crust nodes in the density sums carries a fraction of it; and the kernel smooths over
+/// H, wider than the gaps between crust nodes, so liquid particles would pass through the crust
+/// (measured: docs/ocean.md).
+struct LiquidContact {
+  double stiffness;  ///< k, G M^2/R^3
+  double energy(double r, double radius) const { return r < radius ? 0.5 * stiffness * (radius - r) * (radius - r) : 0.0; }
+  /// Force magnitude over r (G M^2/R^3): the force on the liquid particle is this times d.
+  double coefficient(double r, double radius) const { return r < radius ? stiffness * (radius - r) / r : 0.0; }
+};
+
 /// The liquid layer's forces, energy and densities for a Body with Body::liquid present. Keeps a
 /// reference to the body, which must outlive it.
 class LiquidPressure {
@@ -79,7 +94,8 @@ class LiquidPressure {
                double damping, bool parallel);
   const std::vector<double>& forces() const { return force_; }
 
-  /// Energy sum_a e_a(n_a) of the liquid particles (G M^2/R), summed in index order.
+  /// Energy sum_a e_a(n_a) of the liquid particles plus their contact energy with solid particles
+  /// (G M^2/R), summed in index order.
   double energy(const double* position, const std::vector<double>& reference_density) const;
   /// Power the pair damping removes at velocities [N*3], sum over pairs of damping mu (W/W(0))
   /// (d.dv)^2/r^2 (G M^2/R per t_grav), each pair once, in index order.
@@ -90,6 +106,7 @@ class LiquidPressure {
   double damping_work(const double* start, const double* end) const;
 
   const WendlandKernel& kernel() const { return kernel_; }
+  const LiquidContact& contact() const { return contact_; }
 
  private:
   /// The particles within H of particle a (w > 0, b != a) at `position`, in a fixed order
@@ -101,6 +118,7 @@ class LiquidPressure {
 
   const Body& body_;
   WendlandKernel kernel_;
+  LiquidContact contact_;
   std::vector<std::int32_t> reachable_;  ///< particles with density weight > 0, in index order
   std::vector<double> force_;            ///< [N*3] all liquid forces of the last compute()
   std::vector<double> damping_force_;    ///< [N*3] their damping part

@@ -277,9 +277,17 @@ std::string consistency_problem(const Checkpoint& c) {
     if (!std::isfinite(liquid.support_radius) || !(liquid.bulk_modulus > 0) || !std::isfinite(liquid.bulk_modulus))
       return fmt::format("/checkpoint/liquid: support_radius {} and bulk_modulus {} must be finite and > 0",
                          liquid.support_radius, liquid.bulk_modulus);
-    if (liquid.density_weight.size() != n || c.state.liquid_reference_density.size() != n)
-      return fmt::format("/checkpoint/liquid: density_weight and reference_density have {} and {} values, expected N = {}",
-                         liquid.density_weight.size(), c.state.liquid_reference_density.size(), n);
+    if (!(liquid.contact_stiffness >= 0) || !std::isfinite(liquid.contact_stiffness))
+      return fmt::format("/checkpoint/liquid: contact_stiffness {} must be finite and >= 0", liquid.contact_stiffness);
+    if (liquid.density_weight.size() != n || liquid.contact_radius.size() != n ||
+        c.state.liquid_reference_density.size() != n)
+      return fmt::format("/checkpoint/liquid: density_weight, contact_radius and reference_density have {}, {} and {} "
+                         "values, expected N = {}", liquid.density_weight.size(), liquid.contact_radius.size(),
+                         c.state.liquid_reference_density.size(), n);
+    for (std::size_t r = 0; r < n; ++r)
+      if (!(liquid.contact_radius[r] >= 0 && liquid.contact_radius[r] < liquid.support_radius))
+        return fmt::format("/checkpoint/liquid/contact_radius row {}: {} must lie in [0, support_radius = {})", r,
+                           liquid.contact_radius[r], liquid.support_radius);
     for (std::size_t r = 0; r < n; ++r) {
       const bool is_liquid = c.body.species[r] == 2;
       if (!(liquid.density_weight[r] >= 0) || !std::isfinite(liquid.density_weight[r]) ||
@@ -476,7 +484,9 @@ void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const std::
   h5::Group group = h5::create_group(checkpoint, "liquid");
   h5::write_attribute<double>(group.get(), "support_radius", liquid.support_radius);
   h5::write_attribute<double>(group.get(), "bulk_modulus", liquid.bulk_modulus);
+  h5::write_attribute<double>(group.get(), "contact_stiffness", liquid.contact_stiffness);
   h5::write_dataset(group.get(), "density_weight", liquid.density_weight.data(), {liquid.density_weight.size()});
+  h5::write_dataset(group.get(), "contact_radius", liquid.contact_radius.data(), {liquid.contact_radius.size()});
   h5::write_dataset(group.get(), "reference_density", reference_density.data(), {reference_density.size()});
 }
 
@@ -487,8 +497,10 @@ void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
   h5::Group group = h5::open_group(checkpoint, "liquid");
   body.liquid.support_radius = h5::read_attribute<double>(group.get(), "support_radius");
   body.liquid.bulk_modulus = h5::read_attribute<double>(group.get(), "bulk_modulus");
+  body.liquid.contact_stiffness = h5::read_attribute<double>(group.get(), "contact_stiffness");
   // One-dimensional [N]: the consistency check compares the counts with the particles.
   for (auto [name, values] : {std::pair{"density_weight", &body.liquid.density_weight},
+                              std::pair{"contact_radius", &body.liquid.contact_radius},
                               std::pair{"reference_density", &state.liquid_reference_density}}) {
     auto array = h5::read_dataset<double>(group.get(), name);
     if (array.dims.size() != 1)

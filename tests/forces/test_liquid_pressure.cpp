@@ -12,8 +12,8 @@ using namespace tidalcrust;
 namespace {
 
 /// A cube of side 1: `side` particles a side on a cubic lattice jittered by 10% of the spacing (a
-/// disordered liquid), liquid with weight 1, H = 2.5 spacings, K = 3; `solid_layers` more layers
-/// of solid (interior) particles around it.
+/// disordered liquid), H = 2.5 spacings, K = 3; `solid_layers` more layers of solid (interior)
+/// particles around it, in contact with the liquid within 0.9 spacings (stiffness K s).
 struct LiquidBlock {
   Body body;
   std::vector<double> position;
@@ -37,7 +37,13 @@ LiquidBlock liquid_block(int side, unsigned seed, int solid_layers = 0) {
       }
   b.body.liquid.support_radius = 2.5 * b.spacing;
   b.body.liquid.bulk_modulus = 3.0;
-  b.body.liquid.density_weight.assign(b.body.mass.size(), 1.0);
+  // Liquid particles in the density sums; the solid ones touch the liquid within 0.9 spacings.
+  for (const std::uint8_t species : b.body.species) {
+    const bool liquid = species == static_cast<std::uint8_t>(Species::liquid);
+    b.body.liquid.density_weight.push_back(liquid ? 1.0 : 0.0);
+    b.body.liquid.contact_radius.push_back(liquid ? 0.0 : 0.9 * b.spacing);
+  }
+  b.body.liquid.contact_stiffness = 3.0 * b.spacing;
   return b;
 }
 
