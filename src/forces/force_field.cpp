@@ -230,15 +230,12 @@ void ForceField::check_sizes(const SpringState& springs, const HingeState& hinge
 }
 
 ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
-                                const HingeState& hinges, const Perturber& perturber,
-                                const std::vector<double>& liquid_reference_density, Accelerations& out) {
+                                const HingeState& hinges, const Perturber& perturber, Accelerations& out) {
   check_sizes(springs, hinges);
   const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
   out.body.resize(3 * n);
-  // The liquid's two passes (densities, then pair forces) need all positions first: before the rest.
-  if (liquid_)
-    liquid_->compute(position, velocity, liquid_reference_density, options_.damping,
-                     n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
+  // The liquid's passes (strains, each particle's volumetric strain, forces) come first.
+  if (liquid_) liquid_->compute(position, springs, n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
   if (self_gravity) {
@@ -294,15 +291,11 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
 }
 
 Energies ForceField::energies(const double* position, const double* velocity, const SpringState& springs,
-                              const HingeState& hinges, const Perturber& perturber,
-                              const std::vector<double>& liquid_reference_density) {
+                              const HingeState& hinges, const Perturber& perturber) {
   check_sizes(springs, hinges);
   refresh_half_rest_angles(hinges);
   Energies e;
-  if (liquid_) {
-    e.liquid = liquid_->energy(position, liquid_reference_density);
-    e.damping_power += liquid_->damping_power(position, velocity, options_.damping);
-  }
+  if (liquid_) e.liquid = liquid_->energy(position, springs);
   for_each_spring(0, body_.spring_count(), position, velocity, springs,
                   [&e](std::size_t, const double*, const SpringForceEnergy& spring) {
                     e.spring += spring.energy;
@@ -328,7 +321,6 @@ StepWork ForceField::work_of_step(const double* start, const double* half, const
         d_dot_change += (half[i + k] - half[j + k]) * ((end[i + k] - start[i + k]) - (end[j + k] - start[j + k]));
       work.damping_removed += spring_damping_[s] * d_dot_change;
     }
-    if (liquid_) work.damping_removed += liquid_->damping_work(start, end);
   }
   for (std::size_t h = 0; h < body_.hinge_count(); ++h) {
     if (hinge_work_rate_[h] == 0) continue;  // at rest angle (or k_e = 0): no work

@@ -75,9 +75,8 @@ struct Energies {
   double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)
   double self_gravity = 0;  ///< sum over pairs of -m_i m_j / sqrt(r^2 + eps^2); 0 with self-gravity off
   double perturber = 0;     ///< sum over particles of -M2 m_i / sqrt(r^2 + eps^2); 0 without a perturber
-  double liquid = 0;        ///< energy of the liquid layer's particles (LiquidPressure); 0 without one
-  /// sum over springs of gamma mu (d.dv)^2/L^2 >= 0, and the liquid pairs' damping, G M^2/R per t_grav
-  double damping_power = 0;
+  double liquid = 0;        ///< volumetric energy of a liquid layer (LiquidPressure); 0 without one
+  double damping_power = 0; ///< sum over springs of gamma mu (d.dv)^2/L^2 >= 0, G M^2/R per t_grav
   double potential() const { return spring + hinge + self_gravity + perturber + liquid; }
 };
 
@@ -87,8 +86,7 @@ struct Energies {
 struct StepWork {
   /// Energy the spring damping took out of the motion: sum over springs of
   /// c_d (d_half . Delta d), c_d = gamma mu (d_half . dv_start)/L_half^2 the damping coefficient
-  /// of the step (start-of-step velocities, as the kick uses them); >= 0 up to O(dt^2). With a
-  /// liquid layer, plus its pairs' damping force times each particle's Delta x.
+  /// of the step (start-of-step velocities, as the kick uses them); >= 0 up to O(dt^2).
   double damping_removed = 0;
   /// Work of the hinge forces beyond minus the change of the hinge energy E_h: sum over hinges
   /// of (E_h/C)(half step) * (C(end) - C(start)), the midpoint rule for the integral of (E_h/C) dC.
@@ -101,25 +99,21 @@ class ForceField {
   explicit ForceField(const Body& body, ForceOptions options = {});
 
   /// Accelerations at positions [N*3] (R) and velocities [N*3] (sqrt(GM/R); they enter
-  /// only through damping). `liquid_reference_density` [N] (State::liquid_reference_density; empty
-  /// without a liquid layer). Returns the blow-up alarms of this pass.
+  /// only through damping). Returns the blow-up alarms of this pass.
   ForceAlarms compute(const double* position, const double* velocity, const SpringState& springs,
-                      const HingeState& hinges, const Perturber& perturber,
-                      const std::vector<double>& liquid_reference_density, Accelerations& out);
+                      const HingeState& hinges, const Perturber& perturber, Accelerations& out);
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
-                   state.perturber, state.liquid_reference_density, out);
+                   state.perturber, out);
   }
 
   /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
   /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
   /// O(N^2): for diagnostics, not every step). Checks the sizes like compute().
   Energies energies(const double* position, const double* velocity, const SpringState& springs,
-                    const HingeState& hinges, const Perturber& perturber,
-                    const std::vector<double>& liquid_reference_density);
+                    const HingeState& hinges, const Perturber& perturber);
   Energies energies(const State& state) {
-    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber,
-                    state.liquid_reference_density);
+    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
   }
 
   /// The work of the non-conservative forces in the step from positions `start` to `end` [N*3]

@@ -273,38 +273,20 @@ std::string consistency_problem(const Checkpoint& c) {
       return fmt::format("{} row {}: species {} is not {}", path::species, r, +c.body.species[r],
                          c.body.liquid.present() ? "0, 1 or 2" : "0 or 1 (2, liquid, needs /checkpoint/liquid)");
   if (c.body.liquid.present()) {
-    const auto& liquid = c.body.liquid;
-    if (!std::isfinite(liquid.support_radius) || !(liquid.bulk_modulus > 0) || !std::isfinite(liquid.bulk_modulus))
-      return fmt::format("/checkpoint/liquid: support_radius {} and bulk_modulus {} must be finite and > 0",
-                         liquid.support_radius, liquid.bulk_modulus);
-    if (!(liquid.contact_stiffness >= 0) || !std::isfinite(liquid.contact_stiffness))
-      return fmt::format("/checkpoint/liquid: contact_stiffness {} must be finite and >= 0", liquid.contact_stiffness);
-    if (liquid.density_weight.size() != n || liquid.contact_radius.size() != n ||
-        c.state.liquid_reference_density.size() != n)
-      return fmt::format("/checkpoint/liquid: density_weight, contact_radius and reference_density have {}, {} and {} "
-                         "values, expected N = {}", liquid.density_weight.size(), liquid.contact_radius.size(),
-                         c.state.liquid_reference_density.size(), n);
-    for (std::size_t r = 0; r < n; ++r)
-      if (!(liquid.contact_radius[r] >= 0 && liquid.contact_radius[r] < liquid.support_radius))
-        return fmt::format("/checkpoint/liquid/contact_radius row {}: {} must lie in [0, support_radius = {})", r,
-                           liquid.contact_radius[r], liquid.support_radius);
+    if (c.body.liquid.node_volume.size() != n)
+      return fmt::format("/checkpoint/liquid/node_volume has {} values, expected N = {}", c.body.liquid.node_volume.size(), n);
     for (std::size_t r = 0; r < n; ++r) {
-      const bool is_liquid = c.body.species[r] == 2;
-      if (!(liquid.density_weight[r] >= 0) || !std::isfinite(liquid.density_weight[r]) ||
-          (is_liquid && !(liquid.density_weight[r] > 0)))
-        return fmt::format("/checkpoint/liquid/density_weight row {}: {} is not finite and >= 0 (> 0 for a liquid "
-                           "particle)", r, liquid.density_weight[r]);
-      const double n0 = c.state.liquid_reference_density[r];
-      if (is_liquid ? !(n0 > 0 && std::isfinite(n0)) : n0 != 0)
-        return fmt::format("/checkpoint/liquid/reference_density row {}: {} is not {}", r, n0,
-                           is_liquid ? "finite and > 0 (a liquid particle)" : "0 (a solid particle)");
+      const double v = c.body.liquid.node_volume[r];
+      if (c.body.species[r] == static_cast<std::uint8_t>(Species::liquid) ? !(v > 0 && std::isfinite(v)) : v != 0)
+        return fmt::format("/checkpoint/liquid/node_volume row {}: {} is not {}", r, v,
+                           c.body.species[r] == 2 ? "finite and > 0 (a liquid particle)" : "0 (a solid particle)");
     }
-  } else if (!c.state.liquid_reference_density.empty()) {
-    return "the state has liquid reference densities but the body no liquid layer";
   }
+  const std::uint8_t highest_kind = c.body.liquid.present() ? 3 : 2;
   for (std::size_t r = 0; r < ns; ++r) {
-    if (c.body.spring_kind[r] > 2)
-      return fmt::format("{} row {}: kind {} is not 0, 1 or 2", path::spring_kind, r, +c.body.spring_kind[r]);
+    if (c.body.spring_kind[r] > highest_kind)
+      return fmt::format("{} row {}: kind {} is not {}", path::spring_kind, r, +c.body.spring_kind[r],
+                         c.body.liquid.present() ? "0, 1, 2 or 3" : "0, 1 or 2 (3, liquid, needs /checkpoint/liquid)");
     if (c.state.springs.failed[r] > 1)
       return fmt::format("{} row {}: flag {} is not 0 or 1", path::spring_failed, r, +c.state.springs.failed[r]);
     if (!(c.body.strength_factor[r] > 0) || !std::isfinite(c.body.strength_factor[r]))
@@ -376,8 +358,11 @@ void write_h5md_metadata(hid_t root, const UnitStrings& unit, bool liquid) {
                                      liquid ? std::vector<std::string>{"interior", "shell", "liquid"}
                                             : std::vector<std::string>{"interior", "shell"});
   });
-  edit_object(root, path::spring_kind,
-              [](hid_t id) { h5::write_string_array_attribute(id, "labels", {"interior", "shell", "cross"}); });
+  edit_object(root, path::spring_kind, [&](hid_t id) {
+    h5::write_string_array_attribute(id, "labels",
+                                     liquid ? std::vector<std::string>{"interior", "shell", "cross", "liquid"}
+                                            : std::vector<std::string>{"interior", "shell", "cross"});
+  });
 }
 
 /// The groups of /particles and /connectivity with their H5MD metadata, and every per-element
@@ -477,36 +462,28 @@ struct RecordReader {
   }
 };
 
-/// /checkpoint/liquid, only for a body with a liquid layer (docs/checkpoint-layout.md): the
-/// kernel support and bulk modulus (attributes), each particle's density weight (the body) and
-/// reference density (the state), [N] each. read_liquid_layer reads it back.
-void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const std::vector<double>& reference_density) {
+/// /checkpoint/liquid, only for a body with a liquid layer (docs/checkpoint-layout.md): the bulk
+/// modulus K (attribute) and each particle's share of the layer's volume [N]. read_liquid_layer
+/// reads it back.
+void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid) {
   h5::Group group = h5::create_group(checkpoint, "liquid");
-  h5::write_attribute<double>(group.get(), "support_radius", liquid.support_radius);
   h5::write_attribute<double>(group.get(), "bulk_modulus", liquid.bulk_modulus);
-  h5::write_attribute<double>(group.get(), "contact_stiffness", liquid.contact_stiffness);
-  h5::write_dataset(group.get(), "density_weight", liquid.density_weight.data(), {liquid.density_weight.size()});
-  h5::write_dataset(group.get(), "contact_radius", liquid.contact_radius.data(), {liquid.contact_radius.size()});
-  h5::write_dataset(group.get(), "reference_density", reference_density.data(), {reference_density.size()});
+  h5::write_dataset(group.get(), "node_volume", liquid.node_volume.data(), {liquid.node_volume.size()});
 }
 
 /// Reads /checkpoint/liquid when the file has it (else the body has no liquid layer); the
 /// consistency check then checks its values against the particles.
-void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
+void read_liquid_layer(hid_t checkpoint, Body& body) {
   if (H5Lexists(checkpoint, "liquid", H5P_DEFAULT) <= 0) return;
   h5::Group group = h5::open_group(checkpoint, "liquid");
-  body.liquid.support_radius = h5::read_attribute<double>(group.get(), "support_radius");
   body.liquid.bulk_modulus = h5::read_attribute<double>(group.get(), "bulk_modulus");
-  body.liquid.contact_stiffness = h5::read_attribute<double>(group.get(), "contact_stiffness");
-  // One-dimensional [N]: the consistency check compares the counts with the particles.
-  for (auto [name, values] : {std::pair{"density_weight", &body.liquid.density_weight},
-                              std::pair{"contact_radius", &body.liquid.contact_radius},
-                              std::pair{"reference_density", &state.liquid_reference_density}}) {
-    auto array = h5::read_dataset<double>(group.get(), name);
-    if (array.dims.size() != 1)
-      throw h5::Error(fmt::format("dataset /checkpoint/liquid/{} has {} dimensions, expected 1 [N]", name, array.dims.size()));
-    *values = std::move(array.values);
-  }
+  if (!(body.liquid.bulk_modulus > 0) || !std::isfinite(body.liquid.bulk_modulus))
+    throw h5::Error(fmt::format("attribute /checkpoint/liquid@bulk_modulus is {}, expected a finite number > 0",
+                                body.liquid.bulk_modulus));
+  auto array = h5::read_dataset<double>(group.get(), "node_volume");
+  if (array.dims.size() != 1)
+    throw h5::Error(fmt::format("dataset /checkpoint/liquid/node_volume has {} dimensions, expected 1 [N]", array.dims.size()));
+  body.liquid.node_volume = std::move(array.values);
 }
 
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
@@ -529,7 +506,7 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
   h5::write_string_attribute(g, "gravity_kernel_changes", c.stage.gravity_kernel_changes);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
-  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid, c.state.liquid_reference_density);
+  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid);
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
     h5::write_dataset<double>(perturber.get(), "mass", &c.state.perturber.mass, {});
@@ -815,7 +792,7 @@ void read_stage_info(hid_t root, Checkpoint& c) {
                              std::pair{"gravity_kernel_changes", &c.stage.gravity_kernel_changes}})
     if (H5Aexists(g.get(), name) > 0) *value = h5::read_string_attribute(g.get(), name);
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
-  read_liquid_layer(g.get(), c.body, c.state);
+  read_liquid_layer(g.get(), c.body);
   h5::Group record = h5::open_group(g.get(), "record");
   std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);
 }

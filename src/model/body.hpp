@@ -19,24 +19,18 @@ inline const char* species_name(std::uint8_t species) {
          : species == static_cast<std::uint8_t>(Species::liquid) ? "liquid"
                                                                   : "interior";
 }
-enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2 };
+/// liquid: a spring of a liquid layer (LiquidLayer): stiffness 0 in the spring law, the volumetric
+/// energy of its liquid ends instead.
+enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2, liquid = 3 };
 
 /// A liquid layer (docs/ocean.md; forces/liquid_pressure.hpp): the liquid particles
-/// (Species::liquid) interact with each other through their number density alone, which gives the
-/// layer a bulk modulus and no shear modulus, and with the solid particles at its boundary by
-/// contact.
+/// (Species::liquid) and their springs (SpringKind::liquid, to each other and to the solid particles
+/// around them) carry an energy of volume alone: a bulk modulus and no shear modulus.
 struct LiquidLayer {
-  double support_radius = 0;  ///< H, the support of the Wendland C2 kernel, R; 0: no liquid layer
-  double bulk_modulus = 0;    ///< K, e_g (G M^2/R^4)
-  /// [N] weight of each particle in a liquid particle's density sum: 1 for a liquid particle, 0
-  /// for a solid one (the liquid meets the solid through contact, below).
-  std::vector<double> density_weight;
-  /// [N] delta_b, R: a liquid particle closer than this to solid particle b is pushed off it with
-  /// energy (k/2)(delta_b - r)^2 (LiquidContact); 0 for a liquid particle and for a solid one the
-  /// liquid does not touch. The builder sets it to the closest liquid particle's distance.
-  std::vector<double> contact_radius;
-  double contact_stiffness = 0;  ///< k, G M^2/R^3
-  bool present() const { return support_radius > 0; }
+  double bulk_modulus = 0;  ///< K, e_g (G M^2/R^4); 0: no liquid layer
+  /// [N] V_a, R^3: each liquid particle's share of the layer's volume; 0 for a solid particle.
+  std::vector<double> node_volume;
+  bool present() const { return bulk_modulus > 0; }
 };
 
 struct Body {

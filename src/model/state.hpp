@@ -35,10 +35,6 @@ struct State {
   SpringState springs;
   HingeState hinges;
   Perturber perturber;
-  /// [N] n_0 in 1/R^3: each liquid particle's number density at zero pressure (0 for the other
-  /// particles); the stretch stage sets it so that the layer starts at its hydrostatic pressure.
-  /// Empty for a body without a liquid layer (Body::liquid).
-  std::vector<double> liquid_reference_density;
 };
 
 }  // namespace tidalcrust
