@@ -19,7 +19,8 @@ Checkpoint stretch_stage(const Checkpoint& built, const Config& config) {
   if (built.body.liquid.present()) {
     // The liquid starts at its hydrostatic pressure, and the stretch solves with it holding the crust.
     State with_liquid = built.state;
-    set_hydrostatic_liquid_rest_lengths(built.body, with_liquid);
+    set_hydrostatic_liquid_rest_volumes(built.body, with_liquid);
+    out.state.liquid_rest_volume = with_liquid.liquid_rest_volume;
     record = stretch_springs(built.body, with_liquid, config, out.state.springs);
   } else {
     record = stretch_springs(built.body, built.state, config, out.state.springs);

@@ -7,8 +7,73 @@
 #include <numbers>
 
 #include "base/errors.hpp"
+#include "bodies/neighbor_grid.hpp"
+#include "forces/liquid_pressure.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 namespace tidalcrust {
+
+namespace {
+
+/// The Delaunay tetrahedra of the liquid particles and of the solid particles within 1.5 mean
+/// liquid spacings of one (the crust's nodes above, the floor's below), those with a liquid corner,
+/// in a canonical order (corners sorted, then tetrahedra sorted) and positively oriented.
+std::vector<std::array<std::int32_t, 4>> liquid_tetrahedra(const Body& body, const State& state, double floor_radius) {
+  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Vertex = CGAL::Triangulation_vertex_base_with_info_3<std::int32_t, Kernel>;
+  using Data = CGAL::Triangulation_data_structure_3<Vertex>;
+  using Delaunay = CGAL::Delaunay_triangulation_3<Kernel, Data>;
+  const auto liquid = static_cast<std::uint8_t>(Species::liquid);
+  const std::size_t n = body.particle_count();
+  std::size_t liquid_count = 0;
+  double top = floor_radius;
+  for (std::size_t i = 0; i < n; ++i)
+    if (body.species[i] == liquid) {
+      ++liquid_count;
+      top = std::max(top, vec3_at(state.position, i).norm());
+    }
+  const double spacing = std::cbrt(4.0 / 3.0 * std::numbers::pi * (top * top * top - floor_radius * floor_radius * floor_radius) /
+                                   static_cast<double>(liquid_count));
+  NeighborGrid grid(Vec3::Constant(-1.5), Vec3::Constant(1.5), spacing);
+  for (std::size_t i = 0; i < n; ++i)
+    if (body.species[i] == liquid) grid.insert(vec3_at(state.position, i));
+  std::vector<std::pair<Kernel::Point_3, std::int32_t>> points;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 x = vec3_at(state.position, i);
+    if (body.species[i] == liquid || grid.any_closer_than(x, 1.5 * spacing))
+      points.emplace_back(Kernel::Point_3(x.x(), x.y(), x.z()), static_cast<std::int32_t>(i));
+  }
+  const Delaunay delaunay(points.begin(), points.end());
+  std::vector<std::array<std::int32_t, 4>> tets;
+  for (auto cell = delaunay.finite_cells_begin(); cell != delaunay.finite_cells_end(); ++cell) {
+    std::array<std::int32_t, 4> t{};
+    bool wet = false;
+    for (int v = 0; v < 4; ++v) {
+      t[static_cast<std::size_t>(v)] = cell->vertex(v)->info();
+      wet = wet || body.species[static_cast<std::size_t>(t[static_cast<std::size_t>(v)])] == liquid;
+    }
+    if (!wet) continue;
+    // Not across the empty core below the floor's outer nodes: no edge longer than 3 spacings.
+    bool long_edge = false;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        long_edge = long_edge || (vec3_at(state.position, static_cast<std::size_t>(t[static_cast<std::size_t>(a)])) -
+                                  vec3_at(state.position, static_cast<std::size_t>(t[static_cast<std::size_t>(b)])))
+                                         .norm() > 3 * spacing;
+    if (long_edge) continue;
+    std::sort(t.begin(), t.end());
+    const double* p = state.position.data();
+    if (tetrahedron_volume(p + 3 * t[0], p + 3 * t[1], p + 3 * t[2], p + 3 * t[3]) < 0) std::swap(t[2], t[3]);
+    tets.push_back(t);
+  }
+  std::sort(tets.begin(), tets.end());
+  return tets;
+}
+
+}  // namespace
 
 void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
   Body& body = built.body;
@@ -39,7 +104,7 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
     body.spring_kind[kept] = wet ? static_cast<std::uint8_t>(SpringKind::liquid) : body.spring_kind[s];
     if (factors) body.strength_factor[kept] = body.strength_factor[s];
     state.springs.rest_length[kept] = state.springs.rest_length[s];
-    state.springs.stiffness[kept] = wet ? 0.0 : state.springs.stiffness[s];
+    state.springs.stiffness[kept] = wet ? liquid_shear_fraction * state.springs.stiffness[s] : state.springs.stiffness[s];
     state.springs.failed[kept] = state.springs.failed[s];
     ++kept;
   }
@@ -50,26 +115,20 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
   state.springs.stiffness.resize(kept);
   state.springs.failed.resize(kept);
 
-  // Each liquid particle's share of the layer, from the floor to the crust's mean radius.
-  double crust = 0;
-  std::size_t crust_nodes = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (body.species[i] == static_cast<std::uint8_t>(Species::shell)) {
-      crust += vec3_at(state.position, i).norm();
-      ++crust_nodes;
-    }
-  crust = crust_nodes ? crust / static_cast<double>(crust_nodes) : 1.0;
-  const double volume = 4.0 / 3.0 * std::numbers::pi * (crust * crust * crust - floor_radius * floor_radius * floor_radius);
+  // The tetrahedra of the layer: the Delaunay tetrahedra of the liquid particles and the solid
+  // ones within reach of them (CGAL, exact predicates: unique for points in general position, so
+  // independent of the order of insertion) that have a liquid corner, oriented positively.
   body.liquid.bulk_modulus = bulk_modulus;
-  body.liquid.node_volume.assign(n, 0.0);
+  body.liquid.tetrahedra = liquid_tetrahedra(body, state, floor_radius);
+  std::vector<std::uint8_t> covered(n, 0);
+  for (const auto& t : body.liquid.tetrahedra)
+    for (const std::int32_t i : t) covered[static_cast<std::size_t>(i)] = 1;
   for (std::size_t i = 0; i < n; ++i)
-    if (body.species[i] == liquid) body.liquid.node_volume[i] = volume / static_cast<double>(liquid_count);
-  for (std::size_t i = 0; i < n; ++i)
-    if (body.species[i] == liquid && std::none_of(body.springs.begin(), body.springs.end(), [&](const auto& ends) {
-          return static_cast<std::size_t>(ends[0]) == i || static_cast<std::size_t>(ends[1]) == i;
-        }))
-      throw InputError(fmt::format("ocean: liquid particle {} at r = {:.3f} has no spring; the interior network does "
-                                   "not reach it (interior.spring_distance)", i, vec3_at(state.position, i).norm()));
+    if (body.species[i] == liquid && !covered[i])
+      throw InputError(fmt::format("ocean: liquid particle {} at r = {:.3f} lies in no tetrahedron of the layer", i,
+                                   vec3_at(state.position, i).norm()));
+  // Zero pressure as built; the stretch stage sets the hydrostatic rest volumes.
+  state.liquid_rest_volume = LiquidPressure(body).volumes(state.position.data());
 }
 
 }  // namespace tidalcrust

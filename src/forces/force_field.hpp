@@ -99,21 +99,25 @@ class ForceField {
   explicit ForceField(const Body& body, ForceOptions options = {});
 
   /// Accelerations at positions [N*3] (R) and velocities [N*3] (sqrt(GM/R); they enter
-  /// only through damping). Returns the blow-up alarms of this pass.
+  /// only through damping). `liquid_rest_volume` [N] (State::liquid_rest_volume; empty without a
+  /// liquid layer). Returns the blow-up alarms of this pass.
   ForceAlarms compute(const double* position, const double* velocity, const SpringState& springs,
-                      const HingeState& hinges, const Perturber& perturber, Accelerations& out);
+                      const HingeState& hinges, const Perturber& perturber,
+                      const std::vector<double>& liquid_rest_volume, Accelerations& out);
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
-                   state.perturber, out);
+                   state.perturber, state.liquid_rest_volume, out);
   }
 
   /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
   /// (sqrt(GM/R)), each law's elements summed in index order on one thread (self-gravity is
   /// O(N^2): for diagnostics, not every step). Checks the sizes like compute().
   Energies energies(const double* position, const double* velocity, const SpringState& springs,
-                    const HingeState& hinges, const Perturber& perturber);
+                    const HingeState& hinges, const Perturber& perturber,
+                    const std::vector<double>& liquid_rest_volume);
   Energies energies(const State& state) {
-    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber);
+    return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber,
+                    state.liquid_rest_volume);
   }
 
   /// The work of the non-conservative forces in the step from positions `start` to `end` [N*3]

@@ -1,119 +1,144 @@
 #include "forces/liquid_pressure.hpp"
 
-#include <cmath>
-
 #include "base/invariant.hpp"
 
 namespace tidalcrust {
 
+double tetrahedron_volume(const double* x0, const double* x1, const double* x2, const double* x3) {
+  const double a[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+  const double b[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
+  const double c[3] = {x3[0] - x0[0], x3[1] - x0[1], x3[2] - x0[2]};
+  return (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) /
+         6.0;
+}
+
 LiquidPressure::LiquidPressure(const Body& body) : body_(body) {
-  const std::size_t n = body.particle_count();
-  TIDALCRUST_ASSERT(body.liquid.present() && body.liquid.node_volume.size() == n,
-                    "a liquid layer needs one node volume per particle");
-  for (std::size_t s = 0; s < body.spring_count(); ++s)
-    if (body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::liquid))
-      liquid_springs_.push_back(static_cast<std::int32_t>(s));
+  const std::size_t n = body.particle_count(), nt = body.liquid.tetrahedra.size();
+  TIDALCRUST_ASSERT(body.liquid.present(), "a liquid layer");
+  const auto liquid = static_cast<std::uint8_t>(Species::liquid);
   for (std::size_t p = 0; p < n; ++p)
-    if (body.species[p] == static_cast<std::uint8_t>(Species::liquid)) liquid_.push_back(static_cast<std::int32_t>(p));
+    if (body.species[p] == liquid) liquid_.push_back(static_cast<std::int32_t>(p));
+  share_.resize(nt);
   std::vector<std::int32_t> count(n + 1, 0);
-  for (const std::int32_t s : liquid_springs_)
-    for (const std::int32_t p : body.springs[static_cast<std::size_t>(s)]) ++count[static_cast<std::size_t>(p) + 1];
+  for (std::size_t t = 0; t < nt; ++t) {
+    int m = 0;
+    for (const std::int32_t p : body.liquid.tetrahedra[t]) {
+      TIDALCRUST_ASSERT(p >= 0 && static_cast<std::size_t>(p) < n, "a tetrahedron's corner is a particle");
+      m += body.species[static_cast<std::size_t>(p)] == liquid;
+      ++count[static_cast<std::size_t>(p) + 1];
+    }
+    TIDALCRUST_ASSERT(m > 0, "every liquid tetrahedron has a liquid corner");
+    share_[t] = 1.0 / m;
+  }
   offset_.assign(n + 1, 0);
   for (std::size_t p = 0; p < n; ++p) offset_[p + 1] = offset_[p] + count[p + 1];
-  incident_.assign(static_cast<std::size_t>(offset_[n]), 0);
+  corner_.assign(static_cast<std::size_t>(offset_[n]), 0);
   std::vector<std::int32_t> next(offset_.begin(), offset_.end() - 1);
-  for (std::size_t k = 0; k < liquid_springs_.size(); ++k) {
-    const auto& ends = body.springs[static_cast<std::size_t>(liquid_springs_[k])];
-    incident_[static_cast<std::size_t>(next[static_cast<std::size_t>(ends[0])]++)] = static_cast<std::int32_t>(2 * k);
-    incident_[static_cast<std::size_t>(next[static_cast<std::size_t>(ends[1])]++)] = static_cast<std::int32_t>(2 * k + 1);
-  }
-  for (const std::int32_t a : liquid_)
-    TIDALCRUST_ASSERT(offset_[static_cast<std::size_t>(a) + 1] > offset_[static_cast<std::size_t>(a)],
-                      "every liquid particle has a liquid spring");
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int v = 0; v < 4; ++v)
+      corner_[static_cast<std::size_t>(next[static_cast<std::size_t>(body.liquid.tetrahedra[t][v])]++)] =
+          static_cast<std::int32_t>(4 * t + static_cast<std::size_t>(v));
+  tet_volume_.assign(nt, 0.0);
+  pressure_.assign(n, 0.0);
+  corner_force_.assign(12 * nt, 0.0);
   force_.assign(3 * n, 0.0);
-  factor_.assign(n, 0.0);
-  strain_.assign(liquid_springs_.size(), 0.0);
-  length_.assign(liquid_springs_.size(), 0.0);
-  coefficient_.assign(liquid_springs_.size(), 0.0);
 }
 
-void LiquidPressure::spring_strains(const double* position, const SpringState& springs, bool parallel) const {
-  const std::size_t count = liquid_springs_.size();
+void LiquidPressure::tetrahedron_volumes(const double* position, bool parallel) const {
+  const auto& tets = body_.liquid.tetrahedra;
+  const std::size_t nt = tets.size();
 #pragma omp parallel for schedule(static) if (parallel)
-  for (std::size_t k = 0; k < count; ++k) {
-    const auto s = static_cast<std::size_t>(liquid_springs_[k]);
-    const double* xi = position + 3 * static_cast<std::size_t>(body_.springs[s][0]);
-    const double* xj = position + 3 * static_cast<std::size_t>(body_.springs[s][1]);
-    const double d0 = xi[0] - xj[0], d1 = xi[1] - xj[1], d2 = xi[2] - xj[2];
-    length_[k] = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-    strain_[k] = length_[k] / springs.rest_length[s] - 1;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& c = tets[t];
+    tet_volume_[t] = tetrahedron_volume(position + 3 * c[0], position + 3 * c[1], position + 3 * c[2], position + 3 * c[3]);
   }
 }
 
-double LiquidPressure::theta_of(std::size_t a) const {
-  double sum = 0;
-  for (std::int32_t e = offset_[a]; e < offset_[a + 1]; ++e) sum += strain_[static_cast<std::size_t>(incident_[static_cast<std::size_t>(e)] >> 1)];
-  return 3.0 * sum / static_cast<double>(offset_[a + 1] - offset_[a]);
+double LiquidPressure::volume_of(std::size_t a) const {
+  double v = 0;
+  for (std::int32_t e = offset_[a]; e < offset_[a + 1]; ++e) {
+    const std::size_t t = static_cast<std::size_t>(corner_[static_cast<std::size_t>(e)]) >> 2;
+    v += tet_volume_[t] * share_[t];
+  }
+  return v;
 }
 
-std::vector<double> LiquidPressure::volumetric_strain(const double* position, const SpringState& springs) const {
-  spring_strains(position, springs, false);
-  std::vector<double> theta(body_.particle_count(), 0.0);
-  for (const std::int32_t a : liquid_) theta[static_cast<std::size_t>(a)] = theta_of(static_cast<std::size_t>(a));
-  return theta;
+std::vector<double> LiquidPressure::volumes(const double* position) const {
+  tetrahedron_volumes(position, false);
+  std::vector<double> v(body_.particle_count(), 0.0);
+  for (const std::int32_t a : liquid_) v[static_cast<std::size_t>(a)] = volume_of(static_cast<std::size_t>(a));
+  return v;
 }
 
-std::vector<double> LiquidPressure::pressure(const double* position, const SpringState& springs) const {
-  std::vector<double> p = volumetric_strain(position, springs);
-  for (double& v : p) v = v == 0 ? 0.0 : -body_.liquid.bulk_modulus * v;
+std::vector<double> LiquidPressure::pressure(const double* position, const std::vector<double>& rest_volume) const {
+  std::vector<double> p = volumes(position);
+  for (const std::int32_t ai : liquid_) {
+    const auto a = static_cast<std::size_t>(ai);
+    p[a] = -body_.liquid.bulk_modulus * (p[a] - rest_volume[a]) / rest_volume[a];
+  }
   return p;
 }
 
-void LiquidPressure::compute(const double* position, const SpringState& springs, bool parallel) {
-  spring_strains(position, springs, parallel);
+void LiquidPressure::compute(const double* position, const std::vector<double>& rest_volume, bool parallel) {
+  TIDALCRUST_ASSERT(rest_volume.size() == body_.particle_count(), "one rest volume per particle");
+  tetrahedron_volumes(position, parallel);
+  const auto& tets = body_.liquid.tetrahedra;
+  const std::size_t nt = tets.size(), n = body_.particle_count(), nl = liquid_.size();
   const double bulk = body_.liquid.bulk_modulus;
-  const std::size_t liquid_count = liquid_.size();
 #pragma omp parallel if (parallel)
   {
 #pragma omp for schedule(static)
-    for (std::size_t i = 0; i < liquid_count; ++i) {
+    for (std::size_t i = 0; i < nl; ++i) {
       const auto a = static_cast<std::size_t>(liquid_[i]);
-      const double n = static_cast<double>(offset_[a + 1] - offset_[a]);
-      factor_[a] = bulk * body_.liquid.node_volume[a] * theta_of(a) * 3.0 / n;
+      pressure_[a] = -bulk * (volume_of(a) - rest_volume[a]) / rest_volume[a];
     }
-    // dE/dL_s = (factor_i + factor_j) / L0_s (factor 0 at a solid end); the force on the first
-    // end is -dE/dL_s d/L_s.
+    // dE/dx_v = sum over liquid corners a of -P_a dV_a/dx_v, dV_a/dx_v = (1/m_t) dV_t/dx_v: the
+    // force on corner v is p_t dV_t/dx_v with p_t the mean of the liquid corners' pressures
+    // (solid corners count 0) times ... 1/m_t each: p_t = sum_a P_a / m_t.
 #pragma omp for schedule(static)
-    for (std::size_t k = 0; k < liquid_springs_.size(); ++k) {
-      const auto s = static_cast<std::size_t>(liquid_springs_[k]);
-      const auto i = static_cast<std::size_t>(body_.springs[s][0]), j = static_cast<std::size_t>(body_.springs[s][1]);
-      coefficient_[k] = -(factor_[i] + factor_[j]) / (springs.rest_length[s] * length_[k]);
+    for (std::size_t t = 0; t < nt; ++t) {
+      const auto& c = tets[t];
+      double p = 0;
+      for (const std::int32_t v : c) p += pressure_[static_cast<std::size_t>(v)];
+      p *= share_[t];
+      const double* x0 = position + 3 * c[0];
+      const double* x1 = position + 3 * c[1];
+      const double* x2 = position + 3 * c[2];
+      const double* x3 = position + 3 * c[3];
+      const double a[3] = {x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
+      const double b[3] = {x2[0] - x0[0], x2[1] - x0[1], x2[2] - x0[2]};
+      const double d[3] = {x3[0] - x0[0], x3[1] - x0[1], x3[2] - x0[2]};
+      // dV/dx1 = (b x d)/6, dV/dx2 = (d x a)/6, dV/dx3 = (a x b)/6, dV/dx0 = -(sum of the three).
+      const double g1[3] = {b[1] * d[2] - b[2] * d[1], b[2] * d[0] - b[0] * d[2], b[0] * d[1] - b[1] * d[0]};
+      const double g2[3] = {d[1] * a[2] - d[2] * a[1], d[2] * a[0] - d[0] * a[2], d[0] * a[1] - d[1] * a[0]};
+      const double g3[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+      double* f = corner_force_.data() + 12 * t;
+      for (int k = 0; k < 3; ++k) {
+        f[3 + k] = p * g1[k] / 6.0;
+        f[6 + k] = p * g2[k] / 6.0;
+        f[9 + k] = p * g3[k] / 6.0;
+        f[k] = -(f[3 + k] + f[6 + k] + f[9 + k]);
+      }
     }
 #pragma omp for schedule(dynamic, 256)
-    for (std::size_t p = 0; p < body_.particle_count(); ++p) {
+    for (std::size_t q = 0; q < n; ++q) {
       double f[3] = {0, 0, 0};
-      for (std::int32_t e = offset_[p]; e < offset_[p + 1]; ++e) {
-        const auto entry = static_cast<std::size_t>(incident_[static_cast<std::size_t>(e)]);
-        const std::size_t k = entry >> 1;
-        const auto s = static_cast<std::size_t>(liquid_springs_[k]);
-        const double* xi = position + 3 * static_cast<std::size_t>(body_.springs[s][0]);
-        const double* xj = position + 3 * static_cast<std::size_t>(body_.springs[s][1]);
-        // +c d on the first end, -c d on the second (d = x_first - x_second).
-        const double sign = (entry & 1) ? -1.0 : 1.0;
-        for (int c = 0; c < 3; ++c) f[c] += sign * coefficient_[k] * (xi[c] - xj[c]);
+      for (std::int32_t e = offset_[q]; e < offset_[q + 1]; ++e) {
+        const double* fc = corner_force_.data() + 3 * static_cast<std::size_t>(corner_[static_cast<std::size_t>(e)]);
+        for (int k = 0; k < 3; ++k) f[k] += fc[k];
       }
-      for (int c = 0; c < 3; ++c) force_[3 * p + c] = f[c];
+      for (int k = 0; k < 3; ++k) force_[3 * q + k] = f[k];
     }
   }
 }
 
-double LiquidPressure::energy(const double* position, const SpringState& springs) const {
-  spring_strains(position, springs, false);
+double LiquidPressure::energy(const double* position, const std::vector<double>& rest_volume) const {
+  tetrahedron_volumes(position, false);
   double e = 0;
   for (const std::int32_t ai : liquid_) {
     const auto a = static_cast<std::size_t>(ai);
-    const double theta = theta_of(a);
-    e += 0.5 * body_.liquid.bulk_modulus * body_.liquid.node_volume[a] * theta * theta;
+    const double dv = volume_of(a) - rest_volume[a];
+    e += 0.5 * body_.liquid.bulk_modulus * dv * dv / rest_volume[a];
   }
   return e;
 }

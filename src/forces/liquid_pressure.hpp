@@ -1,67 +1,66 @@
 #pragma once
-// A liquid layer as a spring network whose energy depends on volume alone (docs/ocean.md). Each
-// liquid particle a has the volumetric strain of its springs,
-//   theta_a = (3 / n_a) sum_{s at a} eps_s,   eps_s = L_s / L0_s - 1,
-// (for an affine strain e of an isotropic neighbourhood theta = tr e: a uniform compression gives
-// -dV/V, a shear 0), and the energy E = sum_a (K V_a / 2) theta_a^2 with K the bulk modulus and V_a
-// the particle's share of the layer's volume. A deformation that keeps every theta_a costs nothing:
-// N constraints on 3N coordinates leave 2N directions free, so after the particles move the layer
-// carries no static shear, and its connectivity is fixed, so the liquid cannot leak through the
-// crust or into the solid network below (a particle liquid with density sums does: docs/ocean.md).
-// The springs of the layer (SpringKind::liquid) have stiffness 0 in the spring law; it damps them
-// as every spring (eq. 14), and this class adds the volumetric force.
-// Units: G = M = R = 1. Lengths R, K e_g = G M^2/R^4, V R^3, forces G M^2/R^2, energies G M^2/R.
+// A liquid layer whose energy depends on volume alone (docs/ocean.md): tetrahedra fill the layer
+// between its particles and the solid particles around it (Body::liquid), each liquid particle a
+// owns the volume
+//   V_a = sum over its tetrahedra t of V_t / m_t   (m_t the liquid particles of t),
+// and the energy is E = sum_a (K/2) (V_a - V0_a)^2 / V0_a, its pressure P_a = -K (V_a - V0_a)/V0_a.
+// This is the average-nodal-pressure tetrahedron (Bonet & Burton 1998): one constraint per particle
+// on three coordinates, so a deformation that keeps every V_a costs nothing and the layer carries
+// no static shear once its particles have moved, while any compression, also a non-affine one,
+// changes real volumes (a spring network's mean strain does not see a fold: docs/ocean.md). The
+// tetrahedra are fixed when the body is built: nothing leaks through the crust or the floor.
+// Units: G = M = R = 1. Lengths R, volumes R^3, K and P e_g = G M^2/R^4, forces G M^2/R^2, energies G M^2/R.
 //
-// Determinism: the strains are computed per spring, theta per liquid particle by gathering its
-// springs in index order, the force per spring, and each particle gathers its springs' forces in
-// index order: bitwise the same for any thread count.
+// Determinism: volumes per tetrahedron, V_a per liquid particle gathered over its tetrahedra in
+// index order, the forces of each tetrahedron's four corners into their own slots, and each
+// particle gathers its slots in index order: the same bits for any thread count.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "model/body.hpp"
-#include "model/state.hpp"
 
 namespace tidalcrust {
 
-/// The liquid layer's forces and energy for a Body with Body::liquid present. Keeps a reference to
-/// the body, which must outlive it.
+/// Volume (R^3) of the tetrahedron (x0, x1, x2, x3), positive when x1 - x0, x2 - x0, x3 - x0 are
+/// right-handed: det[x1 - x0, x2 - x0, x3 - x0] / 6.
+double tetrahedron_volume(const double* x0, const double* x1, const double* x2, const double* x3);
+
+/// The liquid layer's forces and energy for a Body with Body::liquid present. Keeps a reference
+/// to the body, which must outlive it.
 class LiquidPressure {
  public:
   explicit LiquidPressure(const Body& body);
 
-  /// theta [N] of every liquid particle at positions [N*3] (R) with the rest lengths of `springs`;
-  /// 0 for the other particles.
-  std::vector<double> volumetric_strain(const double* position, const SpringState& springs) const;
+  /// V_a [N] (R^3) of every liquid particle at positions [N*3] (R); 0 for the other particles.
+  std::vector<double> volumes(const double* position) const;
 
-  /// Forces [N*3] (G M^2/R^2) of the volumetric energy at positions [N*3] (R), into forces() (0
-  /// for a particle without liquid springs).
-  void compute(const double* position, const SpringState& springs, bool parallel);
+  /// Forces [N*3] (G M^2/R^2) at positions [N*3] with rest volumes V0 [N]
+  /// (State::liquid_rest_volume), into forces(); 0 for a particle of no tetrahedron.
+  void compute(const double* position, const std::vector<double>& rest_volume, bool parallel);
   const std::vector<double>& forces() const { return force_; }
 
-  /// sum_a (K V_a / 2) theta_a^2 (G M^2/R), in index order.
-  double energy(const double* position, const SpringState& springs) const;
+  /// sum_a (K/2) (V_a - V0_a)^2 / V0_a (G M^2/R), in index order.
+  double energy(const double* position, const std::vector<double>& rest_volume) const;
 
-  /// Pressure -K theta_a of each liquid particle (e_g), 0 for the others.
-  std::vector<double> pressure(const double* position, const SpringState& springs) const;
+  /// P_a = -K (V_a - V0_a) / V0_a (e_g) of every liquid particle, 0 for the others.
+  std::vector<double> pressure(const double* position, const std::vector<double>& rest_volume) const;
 
  private:
-  /// eps_s of every liquid spring (indexed like liquid_springs_) and their lengths.
-  void spring_strains(const double* position, const SpringState& springs, bool parallel) const;
-  /// theta_a from the strains of spring_strains().
-  double theta_of(std::size_t a) const;
+  /// V_t of every tetrahedron into tet_volume_ (parallel over tetrahedra).
+  void tetrahedron_volumes(const double* position, bool parallel) const;
+  double volume_of(std::size_t a) const;  ///< V_a from tet_volume_
 
   const Body& body_;
-  std::vector<std::int32_t> liquid_springs_;  ///< indices of SpringKind::liquid springs, increasing
-  std::vector<std::int32_t> liquid_;          ///< liquid particles, increasing
-  // For each particle p, entries [offset[p], offset[p+1]) of `incident_`: 2k (p is spring
-  // liquid_springs_[k]'s first end) or 2k+1 (its second end), in increasing k.
-  std::vector<std::int32_t> offset_, incident_;
-  std::vector<double> force_;               ///< [N*3]
-  mutable std::vector<double> strain_;      ///< [liquid springs] eps_s
-  mutable std::vector<double> length_;      ///< [liquid springs] L_s
-  std::vector<double> factor_;              ///< [N] dE/dtheta_a * 3/n_a = K V_a theta_a 3/n_a (compute)
-  std::vector<double> coefficient_;         ///< [liquid springs] force over d, G M^2/R^3 (compute)
+  std::vector<std::int32_t> liquid_;       ///< liquid particles, increasing
+  std::vector<double> share_;              ///< [Nt] 1/m_t
+  // For each particle p, entries [offset[p], offset[p+1]) of `corner_`: 4t + v for corner v of
+  // tetrahedron t, in increasing order.
+  std::vector<std::int32_t> offset_, corner_;
+  mutable std::vector<double> tet_volume_; ///< [Nt]
+  std::vector<double> pressure_;           ///< [N] P_a of the last compute()
+  std::vector<double> corner_force_;       ///< [Nt*4*3]
+  std::vector<double> force_;              ///< [N*3]
 };
 
 }  // namespace tidalcrust

@@ -40,7 +40,7 @@ void Leapfrog::step(State& state) {
     for (std::size_t k = 0; k < 3; ++k) perturber.position[k] += half * perturber.velocity[k];
 
   // Kick with forces at the half-step positions and start-of-step velocities.
-  const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, acc_);
+  const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, state.liquid_rest_volume, acc_);
   if (alarms.any())
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
                                       clock_.time_at(state.step + 1), forces_.describe(alarms, xw),

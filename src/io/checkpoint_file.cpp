@@ -273,14 +273,25 @@ std::string consistency_problem(const Checkpoint& c) {
       return fmt::format("{} row {}: species {} is not {}", path::species, r, +c.body.species[r],
                          c.body.liquid.present() ? "0, 1 or 2" : "0 or 1 (2, liquid, needs /checkpoint/liquid)");
   if (c.body.liquid.present()) {
-    if (c.body.liquid.node_volume.size() != n)
-      return fmt::format("/checkpoint/liquid/node_volume has {} values, expected N = {}", c.body.liquid.node_volume.size(), n);
+    const auto& tets = c.body.liquid.tetrahedra;
+    for (std::size_t t = 0; t < tets.size(); ++t) {
+      bool wet = false;
+      for (const std::int32_t i : tets[t]) {
+        if (auto p = index_problem("/checkpoint/liquid/tetrahedra", t, i); !p.empty()) return p;
+        wet = wet || c.body.species[static_cast<std::size_t>(i)] == 2;
+      }
+      if (!wet) return fmt::format("/checkpoint/liquid/tetrahedra row {}: no corner is a liquid particle", t);
+    }
+    if (c.state.liquid_rest_volume.size() != n)
+      return fmt::format("/checkpoint/liquid/rest_volume has {} values, expected N = {}", c.state.liquid_rest_volume.size(), n);
     for (std::size_t r = 0; r < n; ++r) {
-      const double v = c.body.liquid.node_volume[r];
-      if (c.body.species[r] == static_cast<std::uint8_t>(Species::liquid) ? !(v > 0 && std::isfinite(v)) : v != 0)
-        return fmt::format("/checkpoint/liquid/node_volume row {}: {} is not {}", r, v,
+      const double v = c.state.liquid_rest_volume[r];
+      if (c.body.species[r] == 2 ? !(v > 0 && std::isfinite(v)) : v != 0)
+        return fmt::format("/checkpoint/liquid/rest_volume row {}: {} is not {}", r, v,
                            c.body.species[r] == 2 ? "finite and > 0 (a liquid particle)" : "0 (a solid particle)");
     }
+  } else if (!c.state.liquid_rest_volume.empty()) {
+    return "the state has liquid rest volumes but the body no liquid layer";
   }
   const std::uint8_t highest_kind = c.body.liquid.present() ? 3 : 2;
   for (std::size_t r = 0; r < ns; ++r) {
@@ -463,27 +474,35 @@ struct RecordReader {
 };
 
 /// /checkpoint/liquid, only for a body with a liquid layer (docs/checkpoint-layout.md): the bulk
-/// modulus K (attribute) and each particle's share of the layer's volume [N]. read_liquid_layer
-/// reads it back.
-void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid) {
+/// modulus K (attribute), the layer's tetrahedra [Nt][4] (the body) and each particle's rest
+/// volume [N] (the state). read_liquid_layer reads it back.
+void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const std::vector<double>& rest_volume) {
   h5::Group group = h5::create_group(checkpoint, "liquid");
   h5::write_attribute<double>(group.get(), "bulk_modulus", liquid.bulk_modulus);
-  h5::write_dataset(group.get(), "node_volume", liquid.node_volume.data(), {liquid.node_volume.size()});
+  h5::write_dataset(group.get(), "tetrahedra", liquid.tetrahedra.empty() ? nullptr : liquid.tetrahedra[0].data(),
+                    {liquid.tetrahedra.size(), 4});
+  h5::write_dataset(group.get(), "rest_volume", rest_volume.data(), {rest_volume.size()});
 }
 
 /// Reads /checkpoint/liquid when the file has it (else the body has no liquid layer); the
 /// consistency check then checks its values against the particles.
-void read_liquid_layer(hid_t checkpoint, Body& body) {
+void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
   if (H5Lexists(checkpoint, "liquid", H5P_DEFAULT) <= 0) return;
   h5::Group group = h5::open_group(checkpoint, "liquid");
   body.liquid.bulk_modulus = h5::read_attribute<double>(group.get(), "bulk_modulus");
   if (!(body.liquid.bulk_modulus > 0) || !std::isfinite(body.liquid.bulk_modulus))
     throw h5::Error(fmt::format("attribute /checkpoint/liquid@bulk_modulus is {}, expected a finite number > 0",
                                 body.liquid.bulk_modulus));
-  auto array = h5::read_dataset<double>(group.get(), "node_volume");
-  if (array.dims.size() != 1)
-    throw h5::Error(fmt::format("dataset /checkpoint/liquid/node_volume has {} dimensions, expected 1 [N]", array.dims.size()));
-  body.liquid.node_volume = std::move(array.values);
+  auto tets = h5::read_dataset<std::int32_t>(group.get(), "tetrahedra");
+  if (tets.dims.size() != 2 || tets.dims[1] != 4)
+    throw h5::Error("dataset /checkpoint/liquid/tetrahedra is not [Nt][4]");
+  body.liquid.tetrahedra.resize(tets.dims[0]);
+  for (std::size_t t = 0; t < tets.dims[0]; ++t)
+    for (int v = 0; v < 4; ++v) body.liquid.tetrahedra[t][static_cast<std::size_t>(v)] = tets.values[4 * t + static_cast<std::size_t>(v)];
+  auto volume = h5::read_dataset<double>(group.get(), "rest_volume");
+  if (volume.dims.size() != 1)
+    throw h5::Error(fmt::format("dataset /checkpoint/liquid/rest_volume has {} dimensions, expected 1 [N]", volume.dims.size()));
+  state.liquid_rest_volume = std::move(volume.values);
 }
 
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
@@ -506,7 +525,7 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
   h5::write_string_attribute(g, "gravity_kernel_changes", c.stage.gravity_kernel_changes);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
-  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid);
+  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid, c.state.liquid_rest_volume);
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
     h5::write_dataset<double>(perturber.get(), "mass", &c.state.perturber.mass, {});
@@ -792,7 +811,7 @@ void read_stage_info(hid_t root, Checkpoint& c) {
                              std::pair{"gravity_kernel_changes", &c.stage.gravity_kernel_changes}})
     if (H5Aexists(g.get(), name) > 0) *value = h5::read_string_attribute(g.get(), name);
   c.body.softening = h5::read_attribute<double>(g.get(), "softening");
-  read_liquid_layer(g.get(), c.body);
+  read_liquid_layer(g.get(), c.body, c.state);
   h5::Group record = h5::open_group(g.get(), "record");
   std::visit([&](auto& r) { visit_fields(r, RecordReader{record.get()}); }, c.stage.record);
 }

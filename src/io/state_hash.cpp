@@ -8,7 +8,9 @@ std::string state_hash(const State& state) {
   // Byte stream (each array preceded by its int64 element count), in this order:
   // time f64, step i64, position f64[3N], velocity f64[3N], spring rest_length f64[Ns],
   // spring stiffness f64[Ns], spring failed u8[Ns], hinge rest_angle f64[Nh],
-  // perturber present u8, then (if present) mass f64, position f64[3], velocity f64[3].
+  // perturber present u8, then (if present) mass f64, position f64[3], velocity f64[3]; then, only
+  // for a body with a liquid layer (so every other state keeps its hash), the liquid rest
+  // volumes f64[N].
   Xxh3Hasher h;
   h.f64(state.time);
   h.i64(state.step);
@@ -24,6 +26,7 @@ std::string state_hash(const State& state) {
     for (double v : state.perturber.position) h.f64(v);
     for (double v : state.perturber.velocity) h.f64(v);
   }
+  if (!state.liquid_rest_volume.empty()) h.array(state.liquid_rest_volume);
   return h.hex();
 }
 

@@ -24,12 +24,13 @@ inline const char* species_name(std::uint8_t species) {
 enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2, liquid = 3 };
 
 /// A liquid layer (docs/ocean.md; forces/liquid_pressure.hpp): the liquid particles
-/// (Species::liquid) and their springs (SpringKind::liquid, to each other and to the solid particles
-/// around them) carry an energy of volume alone: a bulk modulus and no shear modulus.
+/// (Species::liquid) and the tetrahedra that fill the layer between them and the solid particles
+/// around it carry an energy of volume alone: a bulk modulus and no shear modulus. The layer's
+/// springs (SpringKind::liquid) have stiffness 0 and only damp.
 struct LiquidLayer {
   double bulk_modulus = 0;  ///< K, e_g (G M^2/R^4); 0: no liquid layer
-  /// [N] V_a, R^3: each liquid particle's share of the layer's volume; 0 for a solid particle.
-  std::vector<double> node_volume;
+  /// [Nt] particle indices, positively oriented as built, each with at least one liquid particle
+  std::vector<std::array<std::int32_t, 4>> tetrahedra;
   bool present() const { return bulk_modulus > 0; }
 };
 

@@ -35,6 +35,10 @@ struct State {
   SpringState springs;
   HingeState hinges;
   Perturber perturber;
+  /// [N] V0_a in R^3: each liquid particle's volume at zero pressure (0 for the other particles);
+  /// the stretch stage sets it so that the layer starts at its hydrostatic pressure. Empty for a
+  /// body without a liquid layer (Body::liquid).
+  std::vector<double> liquid_rest_volume;
 };
 
 }  // namespace tidalcrust

@@ -353,18 +353,16 @@ StretchRecord stretch_springs(const Body& body, const State& built, const Config
   return record;
 }
 
-void set_hydrostatic_liquid_rest_lengths(const Body& body, State& state) {
+void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state) {
   const Vec3 centre = body_center_of_mass(body, state);
   std::vector<double> radii(body.particle_count());
   for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = (vec3_at(state.position, i) - centre).norm();
   const ParticleHydrostaticPressure pressure(radii, body.mass);
-  for (std::size_t s = 0; s < body.spring_count(); ++s) {
-    if (body.spring_kind[s] != static_cast<std::uint8_t>(SpringKind::liquid)) continue;
-    const Vec3 a = vec3_at(state.position, static_cast<std::size_t>(body.springs[s][0]));
-    const Vec3 b = vec3_at(state.position, static_cast<std::size_t>(body.springs[s][1]));
-    const double p = pressure((0.5 * (a + b) - centre).norm());
-    state.springs.rest_length[s] = (a - b).norm() / (1 - p / (3 * body.liquid.bulk_modulus));
-  }
+  const std::vector<double> volume = LiquidPressure(body).volumes(state.position.data());
+  state.liquid_rest_volume.assign(body.particle_count(), 0.0);
+  for (std::size_t i = 0; i < radii.size(); ++i)
+    if (body.species[i] == static_cast<std::uint8_t>(Species::liquid))
+      state.liquid_rest_volume[i] = volume[i] / (1 - pressure(radii[i]) / body.liquid.bulk_modulus);
 }
 
 }  // namespace tidalcrust

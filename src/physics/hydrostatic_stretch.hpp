@@ -20,11 +20,10 @@ namespace tidalcrust {
 /// SimulationError when stretch.max_iterations force evaluations do not reach stretch.tolerance.
 StretchRecord stretch_springs(const Body& body, const State& built, const Config& config, SpringState& stretched);
 
-/// Sets the rest length of every liquid spring (SpringKind::liquid) of `state` so that at its
-/// positions each liquid particle's pressure -K theta is about the hydrostatic pressure P of the
-/// particles' own mass at the spring's midpoint (ParticleHydrostaticPressure: the weight of
-/// everything farther out, the crust included; r from the centre of mass): L0 = L / (1 - P/(3K)).
-/// Body::liquid must be present.
-void set_hydrostatic_liquid_rest_lengths(const Body& body, State& state);
+/// Sets the rest volume V0 of every liquid particle (State::liquid_rest_volume) so that at the
+/// positions of `state` its pressure -K (V - V0)/V0 is the hydrostatic pressure P(r) of the
+/// particles' own mass (ParticleHydrostaticPressure: the weight of everything farther out, the
+/// crust included; r from the centre of mass): V0 = V / (1 - P/K). Body::liquid must be present.
+void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state);
 
 }  // namespace tidalcrust
