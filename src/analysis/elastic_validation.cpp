@@ -439,6 +439,44 @@ std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& cen
   return result;
 }
 
+std::vector<ElasticLayer> ocean_layers(const Checkpoint& relaxed, const Vec3& center, double crust_thickness, bool fluid) {
+  const Body& body = relaxed.body;
+  const State& state = relaxed.state;
+  if (!body.liquid.present() || body.count_species(Species::shell) == 0)
+    throw InputError("ocean layers: the body has no liquid layer under a crust");
+  const auto interior = static_cast<std::uint8_t>(Species::interior);
+  const auto shell = static_cast<std::uint8_t>(Species::shell);
+  double floor = 0;
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    if (body.species[i] == interior) floor = std::max(floor, (position_of(state, i) - center).norm());
+  const double base = 1 - crust_thickness;
+  double liquid_mass = 0, crust_mass = 0;
+  for (std::size_t i = 0; i < body.particle_count(); ++i) {
+    if (body.species[i] == shell) crust_mass += body.mass[i];
+    else if (body.species[i] != interior) liquid_mass += body.mass[i];
+  }
+  double shell_stiffness = 0, liquid_stiffness_length2 = 0;
+  std::size_t shell_springs = 0;
+  for (std::size_t s = 0; s < body.spring_count(); ++s) {
+    const double k = state.springs.stiffness[s], rest = state.springs.rest_length[s];
+    if (body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::shell)) {
+      shell_stiffness += k;
+      ++shell_springs;
+    } else if (body.spring_kind[s] == static_cast<std::uint8_t>(SpringKind::liquid) && !state.springs.failed[s]) {
+      liquid_stiffness_length2 += k * rest * rest;
+    }
+  }
+  auto volume = [](double r1, double r2) { return 4 * pi / 3 * (r2 * r2 * r2 - r1 * r1 * r1); };
+  // The springs' eq. 15 modulus at nu = 1/4 (mu = E / 2.5, K = E / 1.5) beside the layer's K.
+  const double springs_modulus = network_youngs_modulus(liquid_stiffness_length2, volume(floor, base));
+  const double bulk = body.liquid.bulk_modulus + springs_modulus / 1.5;
+  const double shear = fluid ? fluid_shear_fraction * bulk : springs_modulus / 2.5;
+  const ElasticLayer liquid{base, 9 * bulk * shear / (3 * bulk + shear), (3 * bulk - 2 * shear) / (2 * (3 * bulk + shear)),
+                            liquid_mass / volume(floor, base)};
+  const double k_s = shell_stiffness / static_cast<double>(shell_springs);
+  return {liquid, {1.0, 2.0 / std::sqrt(3.0) * k_s / crust_thickness, 1.0 / 3.0, crust_mass / volume(base, 1.0)}};
+}
+
 double layered_p_wave_time(const Checkpoint& relaxed, const Vec3& center, double z_from, double z_to, int layers) {
   const std::vector<ElasticLayer> profile = body_layers(relaxed, center, layers, false);
   const double outer = profile.back().outer_radius;

@@ -158,6 +158,21 @@ FlexureResult measure_plate_flexure(double hinge_stiffness, double spacing, doub
 /// layer without springs or mass.
 std::vector<ElasticLayer> body_layers(const Checkpoint& relaxed, const Vec3& center, int layers, bool with_crust);
 
+/// The part of a body with an ocean (Body::liquid) above its solid interior, as two layers for
+/// continuum theory: the liquid from the outermost interior node r_out to 1 - h, and the crust from
+/// 1 - h to R = 1 (E = E_2D / h with E_2D = (2/sqrt 3) k_S of the shell springs, nu = 1/3 of a
+/// triangular spring lattice). The liquid's bulk modulus is K of the layer plus its springs'; its
+/// shear modulus that of its springs (eq. 15 over the layer's volume, nu = 1/4: the small static
+/// shear the damping springs keep, ocean_layer.hpp) or, with `fluid`, K * fluid_shear_fraction
+/// (the mu -> 0 limit of TS72's solid equations; docs/ocean.md). Densities: the particles' masses
+/// (the liquid's lumped onto the crust and floor nodes included where they sit) over each layer's
+/// volume. h: the crust thickness (R). InputError without a liquid layer or a shell.
+std::vector<ElasticLayer> ocean_layers(const Checkpoint& relaxed, const Vec3& center, double crust_thickness, bool fluid);
+
+/// mu / K of a fluid liquid layer in ocean_layers: h2 changes by < 0.5% between 1e-6 and 1e-8
+/// (ocean-L3; the integration fails near 1e-9).
+inline constexpr double fluid_shear_fraction = 1e-6;
+
 /// Travel time along the z axis from z_from to z_to (about `center`, R) through the interior cut
 /// into `layers` spherical layers, each with its own P-wave speed from eq. 15 and 16 applied to
 /// the interior springs whose midpoints lie in it and the interior mass in it: the stretch stage

@@ -18,9 +18,10 @@ namespace tidalcrust {
 
 namespace {
 
-/// The Delaunay tetrahedra of the liquid particles and of the solid particles within 1.5 mean
-/// liquid spacings of one (the crust's nodes above, the floor's below), those with a liquid corner,
-/// in a canonical order (corners sorted, then tetrahedra sorted) and positively oriented.
+/// The Delaunay tetrahedra of the liquid particles, the crust's nodes and the interior nodes within
+/// 1.5 mean liquid spacings of a liquid particle (the floor), those with a liquid or crust corner
+/// (not inside the solid interior) and no edge longer than 3 spacings (not across the interior), in
+/// a canonical order (corners sorted, then tetrahedra sorted) and positively oriented.
 std::vector<std::array<std::int32_t, 4>> liquid_tetrahedra(const Body& body, const State& state, double floor_radius) {
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Vertex = CGAL::Triangulation_vertex_base_with_info_3<std::int32_t, Kernel>;
@@ -43,19 +44,20 @@ std::vector<std::array<std::int32_t, 4>> liquid_tetrahedra(const Body& body, con
   std::vector<std::pair<Kernel::Point_3, std::int32_t>> points;
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 x = vec3_at(state.position, i);
-    if (body.species[i] == liquid || grid.any_closer_than(x, 1.5 * spacing))
+    if (body.species[i] != static_cast<std::uint8_t>(Species::interior) || grid.any_closer_than(x, 1.5 * spacing))
       points.emplace_back(Kernel::Point_3(x.x(), x.y(), x.z()), static_cast<std::int32_t>(i));
   }
   const Delaunay delaunay(points.begin(), points.end());
   std::vector<std::array<std::int32_t, 4>> tets;
   for (auto cell = delaunay.finite_cells_begin(); cell != delaunay.finite_cells_end(); ++cell) {
     std::array<std::int32_t, 4> t{};
-    bool wet = false;
+    bool in_layer = false;
     for (int v = 0; v < 4; ++v) {
       t[static_cast<std::size_t>(v)] = cell->vertex(v)->info();
-      wet = wet || body.species[static_cast<std::size_t>(t[static_cast<std::size_t>(v)])] == liquid;
+      in_layer = in_layer || body.species[static_cast<std::size_t>(t[static_cast<std::size_t>(v)])] !=
+                                 static_cast<std::uint8_t>(Species::interior);
     }
-    if (!wet) continue;
+    if (!in_layer) continue;
     // Not across the empty core below the floor's outer nodes: no edge longer than 3 spacings.
     bool long_edge = false;
     for (int a = 0; a < 4; ++a)
@@ -127,6 +129,26 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
     if (body.species[i] == liquid && !covered[i])
       throw InputError(fmt::format("ocean: liquid particle {} at r = {:.3f} lies in no tetrahedron of the layer", i,
                                    vec3_at(state.position, i).norm()));
+  // The liquid's mass lumped onto the corners of the tetrahedra in the shares that own volume
+  // (V_t / 4 each, density the liquid's mass over the layer's volume): the consistent lumping of a
+  // linear tetrahedron, so that the pressure's push on every node, the crust's and the floor's too,
+  // matches the weight of the liquid it carries (docs/ocean.md). Sums in tetrahedron order.
+  std::vector<double> tet_volume(body.liquid.tetrahedra.size());
+  double liquid_mass = 0, layer_volume = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (body.species[i] == liquid) {
+      liquid_mass += body.mass[i];
+      body.mass[i] = 0;
+    }
+  const double* p = state.position.data();
+  for (std::size_t t = 0; t < tet_volume.size(); ++t) {
+    const auto& c = body.liquid.tetrahedra[t];
+    tet_volume[t] = tetrahedron_volume(p + 3 * c[0], p + 3 * c[1], p + 3 * c[2], p + 3 * c[3]);
+    layer_volume += tet_volume[t];
+  }
+  const double density = liquid_mass / layer_volume;
+  for (std::size_t t = 0; t < tet_volume.size(); ++t)
+    for (const std::int32_t i : body.liquid.tetrahedra[t]) body.mass[static_cast<std::size_t>(i)] += 0.25 * density * tet_volume[t];
   // Zero pressure as built; the stretch stage sets the hydrostatic rest volumes.
   state.liquid_rest_volume = LiquidPressure(body).volumes(state.position.data());
 }

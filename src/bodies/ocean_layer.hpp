@@ -9,7 +9,7 @@ namespace tidalcrust {
 /// The liquid springs keep this fraction of their stiffness: a shear modulus that small (a nearly
 /// fluid layer) holds the liquid's zero-energy modes, which otherwise drift and tangle its
 /// tetrahedra (measured: docs/ocean.md).
-inline constexpr double liquid_shear_fraction = 1e-2;
+inline constexpr double liquid_shear_fraction = 1e-3;
 
 /// Turns every interior node farther than 1 - thickness from the centre into a liquid particle;
 /// every spring with a liquid end becomes a liquid spring (SpringKind::liquid, stiffness 0: it only

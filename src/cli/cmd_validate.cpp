@@ -37,6 +37,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The static tide of a floating shell (validate --measure tide on a body with an ocean): drag
+/// (1/t_grav) and duration (t_grav) of the slow approach, for the shell's slowest mode (docs/ocean.md).
+constexpr double floating_shell_drag = 4.0;
+constexpr double floating_shell_tide_duration = 15.0;
+
 /// What each check compares, with its published source and the tolerance of its target
 /// (docs/validation.md).
 struct Check {
@@ -75,6 +80,11 @@ const Check checks[] = {
     // homogeneous self-gravitating sphere of the measured network moduli (eq. 15 without them).
     {"tide", "static degree-2 tide: h2, l2 and every crust spring's strain", "h2 fitted from the shell displacement",
      "", "Takeuchi & Saito (1972) eq. 82, static, homogeneous, measured network moduli", 0.05},
+    // A body with an ocean (docs/ocean.md): h2 and l2 also against the same layers with a fluid ocean.
+    {"tide-fluid-ocean", "", "h2 fitted from the shell displacement", "",
+     "Takeuchi & Saito (1972), static, the body's layers with a fluid ocean (mu -> 0)", 0.10, false},
+    {"tide-l2-fluid-ocean", "", "l2 fitted from the shell's tangential displacement", "",
+     "Takeuchi & Saito (1972), static, the body's layers with a fluid ocean (mu -> 0)", 0.10, false},
     {"tide-l2", "", "l2 fitted from the shell's tangential displacement", "",
      "Takeuchi & Saito (1972) eq. 82, static, homogeneous, measured network moduli", 0.10, false},
     {"tide-l2-over-h2", "", "l2 / h2", "", "the same sphere", 0.10, false},
@@ -96,6 +106,13 @@ const Check checks[] = {
 constexpr const char* layered_tide_source =
     "Takeuchi & Saito (1972), static, radially layered sphere of the body's own layers (eq. 15 per layer times "
     "the measured non-affine factor): the body has a core";
+/// ... and for a body with an ocean: its liquid with the small shear modulus of its springs.
+constexpr const char* ocean_tide_source =
+    "Takeuchi & Saito (1972), static, radial layers: the solid interior (eq. 15 per layer times the measured "
+    "non-affine factor), the liquid with its springs' shear modulus (eq. 15), the crust (E_2D / h, nu = 1/3)";
+/// The fluid limit of the same layers, the ocean's shear modulus 1e-6 K.
+constexpr const char* ocean_fluid_source =
+    "Takeuchi & Saito (1972), static, the same layers with a fluid ocean (mu = 1e-6 K)";
 constexpr const char* layered_ringdown_source =
     "Takeuchi & Saito (1972) with omega, radially layered self-gravitating sphere of the body's own layers: the "
     "body has a core";
@@ -299,20 +316,38 @@ int command_validate(int argc, char** argv) {
     // so its tide and ring-down are compared with the radially layered sphere of its own layers
     // (eq. 15 per layer times the measured non-affine factor; Takeuchi & Saito 1972 with layers).
     const BodyMaterial& sphere = measured_moduli ? network_material : material;
-    std::vector<ElasticLayer> layers = body_layers(relaxed, body_center_of_mass(relaxed.body, relaxed.state), 6, true);
+    // A body with an ocean: its solid interior's layers, then the liquid (mu -> 0) and the crust.
+    const bool ocean = relaxed.body.liquid.present();
+    const Vec3 centre = body_center_of_mass(relaxed.body, relaxed.state);
+    std::vector<ElasticLayer> layers = body_layers(relaxed, centre, 6, !ocean);
     for (auto& layer : layers) {
       layer.youngs_modulus *= measured_moduli ? moduli.youngs_factor : 1.0;
       layer.poisson_ratio = sphere.poisson_ratio;
     }
+    // Its own liquid (the springs' small shear modulus) is the reference; the fluid limit beside it.
+    std::optional<LoveNumbers> fluid_limit;
+    if (ocean) {
+      if (!config.material.crust_thickness)
+        throw InputError("validate --measure tide on a body with an ocean needs material.crust_thickness (the crust layer's h)");
+      std::vector<ElasticLayer> fluid_layers = layers;
+      for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, false)) layers.push_back(layer);
+      for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, true))
+        fluid_layers.push_back(layer);
+      fluid_limit = layered_sphere_love_numbers(2, fluid_layers);
+    }
     const LoveNumbers layered = layered_sphere_love_numbers(2, layers);
-    const bool layered_reference = config.core.radius.has_value();
+    const bool layered_reference = config.core.radius.has_value() || ocean;
     const LoveNumbers theory =
         layered_reference
             ? layered
             : homogeneous_sphere_love_numbers(2, sphere.youngs_modulus, sphere.poisson_ratio, sphere.density, sphere.radius);
-    const char* tide_source = layered_reference ? layered_tide_source : nullptr;
-    const TideResult t = measure_tide(relaxed, config, sphere, theory, /*surface_displacement=*/1e-3, /*drag=*/0,
-                                      /*duration=*/0, !workflow_options.quiet);
+    const char* tide_source = ocean ? ocean_tide_source : layered_reference ? layered_tide_source : nullptr;
+    // A floating shell answers on its own slow time: the shell bobbing on the liquid (period ~2.8
+    // t_grav on ocean-L3, docs/ocean.md), not the elastic sphere's: drag near critical for it and
+    // several of its relaxation times.
+    const double drag = ocean ? floating_shell_drag : 0.0, duration = ocean ? floating_shell_tide_duration : 0.0;
+    const TideResult t = measure_tide(relaxed, config, sphere, theory, /*surface_displacement=*/1e-3, drag, duration,
+                                      !workflow_options.quiet);
     if (chosen.count("tide")) {
       // The layer under the crust: affine moduli of the interior and cross springs crossing each
       // sphere (analysis/layer_moduli.hpp), against the interior's 6E/5 and 2E/5.
@@ -330,6 +365,10 @@ int command_validate(int argc, char** argv) {
       details["layer_moduli"] = Json{{"eq15_compression", 1.2 * material.youngs_modulus},
                                      {"eq15_shear", 0.4 * material.youngs_modulus}, {"profile", profile}};
       add("tide", t.fit.h2, theory.h, tide_source);
+      if (fluid_limit) {
+        add("tide-fluid-ocean", t.fit.h2, fluid_limit->h, ocean_fluid_source);
+        add("tide-l2-fluid-ocean", t.fit.l2, fluid_limit->l, ocean_fluid_source);
+      }
       add("tide-l2", t.fit.l2, theory.l, tide_source);
       add("tide-l2-over-h2", t.fit.l2 / t.fit.h2, theory.l / theory.h, tide_source);
       add("tide-correlation", t.correlation, 1.0, tide_source);

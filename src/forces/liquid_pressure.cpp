@@ -15,21 +15,14 @@ double tetrahedron_volume(const double* x0, const double* x1, const double* x2, 
 LiquidPressure::LiquidPressure(const Body& body) : body_(body) {
   const std::size_t n = body.particle_count(), nt = body.liquid.tetrahedra.size();
   TIDALCRUST_ASSERT(body.liquid.present(), "a liquid layer");
-  const auto liquid = static_cast<std::uint8_t>(Species::liquid);
-  for (std::size_t p = 0; p < n; ++p)
-    if (body.species[p] == liquid) liquid_.push_back(static_cast<std::int32_t>(p));
-  share_.resize(nt);
   std::vector<std::int32_t> count(n + 1, 0);
-  for (std::size_t t = 0; t < nt; ++t) {
-    int m = 0;
+  for (std::size_t t = 0; t < nt; ++t)
     for (const std::int32_t p : body.liquid.tetrahedra[t]) {
       TIDALCRUST_ASSERT(p >= 0 && static_cast<std::size_t>(p) < n, "a tetrahedron's corner is a particle");
-      m += body.species[static_cast<std::size_t>(p)] == liquid;
       ++count[static_cast<std::size_t>(p) + 1];
     }
-    TIDALCRUST_ASSERT(m > 0, "every liquid tetrahedron has a liquid corner");
-    share_[t] = 1.0 / m;
-  }
+  for (std::size_t p = 0; p < n; ++p)
+    if (count[p + 1] > 0) node_.push_back(static_cast<std::int32_t>(p));
   offset_.assign(n + 1, 0);
   for (std::size_t p = 0; p < n; ++p) offset_[p + 1] = offset_[p] + count[p + 1];
   corner_.assign(static_cast<std::size_t>(offset_[n]), 0);
@@ -58,21 +51,21 @@ double LiquidPressure::volume_of(std::size_t a) const {
   double v = 0;
   for (std::int32_t e = offset_[a]; e < offset_[a + 1]; ++e) {
     const std::size_t t = static_cast<std::size_t>(corner_[static_cast<std::size_t>(e)]) >> 2;
-    v += tet_volume_[t] * share_[t];
+    v += tet_volume_[t];
   }
-  return v;
+  return 0.25 * v;
 }
 
 std::vector<double> LiquidPressure::volumes(const double* position) const {
   tetrahedron_volumes(position, false);
   std::vector<double> v(body_.particle_count(), 0.0);
-  for (const std::int32_t a : liquid_) v[static_cast<std::size_t>(a)] = volume_of(static_cast<std::size_t>(a));
+  for (const std::int32_t a : node_) v[static_cast<std::size_t>(a)] = volume_of(static_cast<std::size_t>(a));
   return v;
 }
 
 std::vector<double> LiquidPressure::pressure(const double* position, const std::vector<double>& rest_volume) const {
   std::vector<double> p = volumes(position);
-  for (const std::int32_t ai : liquid_) {
+  for (const std::int32_t ai : node_) {
     const auto a = static_cast<std::size_t>(ai);
     p[a] = -body_.liquid.bulk_modulus * (p[a] - rest_volume[a]) / rest_volume[a];
   }
@@ -83,24 +76,23 @@ void LiquidPressure::compute(const double* position, const std::vector<double>& 
   TIDALCRUST_ASSERT(rest_volume.size() == body_.particle_count(), "one rest volume per particle");
   tetrahedron_volumes(position, parallel);
   const auto& tets = body_.liquid.tetrahedra;
-  const std::size_t nt = tets.size(), n = body_.particle_count(), nl = liquid_.size();
+  const std::size_t nt = tets.size(), n = body_.particle_count(), nl = node_.size();
   const double bulk = body_.liquid.bulk_modulus;
 #pragma omp parallel if (parallel)
   {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < nl; ++i) {
-      const auto a = static_cast<std::size_t>(liquid_[i]);
+      const auto a = static_cast<std::size_t>(node_[i]);
       pressure_[a] = -bulk * (volume_of(a) - rest_volume[a]) / rest_volume[a];
     }
-    // dE/dx_v = sum over liquid corners a of -P_a dV_a/dx_v, dV_a/dx_v = (1/m_t) dV_t/dx_v: the
-    // force on corner v is p_t dV_t/dx_v with p_t the mean of the liquid corners' pressures
-    // (solid corners count 0) times ... 1/m_t each: p_t = sum_a P_a / m_t.
+    // dE/dx_v = sum over corners a of -P_a dV_a/dx_v, dV_a/dx_v = dV_t/dx_v / 4: the force on
+    // corner v is p_t dV_t/dx_v with p_t the mean of the four corners' pressures.
 #pragma omp for schedule(static)
     for (std::size_t t = 0; t < nt; ++t) {
       const auto& c = tets[t];
       double p = 0;
       for (const std::int32_t v : c) p += pressure_[static_cast<std::size_t>(v)];
-      p *= share_[t];
+      p *= 0.25;
       const double* x0 = position + 3 * c[0];
       const double* x1 = position + 3 * c[1];
       const double* x2 = position + 3 * c[2];
@@ -135,7 +127,7 @@ void LiquidPressure::compute(const double* position, const std::vector<double>& 
 double LiquidPressure::energy(const double* position, const std::vector<double>& rest_volume) const {
   tetrahedron_volumes(position, false);
   double e = 0;
-  for (const std::int32_t ai : liquid_) {
+  for (const std::int32_t ai : node_) {
     const auto a = static_cast<std::size_t>(ai);
     const double dv = volume_of(a) - rest_volume[a];
     e += 0.5 * body_.liquid.bulk_modulus * dv * dv / rest_volume[a];

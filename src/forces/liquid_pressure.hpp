@@ -1,17 +1,20 @@
 #pragma once
 // A liquid layer whose energy depends on volume alone (docs/ocean.md): tetrahedra fill the layer
-// between its particles and the solid particles around it (Body::liquid), each liquid particle a
-// owns the volume
-//   V_a = sum over its tetrahedra t of V_t / m_t   (m_t the liquid particles of t),
+// between its particles and the solid particles around it (Body::liquid), every corner a of a
+// tetrahedron (liquid, crust or floor particle) is a pressure node that owns the volume
+//   V_a = sum over its tetrahedra t of V_t / 4,
 // and the energy is E = sum_a (K/2) (V_a - V0_a)^2 / V0_a, its pressure P_a = -K (V_a - V0_a)/V0_a.
-// This is the average-nodal-pressure tetrahedron (Bonet & Burton 1998): one constraint per particle
-// on three coordinates, so a deformation that keeps every V_a costs nothing and the layer carries
-// no static shear once its particles have moved, while any compression, also a non-affine one,
-// changes real volumes (a spring network's mean strain does not see a fold: docs/ocean.md). The
-// tetrahedra are fixed when the body is built: nothing leaks through the crust or the floor.
+// This is the average-nodal-pressure tetrahedron (Bonet & Burton 1998): one constraint per node on
+// three coordinates, so a deformation that keeps every V_a costs nothing and the layer carries no
+// static shear, while any compression, also a non-affine one, changes real volumes. A tetrahedron
+// pushes its corners with the mean of their four pressures, the value at its centroid of the linear
+// field through them: with the layer's mass lumped onto the corners in the same shares (V_t / 4,
+// bodies/ocean_layer.cpp) a hydrostatic pressure balances every node, the crust's included, to
+// the discretisation's error (docs/ocean.md). The tetrahedra are fixed when the body is built:
+// nothing leaks through the crust or the floor.
 // Units: G = M = R = 1. Lengths R, volumes R^3, K and P e_g = G M^2/R^4, forces G M^2/R^2, energies G M^2/R.
 //
-// Determinism: volumes per tetrahedron, V_a per liquid particle gathered over its tetrahedra in
+// Determinism: volumes per tetrahedron, V_a per node gathered over its tetrahedra in
 // index order, the forces of each tetrahedron's four corners into their own slots, and each
 // particle gathers its slots in index order: the same bits for any thread count.
 #include <cstddef>
@@ -32,7 +35,8 @@ class LiquidPressure {
  public:
   explicit LiquidPressure(const Body& body);
 
-  /// V_a [N] (R^3) of every liquid particle at positions [N*3] (R); 0 for the other particles.
+  /// V_a [N] (R^3) of every pressure node (a corner of a tetrahedron) at positions [N*3] (R); 0 for
+  /// the other particles.
   std::vector<double> volumes(const double* position) const;
 
   /// Forces [N*3] (G M^2/R^2) at positions [N*3] with rest volumes V0 [N]
@@ -43,7 +47,7 @@ class LiquidPressure {
   /// sum_a (K/2) (V_a - V0_a)^2 / V0_a (G M^2/R), in index order.
   double energy(const double* position, const std::vector<double>& rest_volume) const;
 
-  /// P_a = -K (V_a - V0_a) / V0_a (e_g) of every liquid particle, 0 for the others.
+  /// P_a = -K (V_a - V0_a) / V0_a (e_g) of every pressure node, 0 for the others.
   std::vector<double> pressure(const double* position, const std::vector<double>& rest_volume) const;
 
  private:
@@ -52,8 +56,7 @@ class LiquidPressure {
   double volume_of(std::size_t a) const;  ///< V_a from tet_volume_
 
   const Body& body_;
-  std::vector<std::int32_t> liquid_;       ///< liquid particles, increasing
-  std::vector<double> share_;              ///< [Nt] 1/m_t
+  std::vector<std::int32_t> node_;         ///< pressure nodes (corners of a tetrahedron), increasing
   // For each particle p, entries [offset[p], offset[p+1]) of `corner_`: 4t + v for corner v of
   // tetrahedron t, in increasing order.
   std::vector<std::int32_t> offset_, corner_;

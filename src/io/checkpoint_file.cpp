@@ -274,21 +274,25 @@ std::string consistency_problem(const Checkpoint& c) {
                          c.body.liquid.present() ? "0, 1 or 2" : "0 or 1 (2, liquid, needs /checkpoint/liquid)");
   if (c.body.liquid.present()) {
     const auto& tets = c.body.liquid.tetrahedra;
+    std::vector<std::uint8_t> node(n, 0);  // a corner of a tetrahedron: a pressure node
     for (std::size_t t = 0; t < tets.size(); ++t) {
-      bool wet = false;
+      bool in_layer = false;
       for (const std::int32_t i : tets[t]) {
         if (auto p = index_problem("/checkpoint/liquid/tetrahedra", t, i); !p.empty()) return p;
-        wet = wet || c.body.species[static_cast<std::size_t>(i)] == 2;
+        in_layer = in_layer || c.body.species[static_cast<std::size_t>(i)] != 0;
+        node[static_cast<std::size_t>(i)] = 1;
       }
-      if (!wet) return fmt::format("/checkpoint/liquid/tetrahedra row {}: no corner is a liquid particle", t);
+      if (!in_layer) return fmt::format("/checkpoint/liquid/tetrahedra row {}: every corner is an interior node", t);
     }
     if (c.state.liquid_rest_volume.size() != n)
       return fmt::format("/checkpoint/liquid/rest_volume has {} values, expected N = {}", c.state.liquid_rest_volume.size(), n);
     for (std::size_t r = 0; r < n; ++r) {
       const double v = c.state.liquid_rest_volume[r];
-      if (c.body.species[r] == 2 ? !(v > 0 && std::isfinite(v)) : v != 0)
+      if (c.body.species[r] == 2 && !node[r])
+        return fmt::format("/checkpoint/liquid/tetrahedra: liquid particle {} is the corner of no tetrahedron", r);
+      if (node[r] ? !(v > 0 && std::isfinite(v)) : v != 0)
         return fmt::format("/checkpoint/liquid/rest_volume row {}: {} is not {}", r, v,
-                           c.body.species[r] == 2 ? "finite and > 0 (a liquid particle)" : "0 (a solid particle)");
+                           node[r] ? "finite and > 0 (a corner of a tetrahedron)" : "0 (no tetrahedron's corner)");
     }
   } else if (!c.state.liquid_rest_volume.empty()) {
     return "the state has liquid rest volumes but the body no liquid layer";

@@ -354,15 +354,95 @@ StretchRecord stretch_springs(const Body& body, const State& built, const Config
 }
 
 void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state) {
+  const std::size_t n = body.particle_count();
+  const auto shell = static_cast<std::uint8_t>(Species::shell);
+  const auto liquid = static_cast<std::uint8_t>(Species::liquid);
   const Vec3 centre = body_center_of_mass(body, state);
-  std::vector<double> radii(body.particle_count());
-  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = (vec3_at(state.position, i) - centre).norm();
-  const ParticleHydrostaticPressure pressure(radii, body.mass);
-  const std::vector<double> volume = LiquidPressure(body).volumes(state.position.data());
-  state.liquid_rest_volume.assign(body.particle_count(), 0.0);
-  for (std::size_t i = 0; i < radii.size(); ++i)
-    if (body.species[i] == static_cast<std::uint8_t>(Species::liquid))
-      state.liquid_rest_volume[i] = volume[i] / (1 - pressure(radii[i]) / body.liquid.bulk_modulus);
+  std::vector<double> radius(n);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = (vec3_at(state.position, i) - centre).norm();
+  LiquidPressure layer(body);
+  const std::vector<double> volume = layer.volumes(state.position.data());
+
+  // The liquid's density (its particles carry only liquid, V_a of it each), the crust's radius
+  // (mean over its nodes) and mass.
+  double liquid_mass = 0, liquid_volume = 0, crust_mass = 0, crust_radius = 0;
+  std::size_t crust_nodes = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (body.species[i] == liquid) {
+      liquid_mass += body.mass[i];
+      liquid_volume += volume[i];
+    } else if (body.species[i] == shell) {
+      crust_mass += body.mass[i];
+      crust_radius += radius[i];
+      ++crust_nodes;
+    }
+  }
+  const double density = liquid_mass / liquid_volume;
+  crust_radius /= static_cast<double>(crust_nodes);
+
+  // g(r) = m(< r)/r^2 of the particles under the crust, piecewise constant m between their radii:
+  // depth_pressure(r) = density * integral from r to the crust's radius of g, exactly.
+  std::vector<std::pair<double, double>> below;  // (radius, mass), sorted
+  for (std::size_t i = 0; i < n; ++i)
+    if (body.species[i] != shell) below.emplace_back(radius[i], body.mass[i]);
+  std::sort(below.begin(), below.end());
+  std::vector<double> enclosed(below.size() + 1, 0.0);  // enclosed[k]: mass of below[0..k)
+  for (std::size_t k = 0; k < below.size(); ++k) enclosed[k + 1] = enclosed[k] + below[k].second;
+  auto enclosed_mass = [&](double r) {
+    const auto k = std::lower_bound(below.begin(), below.end(), std::make_pair(r, 0.0)) - below.begin();
+    return enclosed[static_cast<std::size_t>(k)];
+  };
+  // integral[k] = int from min(r_k, top) to top of g: accumulated from the top down.
+  const double top = crust_radius;
+  std::vector<double> integral(below.size() + 1, 0.0);
+  for (std::size_t k = below.size(); k-- > 0;) {
+    const double from = std::min(below[k].first, top);
+    const double to = k + 1 < below.size() ? std::min(below[k + 1].first, top) : top;
+    integral[k] = integral[k + 1] + enclosed[k + 1] * (1 / from - 1 / to);
+  }
+  auto depth_pressure = [&](double r) {
+    if (r >= top) return 0.0;
+    // below[k] is the first particle farther out than r: m(< s) = enclosed[k] on (r, r_k].
+    const auto k = static_cast<std::size_t>(std::upper_bound(below.begin(), below.end(), std::make_pair(r, 1e300)) - below.begin());
+    const double to = k < below.size() ? std::min(below[k].first, top) : top;
+    return density * (enclosed[k] * (1 / r - 1 / to) + integral[k]);
+  };
+
+  // Pressure at the top, P_top, so that the liquid carries the crust's weight: every node's
+  // pressure P_top + depth_pressure(r) (crust nodes P_top), and the radial push of the layer on the
+  // crust nodes, linear in P_top, equal to their weight, m_a g_a with g_a = (m(< r_a) + M_crust/2)
+  // / r_a^2 (a node in a thin shell feels half the shell's mass; measured within 0.5% of the
+  // direct sum on ocean-L3, docs/ocean.md).
+  const double bulk = body.liquid.bulk_modulus;
+  auto radial_push_on_crust = [&](const std::vector<double>& pressure) {
+    std::vector<double> rest(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (volume[i] > 0) rest[i] = volume[i] / (1 - pressure[i] / bulk);
+    layer.compute(state.position.data(), rest, false);
+    double push = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (body.species[i] == shell) {
+        const Vec3 r = vec3_at(state.position, i) - centre;
+        push += vec3_at(layer.forces(), i).dot(r) / r.norm();
+      }
+    return push;
+  };
+  constexpr double unit = 1e-6;  // a small probe pressure (e_g): V0 stays positive for any K
+  std::vector<double> pressure(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (volume[i] > 0) pressure[i] = unit;
+  const double push_per_pressure = radial_push_on_crust(pressure) / unit;
+  for (std::size_t i = 0; i < n; ++i)
+    if (volume[i] > 0) pressure[i] = body.species[i] == shell ? 0.0 : depth_pressure(radius[i]);
+  const double push_of_depth = radial_push_on_crust(pressure);
+  double weight = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (body.species[i] == shell)
+      weight += body.mass[i] * (enclosed_mass(radius[i]) + 0.5 * crust_mass) / (radius[i] * radius[i]);
+  const double top_pressure = (weight - push_of_depth) / push_per_pressure;
+  state.liquid_rest_volume.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (volume[i] > 0) state.liquid_rest_volume[i] = volume[i] / (1 - (top_pressure + pressure[i]) / bulk);
 }
 
 }  // namespace tidalcrust

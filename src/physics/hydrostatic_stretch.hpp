@@ -20,10 +20,12 @@ namespace tidalcrust {
 /// SimulationError when stretch.max_iterations force evaluations do not reach stretch.tolerance.
 StretchRecord stretch_springs(const Body& body, const State& built, const Config& config, SpringState& stretched);
 
-/// Sets the rest volume V0 of every liquid particle (State::liquid_rest_volume) so that at the
-/// positions of `state` its pressure -K (V - V0)/V0 is the hydrostatic pressure P(r) of the
-/// particles' own mass (ParticleHydrostaticPressure: the weight of everything farther out, the
-/// crust included; r from the centre of mass): V0 = V / (1 - P/K). Body::liquid must be present.
+/// Sets the rest volume V0 of every pressure node of the liquid layer (State::liquid_rest_volume;
+/// forces/liquid_pressure.hpp) so that at the positions of `state` its pressure -K (V - V0)/V0 is
+/// hydrostatic: P_top + rho int_r^{r_c} g(s) ds (rho the liquid's density, g(s) = m(< s)/s^2 of
+/// everything under the crust, r_c the crust's mean radius; crust nodes P_top), with P_top chosen
+/// so that the layer's radial push on the crust equals the crust nodes' weight (docs/ocean.md).
+/// V0 = V / (1 - P/K). Body::liquid must be present; r from the centre of mass.
 void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state);
 
 }  // namespace tidalcrust
