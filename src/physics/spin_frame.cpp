@@ -79,6 +79,19 @@ ShellFlattening shell_flattening(const Body& body, const State& state, const Mat
   return f;
 }
 
+Vec3 body_angular_velocity(const Body& body, const State& state) {
+  const Vec3 c = body_center_of_mass(body, state), vc = body_center_of_mass_velocity(body, state);
+  Matrix3 inertia = Matrix3::Zero();
+  Vec3 momentum = Vec3::Zero();
+  for (std::size_t i = 0; i < body.particle_count(); ++i) {
+    const Vec3 r = vec3_at(state.position, i) - c;
+    inertia += body.mass[i] * (r.squaredNorm() * Matrix3::Identity() - r * r.transpose());
+    momentum += body.mass[i] * r.cross(Vec3(vec3_at(state.velocity, i) - vc));
+  }
+  if (body.particle_count() < 3) return Vec3::Zero();
+  return inertia.ldlt().solve(momentum);
+}
+
 double centrifugal_flattening(double h2, double angular_velocity) {
   return 0.5 * h2 * angular_velocity * angular_velocity;
 }

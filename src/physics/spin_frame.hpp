@@ -45,6 +45,11 @@ struct ShellFlattening {
 };
 ShellFlattening shell_flattening(const Body& body, const State& state, const Matrix3& to_body = Matrix3::Identity());
 
+/// The body's angular velocity omega = I^-1 L about its centre of mass (I the inertia tensor of
+/// the particles about it, L their angular momentum relative to its motion), rad/t_grav: the
+/// measured spin of a slightly deformable body. Zero for fewer than three particles.
+Vec3 body_angular_velocity(const Body& body, const State& state);
+
 /// The flattening of a body of radial Love number h2 spinning at Omega (G = M = R = 1): the
 /// degree-2 part of the centrifugal potential, W2 = -(1/3) Omega^2 r^2 P2(cos theta), raises the
 /// surface by h2 W2 / g (g = 1), so f = h2 q / 2 with q = Omega^2 R^3/(G M) (to first order in q;
