@@ -92,6 +92,13 @@ Vec3 body_angular_velocity(const Body& body, const State& state) {
   return inertia.ldlt().solve(momentum);
 }
 
+void remove_rigid_rotation(const Body& body, State& state) {
+  const Vec3 w = body_angular_velocity(body, state);
+  const Vec3 c = body_center_of_mass(body, state);
+  for (std::size_t i = 0; i < body.particle_count(); ++i)
+    set_vec3(state.velocity, i, Vec3(vec3_at(state.velocity, i) - w.cross(Vec3(vec3_at(state.position, i) - c))));
+}
+
 double centrifugal_flattening(double h2, double angular_velocity) {
   return 0.5 * h2 * angular_velocity * angular_velocity;
 }

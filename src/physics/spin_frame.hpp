@@ -50,6 +50,13 @@ ShellFlattening shell_flattening(const Body& body, const State& state, const Mat
 /// measured spin of a slightly deformable body. Zero for fewer than three particles.
 Vec3 body_angular_velocity(const Body& body, const State& state);
 
+/// Removes the body's rigid rotation about its centre of mass: v_i -= omega x (x_i - c) with
+/// omega = body_angular_velocity, so that its angular momentum about c is 0 (to rounding). The
+/// relax stage of a spinning body does it after every step in the co-rotating frame: the spring
+/// damping cannot stop a rigid rotation relative to the frame, and the Coriolis force turns the
+/// body's centrifugal expansion into one (the body would lag the frame by Omega dI/I).
+void remove_rigid_rotation(const Body& body, State& state);
+
 /// The flattening of a body of radial Love number h2 spinning at Omega (G = M = R = 1): the
 /// degree-2 part of the centrifugal potential, W2 = -(1/3) Omega^2 r^2 P2(cos theta), raises the
 /// surface by h2 W2 / g (g = 1), so f = h2 q / 2 with q = Omega^2 R^3/(G M) (to first order in q;
