@@ -38,7 +38,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     fig = plt.figure(figsize=(12, 9.6))
     # no spin on top in the middle, then the 2 x 2 of spin rate (rows) and direction (columns)
-    places = [(0.27, 0.67), (0.02, 0.35), (0.51, 0.35), (0.02, 0.03), (0.51, 0.03)]
+    places = [(0.27, 0.64), (0.02, 0.33), (0.51, 0.33), (0.02, 0.02), (0.51, 0.02)]
     for (folder, member, label), (x, y) in zip(PANELS, places):
         analysis = args.runs / folder / member / "analysis"
         summary_file = analysis / "summary.json"
@@ -53,7 +53,7 @@ def main(argv=None):
                  f"hemisphere\nsubsatellite point at longitude {sub:.1f} deg (body frame)")
         fracture_map(analysis, view="mollweide", ax=ax, title=title)
     fig.suptitle("T5 on welded-L3 (member 0 of each ensemble): cracks in the body frame, spin pole north; "
-                 "ring: subsatellite point at pericenter", fontsize=10)
+                 "ring: subsatellite point at pericenter", fontsize=10, y=0.995)
     args.out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(args.out, dpi=90)
     print(args.out)
