@@ -1248,7 +1248,11 @@ def crust_variation(p):
 # and 0.6 of breakup, beside the body without spin (crust-variation's uniform crust), 5-member ensembles.
 SPIN_RUNS = [("crust-L3-uniform", "T5", "no spin"),
              ("spin-L3-0.3", "T5-prograde", "0.3, prograde"), ("spin-L3-0.3", "T5-retrograde", "0.3, retrograde"),
-             ("spin-L3-0.6", "T5-prograde", "0.6, prograde"), ("spin-L3-0.6", "T5-retrograde", "0.6, retrograde")]
+             ("spin-L3-0.6", "T5-prograde", "0.6, prograde"), ("spin-L3-0.6", "T5-retrograde", "0.6, retrograde"),
+             # members on bodies of their own seed (ensemble.vary = "body_seed"): the body's own asymmetries average out
+             ("spin-L3-0-seeds", "T5-prograde", "no spin, body seeds"),
+             ("spin-L3-0.6-seeds", "T5-prograde", "0.6, prograde, body seeds"),
+             ("spin-L3-0.6-seeds", "T5-retrograde", "0.6, retrograde, body seeds")]
 
 # Student's t_{0.975, n-1} for the 95% interval of a mean of n = 2 .. 10 members.
 T_975 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776, 6: 2.571, 7: 2.447, 8: 2.365, 9: 2.306, 10: 2.262}
@@ -1289,10 +1293,13 @@ def spin(p):
     runs = [r for r in SPIN_RUNS if (p.work / r[0] / f"{r[1]}_m0" / "analysis" / "summary.json").is_file()]
     lines = commands("tidalcrust run workflows/welded-L3.toml --set ensemble.members=5 --threads 1 --out crust-L3-uniform",
                      *[f"tidalcrust run workflows/spin-L3.toml --set spin.angular_velocity={w} --set ensemble.members=5 "
-                       f"--threads 2 --jobs 2 --out spin-L3-{w}" for w in ("0.3", "0.6")])
+                       f"--threads 2 --jobs 2 --out spin-L3-{w}" for w in ("0.3", "0.6")],
+                     *[f"tidalcrust run workflows/spin-L3.toml --set spin.angular_velocity={w} --set ensemble.members=5 "
+                       f"--set ensemble.vary=body_seed {only}--threads 2 --jobs 2 --out spin-L3-{w}-seeds"
+                       for w, only in (("0", "--only T5-prograde "), ("0.6", ""))])
     lines += measured_line(p, *[p.work / f / f"{e}_m0" / "encounter.h5" for f, e, _ in runs])
     shapes = []
-    for folder in dict.fromkeys(f for f, _, _ in runs):
+    for folder in dict.fromkeys(f for f, _, _ in runs if not f.endswith("-seeds")):
         relax = p.inspect(p.work / folder / "body" / "relax.h5")
         s = relax.get("spin")
         record = relax["record"]
