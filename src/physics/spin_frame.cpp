@@ -79,8 +79,12 @@ ShellFlattening shell_flattening(const Body& body, const State& state, const Mat
   return f;
 }
 
-Vec3 body_angular_velocity(const Body& body, const State& state) {
-  const Vec3 c = body_center_of_mass(body, state), vc = body_center_of_mass_velocity(body, state);
+namespace {
+
+/// I^-1 L about the centre of mass c (see body_angular_velocity).
+Vec3 angular_velocity_about(const Body& body, const State& state, const Vec3& c) {
+  if (body.particle_count() < 3) return Vec3::Zero();
+  const Vec3 vc = body_center_of_mass_velocity(body, state);
   Matrix3 inertia = Matrix3::Zero();
   Vec3 momentum = Vec3::Zero();
   for (std::size_t i = 0; i < body.particle_count(); ++i) {
@@ -88,13 +92,18 @@ Vec3 body_angular_velocity(const Body& body, const State& state) {
     inertia += body.mass[i] * (r.squaredNorm() * Matrix3::Identity() - r * r.transpose());
     momentum += body.mass[i] * r.cross(Vec3(vec3_at(state.velocity, i) - vc));
   }
-  if (body.particle_count() < 3) return Vec3::Zero();
   return inertia.ldlt().solve(momentum);
 }
 
+}  // namespace
+
+Vec3 body_angular_velocity(const Body& body, const State& state) {
+  return angular_velocity_about(body, state, body_center_of_mass(body, state));
+}
+
 void remove_rigid_rotation(const Body& body, State& state) {
-  const Vec3 w = body_angular_velocity(body, state);
-  const Vec3 c = body_center_of_mass(body, state);
+  const Vec3 c = body_center_of_mass(body, state);  // once: this runs after every relax step
+  const Vec3 w = angular_velocity_about(body, state, c);
   for (std::size_t i = 0; i < body.particle_count(); ++i)
     set_vec3(state.velocity, i, Vec3(vec3_at(state.velocity, i) - w.cross(Vec3(vec3_at(state.position, i) - c))));
 }
