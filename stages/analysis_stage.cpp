@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "analysis/figure_text.hpp"
 #include "figures/figure_script.hpp"
 #include "analysis/fracture_analysis.hpp"
+#include "physics/spin_frame.hpp"
 #include "physics/orbital_frame.hpp"
 #include "analysis/fracture_comparison.hpp"
 #include "analysis/si_output.hpp"
@@ -82,12 +84,33 @@ std::string percent(double fraction) { return std::isfinite(fraction) ? fmt::for
 /// subsatellite point.
 Json history_json(const Checkpoint& checkpoint, const EncounterRecord& record, const FractureSummary& fractures) {
   if (!record.encounter.after) return nullptr;
-  FractureScope whole_crust;
-  whole_crust.subsatellite = fractures.subsatellite;
+  FractureScope whole_crust = fracture_scope(checkpoint);  // its frame and subsatellite point, every failure
+  whole_crust.earlier.clear();
   return {{"after", *record.encounter.after},
           {"earlier_failed", fractures.earlier_failed.size()},
           {"note", "failures counts this encounter's failures; all_failures every failed shell spring of the crust"},
           {"all_failures", failure_summary_json(analyze_fractures(checkpoint.body, checkpoint.state, whole_crust))}};
+}
+
+/// summary.json's `spin` of a spinning body (docs/spin.md; written only then): the spin, the
+/// frame of the maps and statistics, the angle the body frame had turned at pericenter (by which
+/// the subsatellite point of `orbit` lies west of the pericenter direction's longitude), the spin
+/// measured at the end (the tide's torque changes it) and the final shape's flattening.
+Json spin_json(const Checkpoint& checkpoint, const EncounterRecord& record, double spin) {
+  const double deg = 180 / std::numbers::pi;
+  const Vec3 measured = body_angular_velocity(checkpoint.body, checkpoint.state);
+  const ShellFlattening shape =
+      shell_flattening(checkpoint.body, checkpoint.state, spin_rotation(spin, checkpoint.state.time).transpose());
+  const double start = checkpoint.stage.clock.start_time;
+  return {{"angular_velocity", spin},
+          {"frame", "body frame: x_body = Rz(Omega t)^T (x - x_cm), spin axis = +z (north); the failures, maps and "
+                    "angles are in it, the subsatellite point at the pericenter time t_q"},
+          {"turned_at_pericenter_deg", std::fmod(spin * record.pericenter_time * deg, 360.0)},
+          {"turned_start_to_pericenter_deg", spin * (record.pericenter_time - start) * deg},
+          {"turned_during_encounter_deg", spin * (checkpoint.state.time - start) * deg},
+          {"final_angular_velocity", {measured.x(), measured.y(), measured.z()}},
+          {"final_spin_change", measured.z() - spin},
+          {"final_flattening", shape.flattening}};
 }
 
 }  // namespace
@@ -254,6 +277,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
       {"figures", figure_names},
       {"crack_geometry", crack_geometry_json(fractures.geometry)},
       {"crust", crust_statistics_json(crust_statistics(checkpoint.body, fractures))}};
+  if (const double spin = stored_spin(checkpoint, from.string()); spin != 0)
+    summary["spin"] = spin_json(checkpoint, record, spin);
   // A [moon] workflow's values in SI beside the model's, last (readers rely on the order before it).
   if (moon) summary["si"] = summary_si_json(*moon, summary);
   // Atomic, so a summary.json is never half written: run uses it to decide whether the analysis

@@ -1244,6 +1244,92 @@ def crust_variation(p):
     return lines
 
 
+# A spinning body (issue 26, docs/spin.md): T5 prograde and retrograde on welded-L3 spinning at 0.3
+# and 0.6 of breakup, beside the body without spin (crust-variation's uniform crust), 5-member ensembles.
+SPIN_RUNS = [("crust-L3-uniform", "T5", "no spin"),
+             ("spin-L3-0.3", "T5-prograde", "0.3, prograde"), ("spin-L3-0.3", "T5-retrograde", "0.3, retrograde"),
+             ("spin-L3-0.6", "T5-prograde", "0.6, prograde"), ("spin-L3-0.6", "T5-retrograde", "0.6, retrograde"),
+             # members on bodies of their own seed (ensemble.vary = "body_seed"): the body's own asymmetries average out
+             ("spin-L3-0-seeds", "T5-prograde", "no spin, body seeds"),
+             ("spin-L3-0.6-seeds", "T5-prograde", "0.6, prograde, body seeds"),
+             ("spin-L3-0.6-seeds", "T5-retrograde", "0.6, retrograde, body seeds")]
+
+# Student's t_{0.975, n-1} for the 95% interval of a mean of n = 2 .. 10 members.
+T_975 = {2: 12.706, 3: 4.303, 4: 3.182, 5: 2.776, 6: 2.571, 7: 2.447, 8: 2.365, 9: 2.306, 10: 2.262}
+
+
+def mean_sd_interval(values, digits):
+    """mean +- sample sd [95% interval of the mean] of the members' values ("-" without two of them)."""
+    values = [v for v in values if v is not None]
+    if len(values) < 2 or len(values) not in T_975:
+        return mean_sd(values, digits)
+    m, sd = statistics.mean(values), statistics.stdev(values)
+    half = T_975[len(values)] * sd / len(values) ** 0.5
+    return f"{fixed(m, digits)} +- {fixed(sd, digits)} [{fixed(m - half, digits)}, {fixed(m + half, digits)}]"
+
+
+def east_share(summary):
+    """The share of the failed springs east of the subsatellite point's meridian (longitude - the
+    subsatellite longitude in (0, 180) deg: the side the spin carries the surface toward); None without failures."""
+    lons = summary["failed_springs"]["longitude_deg"]
+    if not lons:
+        return None
+    sub = summary["encounter"]["orbit"]["subsatellite_longitude_deg"]
+    return sum(1 for x in lons if 0 < (x - sub) % 360 < 180) / len(lons)
+
+
+def north_share(summary):
+    lats = summary["failed_springs"]["latitude_deg"]
+    return sum(1 for x in lats if x > 0) / len(lats) if lats else None
+
+
+@full_table("spin")
+def spin(p):
+    """T5 on welded-L3 without spin and spinning at 0.3 and 0.6 of breakup, prograde (inclination 0) and
+    retrograde (inclination 180, argument_of_pericenter 270), 5-member ensembles (members at perturbed
+    pericenters): the relaxed body's flattening against h2 q / 2, then per run the failures, their
+    share on the subsatellite hemisphere and east of its meridian (body frame), the median angle,
+    the crack orientation (concentricity, rose peak) and where the subsatellite point fell."""
+    runs = [r for r in SPIN_RUNS if (p.work / r[0] / f"{r[1]}_m0" / "analysis" / "summary.json").is_file()]
+    lines = commands("tidalcrust run workflows/welded-L3.toml --set ensemble.members=5 --threads 1 --out crust-L3-uniform",
+                     *[f"tidalcrust run workflows/spin-L3.toml --set spin.angular_velocity={w} --set ensemble.members=5 "
+                       f"--threads 2 --jobs 2 --out spin-L3-{w}" for w in ("0.3", "0.6")],
+                     *[f"tidalcrust run workflows/spin-L3.toml --set spin.angular_velocity={w} --set ensemble.members=5 "
+                       f"--set ensemble.vary=body_seed {only}--threads 2 --jobs 2 --out spin-L3-{w}-seeds"
+                       for w, only in (("0", "--only T5-prograde "), ("0.6", ""))])
+    lines += measured_line(p, *[p.work / f / f"{e}_m0" / "encounter.h5" for f, e, _ in runs])
+    shapes = []
+    for folder in dict.fromkeys(f for f, _, _ in runs if not f.endswith("-seeds")):
+        relax = p.inspect(p.work / folder / "body" / "relax.h5")
+        s = relax.get("spin")
+        record = relax["record"]
+        shapes.append([folder, "0" if not s else short(s["angular_velocity"]),
+                       "-" if not s else sci(s["flattening"], 4),
+                       f"{record['probe_failures']} ({sci(record['probe_max_shell_strain'])})"])
+    lines += table(["relaxed body", "Omega [sqrt(GM/R^3)]", "flattening (a - c)/a", "probe failures (largest strain)"],
+                   shapes) + [""]
+    rows = []
+    for folder, encounter, label in runs:
+        members = [p.load(m) for m in sorted((p.work / folder).glob(f"{encounter}_m*/analysis/summary.json"))]
+        failures = [m["failures"] for m in members]
+        column = lambda key: [f[key] for f in failures]
+        sub = [m["encounter"]["orbit"]["subsatellite_longitude_deg"] for m in members]
+        rows.append([label, str(len(members)), mean_sd_interval(column("count"), 1),
+                     mean_sd_interval([100 * x for x in column("failed_area_fraction")], 2),
+                     mean_sd_interval(column("hemisphere_fraction"), 3),
+                     mean_sd_interval([east_share(m) for m in members], 3),
+                     mean_sd_interval([north_share(m) for m in members], 3),
+                     mean_sd_interval(column("median_angle_from_subsatellite_deg"), 1),
+                     mean_sd_interval(column("concentricity"), 3),
+                     mean_sd_interval(column("crack_rose_peak_deg"), 0),
+                     mean_sd(sub, 1)])
+    lines += table(["spin, orbit", "members", "failed shell springs", "failed area [%]",
+                    "share on the subsatellite hemisphere", "share east of its meridian", "share in the north",
+                    "median angle [deg]", "concentricity", "crack rose peak [deg]",
+                    "subsatellite longitude [deg]"], rows)
+    return lines
+
+
 # ---------------------------------------------------------------- pages
 
 

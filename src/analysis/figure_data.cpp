@@ -38,7 +38,8 @@ Vec3 perturber_offset(const Checkpoint& c, const Vec3& center) {
 Json hemisphere_panel(const Checkpoint& c, double pericenter_time, const std::vector<std::int32_t>& nodes,
                       const MoonScale* moon) {
   const Vec3 center = body_center_of_mass(c.body, c.state);
-  const FractureSummary fractures = analyze_fractures(c);
+  // Drawn with the perturber: in the inertial frame, also of a spinning body.
+  const FractureSummary fractures = analyze_fractures(c.body, c.state, fracture_scope(c, /*in_body_frame=*/false));
   Json positions = Json::array();
   for (const std::int32_t i : nodes) positions.push_back(xyz(vec3_at(c.state.position, static_cast<std::size_t>(i)) - center));
   Json bars = Json::array();
@@ -368,7 +369,7 @@ Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord&
     Json data = figure_data_json(turned_final, turned_final.stage.as<EncounterRecord>(), turned_panels, titles, state_hash,
                                  moon);
     data["crack_geometry"] = {{"circles", crack_circles_json(fractures.geometry)}};
-    data["map"] = map_json(moon, subsatellite_direction_of(record.orbit));
+    data["map"] = map_json(moon, fractures.subsatellite);
     data["units"] = figure_data_units(false);
     return data;
   }
@@ -390,7 +391,7 @@ Json figure_data_json(const Checkpoint& final_checkpoint, const EncounterRecord&
           {"conservation", conservation_json(final_checkpoint, tq)},
           {"body_shape", {{"slice_half_width", body_slice_half_width}, {"panels", slices}}},
           {"crack_geometry", {{"circles", crack_circles_json(fractures.geometry)}}},
-          {"map", map_json(moon, subsatellite_direction_of(record.orbit))},
+          {"map", map_json(moon, fractures.subsatellite)},
           {"time_axis",
            {{"label", time_axis_label(moon)},
             {"per_t_grav", moon ? model_to_output(moon->units, Dimension::time, 1) : 1.0},

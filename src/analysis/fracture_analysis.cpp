@@ -11,6 +11,8 @@
 
 #include "base/errors.hpp"
 #include "physics/orbital_frame.hpp"
+#include "physics/spin_frame.hpp"
+#include "model/config.hpp"
 #include "bodies/shell_topology.hpp"
 
 namespace tidalcrust {
@@ -71,7 +73,10 @@ FractureSummary analyze_fractures(const Body& body, const State& state, const Fr
   const Vec3& subsatellite = scope.subsatellite;
   const ShellTopology topology = shell_topology(body);
   const Vec3 center = body_center_of_mass(body, state);
-  auto position = [&](std::int32_t i) { return Vec3(vec3_at(state.position, static_cast<std::size_t>(i)) - center); };
+  const Matrix3& to_body = scope.to_body;
+  auto position = [&](std::int32_t i) {
+    return Vec3(to_body * (vec3_at(state.position, static_cast<std::size_t>(i)) - center));
+  };
 
   FractureSummary summary;
   summary.shell_springs = body.count_springs(SpringKind::shell);
@@ -185,11 +190,20 @@ FractureSummary analyze_fractures(const Body& body, const State& state, const Fr
   return summary;
 }
 
-FractureScope fracture_scope(const Checkpoint& c) {
+double stored_spin(const Checkpoint& c, const std::string& origin) {
+  if (c.config_toml.empty()) return 0;  // a checkpoint made in memory (tests), not by a stage
+  return parse_config(c.config_toml, origin + ":/parameters/config").spin.rate();
+}
+
+FractureScope fracture_scope(const Checkpoint& c, bool in_body_frame) {
   FractureScope scope;
   const auto* record = std::get_if<EncounterRecord>(&c.stage.record);
   if (!record) return scope;
   scope.subsatellite = subsatellite_direction_of(record->orbit);
+  if (const double spin = in_body_frame ? stored_spin(c) : 0.0; spin != 0) {
+    scope.to_body = spin_rotation(spin, c.state.time).transpose();
+    scope.subsatellite = spin_rotation(spin, record->pericenter_time).transpose() * scope.subsatellite;
+  }
   if (!record->encounter.after) return scope;
   // An encounter of a history: what failed before it began is every failed spring its own
   // failure log does not name.

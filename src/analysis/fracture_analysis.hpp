@@ -97,12 +97,27 @@ struct FractureScope {
   /// [springs] true for a spring that failed before the encounter (an encounter of a history):
   /// left out of every statistic, listed in FractureSummary::earlier_failed. Empty: none.
   std::vector<bool> earlier;
+  /// The rotation that takes the state's positions (relative to the centre of mass) into the frame
+  /// the summary is given in: for a spinning body (docs/spin.md) the body frame,
+  /// Rz(Omega t)^T (physics/spin_frame.hpp); the identity otherwise. `subsatellite` is in that frame.
+  Matrix3 to_body = Matrix3::Identity();
 };
 
 /// The scope of an encounter checkpoint: its orbit's subsatellite direction, and for an encounter
 /// that came after another (EncounterRecord's encounter.after) the springs failed before it began:
 /// failed in the state and absent from its failure log. The default scope for other stages.
-FractureScope fracture_scope(const Checkpoint& c);
+/// A spinning body's encounter (spin.angular_velocity of the stored configuration) is seen in the
+/// body frame (`in_body_frame`, the maps' frame): to_body = Rz(Omega t)^T at the state's time t,
+/// and the subsatellite point is the pericenter direction turned back by the angle the body had
+/// turned at pericenter, Rz(Omega t_q)^T; with `in_body_frame` false, in the inertial frame
+/// (the hemisphere views, drawn with the perturber). InputError for a stored configuration that
+/// does not parse.
+FractureScope fracture_scope(const Checkpoint& c, bool in_body_frame = true);
+
+/// The spin of a checkpoint's body, rad/t_grav: spin.angular_velocity of its stored configuration
+/// (0 without one, a checkpoint made in memory). InputError naming `origin` for a stored text
+/// that does not parse.
+double stored_spin(const Checkpoint& c, const std::string& origin = "checkpoint");
 
 /// Analyses the failed shell springs of `state` (State::springs.failed, shell kind only) within
 /// `scope`. Throws InputError if the shell faces and springs, or the scope's flags, do not match.

@@ -1,6 +1,7 @@
 #include "analysis/inspect_report.hpp"
 
 #include "analysis/fracture_analysis.hpp"
+#include "physics/spin_frame.hpp"
 #include "analysis/si_output.hpp"
 
 #include <fmt/format.h>
@@ -246,9 +247,28 @@ InspectReport build_inspect_report(const Checkpoint& c, const std::string& file)
     r.section("stability")
         .add("failures", relax->probe_failures, "1")
         .add("max_shell_strain", relax->probe_max_shell_strain, "1");
+  add_spin_section(c, r);
   add_failures_section(c, r);
   add_si_values(r);
   return r;
+}
+
+void add_spin_section(const Checkpoint& c, InspectReport& r) {
+  const double spin = stored_spin(c, "inspect");
+  if (spin == 0) return;
+  // A mid-stage relax checkpoint is in the co-rotating frame, which is the body frame.
+  const auto* relax = std::get_if<RelaxRecord>(&c.stage.record);
+  const bool rotating = relax && !relax->relaxed;
+  const Matrix3 to_body = rotating ? Matrix3(Matrix3::Identity()) : Matrix3(spin_rotation(spin, c.state.time).transpose());
+  const ShellFlattening shape = shell_flattening(c.body, c.state, to_body);
+  const Vec3 measured = body_angular_velocity(c.body, c.state);
+  r.section("spin")
+      .add("angular_velocity", spin, "1/t_grav")
+      .add("frame", rotating ? "co-rotating (relaxing)" : "inertial, spinning")
+      .add("measured_angular_velocity", std::vector<double>{measured.x(), measured.y(), measured.z()}, "1/t_grav")
+      .add("flattening", shape.flattening, "1")
+      .add("equatorial_radius", shape.equatorial_radius, "R")
+      .add("polar_radius", shape.polar_radius, "R");
 }
 
 std::string inspect_report_json(const InspectReport& r) {

@@ -103,6 +103,11 @@ struct InspectReport {
 /// `file` names the checkpoint in error messages (e.g. an unparsable stored configuration).
 InspectReport build_inspect_report(const Checkpoint& checkpoint, const std::string& file);
 
+/// Of a spinning body (docs/spin.md): a section `spin` with angular_velocity (configured),
+/// frame, measured_angular_velocity (I^-1 L about the centre of mass) and the shell's flattening
+/// with its equatorial and polar radii (shell_flattening in the body frame). Nothing otherwise.
+void add_spin_section(const Checkpoint& checkpoint, InspectReport& report);
+
 /// Hook for the fracture statistics of an encounter (`failures {count, fraction_shell, ...}`):
 /// adds nothing yet; the analysis code fills it in.
 void add_failures_section(const Checkpoint& checkpoint, InspectReport& report);

@@ -81,7 +81,7 @@ constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { retu
 /// the TOML, the stages whose results it changes (the stage fingerprints are made of it:
 /// model/stage_fingerprint.cpp), its unit and meaning (the comment to_toml writes; none when `unit`
 /// is empty; a choice's is its table's, choice_doc), and for numbers the accepted range [min, max],
-/// or (min, max] when `open_min`.
+/// or (min, max] when `open_min`, [min, max) when `open_max`.
 template <class T>
 struct Key {
   using type = T;
@@ -93,6 +93,7 @@ struct Key {
   T min{};
   T max{};
   bool open_min = false;
+  bool open_max = false;
 };
 
 template <class F> struct ValueOf { using type = F; };
@@ -330,6 +331,8 @@ void visit_keys(C& c, V&& visit) {
   key(c.moon.core_density, {"moon", "core_density", reads(build, stretch), "kg/m^3", "rho_c, the core's density (with core_radius)"});
   key(c.moon.core_youngs_modulus, {"moon", "core_youngs_modulus", reads(build, stretch), "Pa",
                                    "E_c, the core's Young's modulus; default E_I"});
+  key(c.moon.spin_period, {"moon", "spin_period", reads(relax, encounter), "s",
+                           "P, the moon's rotation period: \"45.3 h\" (gives spin.angular_velocity = 2 pi t_grav / P)"});
 
   // issue 25: [crust], a crust that varies over the surface (docs/crust.md, model/crust_field.hpp); all
   // optional. The builder samples the field into the body (node masses, spring and hinge
@@ -353,6 +356,15 @@ void visit_keys(C& c, V&& visit) {
   key(c.crust.map_digest,
       {"crust", "map_digest", reads(build), "-",
        "XXH3-64 of map_file's bytes, recorded when the workflow is read (a changed file is refused)"});
+
+  // issue 26: [spin], the body spins about its z axis (docs/spin.md); optional, so that a body
+  // without spin keeps its stored text and fingerprints (0 is the same as unset: normalize_spin).
+  // Relax relaxes the body in the co-rotating frame; the encounter's analysis maps the failures
+  // in the body's frame.
+  key(c.spin.angular_velocity,
+      {"spin", "angular_velocity", reads(relax, encounter), "1/t_grav",
+       "Omega, the body's spin about its z axis (north), rad/t_grav = fraction of breakup sqrt(GM/R^3); default 0",
+       0, max_spin, false, true});
 }
 
 /// The keys of one [[encounters]] table (paper Table 4). The encounter stage reads its own table
@@ -600,11 +612,12 @@ void check_range(const F& field, const Key<T>& key, const std::string& what) {
   if constexpr (is_optional<F>) {
     if (field) check_range(*field, key, what);
   } else if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
-    bool inside = field >= key.min && field <= key.max && !(key.open_min && field == key.min);
+    bool inside = field >= key.min && field <= key.max && !(key.open_min && field == key.min) &&
+                  !(key.open_max && field == key.max);
     if constexpr (std::is_floating_point_v<T>) inside = inside && std::isfinite(field);
     if (!inside)
-      throw InputError(fmt::format("{} = {} is out of range {}{}, {}] ({})", what, field, key.open_min ? '(' : '[',
-                                   key.min, key.max, key.unit));
+      throw InputError(fmt::format("{} = {} is out of range {}{}, {}{} ({})", what, field, key.open_min ? '(' : '[',
+                                   key.min, key.max, key.open_max ? ')' : ']', key.unit));
   }
 }
 
@@ -929,7 +942,13 @@ std::vector<MoonField> moon_fields(Config& c, const MoonModelValues& v) {
            v.failure_strain},
           {"core.radius", "moon.core_radius", &c.core.radius, v.core_radius},
           {"core.density_ratio", "moon.core_density", &c.core.density_ratio, v.core_density_ratio},
-          {"core.modulus_ratio", "moon.core_youngs_modulus", &c.core.modulus_ratio, v.core_modulus_ratio}};
+          {"core.modulus_ratio", "moon.core_youngs_modulus", &c.core.modulus_ratio, v.core_modulus_ratio},
+          {"spin.angular_velocity", "moon.spin_period", &c.spin.angular_velocity, v.spin_angular_velocity}};
+}
+
+/// A spin of 0 is no spin: unset, so that its text and fingerprints are those of a body without [spin].
+void normalize_spin(Config& c) {
+  if (c.spin.angular_velocity == 0.0) c.spin.angular_velocity.reset();
 }
 
 /// Unsets the [material] and [core] values the [moon] table of `c` filled (before it changes).
@@ -943,7 +962,12 @@ void forget_moon_values(Config& c, const std::string& origin) {
 
 void resolve_moon(Config& c, const std::string& origin) {
   if (!c.moon.given()) return;
-  for (MoonField& f : moon_fields(c, moon_model_values(c.moon, origin))) {
+  const MoonModelValues values = moon_model_values(c.moon, origin);
+  if (values.spin_angular_velocity && !(*values.spin_angular_velocity < max_spin))
+    throw InputError(fmt::format("{}: moon.spin_period = \"{}\" gives spin.angular_velocity = {:.4g} rad/t_grav, "
+                                 "at or beyond {} of breakup (a longer period, or no spin)",
+                                 origin, *c.moon.spin_period, *values.spin_angular_velocity, max_spin));
+  for (MoonField& f : moon_fields(c, values)) {
     if (!f.value) continue;
     if (*f.field && **f.field != *f.value)
       throw InputError(fmt::format("{}: {} = {} and [moon] ({}, giving {}) both set it; give one of them", origin, f.key,
@@ -1344,6 +1368,7 @@ Config parse_config(const std::string& toml_text, const std::string& origin, con
     expand_ensemble_of(config, origin);
   }
   resolve_moon(config, origin);  // [moon] fills [material] and [core]
+  normalize_spin(config);
   if (config.from_material())  // [material] derives these: giving them too is ambiguous
     for (auto&& [sk, snode] : root)
       if (auto* table = snode.as_table())
@@ -1436,6 +1461,7 @@ void apply_override(Config& config, const std::string& assignment) {
     if (section == "crust" && key == "map_file") config.crust.map_digest.reset();  // the new file's
     resolve_crust(config, {});
     resolve_moon(config, where);  // a value [moon] filled: given again only with the same value
+    normalize_spin(config);
     if (section == "integrator" && key == "dt") config.choose_dt = false;
     // Members of an ensemble that varies the body branch from seeds counted from workflow.seed.
     if (section == "workflow" && key == "seed" && config.ensemble && config.ensemble->members != 0)
@@ -1497,7 +1523,8 @@ KeyInfo key_info(const F& field, const Key<T>& key, const Config& config) {
   info.unit = key.unit;
   info.doc = key.doc;
   if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
-    info.range = fmt::format("{}{}, {}]", key.open_min ? '(' : '[', range_text(key.min), range_text(key.max));
+    info.range = fmt::format("{}{}, {}{}", key.open_min ? '(' : '[', range_text(key.min), range_text(key.max),
+                             key.open_max ? ')' : ']');
   if constexpr (Choice<T>) info.range = fmt::format("one of: {}", choice_names<T>());
   info.optional = is_optional<F>;
   if constexpr (is_optional<F>) {

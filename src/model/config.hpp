@@ -229,6 +229,18 @@ std::vector<Encounter> expand_ensemble(const std::vector<Encounter>& encounters,
 double ensemble_pericenter_offset(const EnsembleConfig& ensemble, std::int64_t member);
 
 
+/// The [spin] table (docs/spin.md): the body spins about its z axis (the body frame's north).
+/// Unset (or 0): the body does not spin, and every result is what it was before the key.
+struct SpinConfig {
+  /// Omega, rad/t_grav: the fraction of the breakup rate sqrt(GM/R^3) = 1; [0, max_spin).
+  std::optional<double> angular_velocity;
+  /// Omega, 0 when unset.
+  double rate() const { return angular_velocity.value_or(0.0); }
+};
+/// The fastest spin a workflow may ask for (exclusive), in units of the breakup rate: beyond it
+/// the equator's centrifugal acceleration is most of gravity and the body sheds its crust.
+inline constexpr double max_spin = 0.9;
+
 struct Config {
   WorkflowConfig workflow;
   InteriorConfig interior;
@@ -260,6 +272,9 @@ struct Config {
   CrustConfig crust;
   /// The [ocean] table (docs/ocean.md): a liquid layer under the crust.
   OceanConfig ocean;
+  /// The [spin] table (docs/spin.md): the body's spin about its z axis; given by moon.spin_period
+  /// in a [moon] workflow (resolve_moon).
+  SpinConfig spin;
   /// No integrator.dt given in a [material] workflow: dt is chosen from the stability bound of
   /// the stretched body (stages/time_step.hpp); to_toml leaves dt out while this is set.
   bool choose_dt = false;

@@ -330,6 +330,9 @@ MoonModelValues moon_model_values(const MoonConfig& moon, const std::string& ori
   else if (const auto sigma = value(moon.tensile_strength, "tensile_strength", Dimension::pressure, choice.tensile_strength_Pa))
     out.failure_strain = *sigma / E_s;  // the crust fails in tension: its own modulus
 
+  if (moon.spin_period)
+    out.spin_angular_velocity =
+        2 * std::numbers::pi / si_to_model(u, Dimension::time, quantity_si(*moon.spin_period, Dimension::time, where("spin_period")));
   if (!moon.core_radius) {
     if (moon.core_density || moon.core_youngs_modulus)
       throw InputError(fmt::format("{}: moon.{} needs moon.core_radius", origin,

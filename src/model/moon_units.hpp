@@ -135,10 +135,11 @@ struct MoonConfig {
   std::optional<std::string> core_radius;         ///< r_c, a length (optional core)
   std::optional<std::string> core_density;        ///< rho_c, with core_radius
   std::optional<std::string> core_youngs_modulus; ///< E_c; default E_I
+  std::optional<std::string> spin_period;         ///< P, the rotation period, a time (optional spin)
   bool given() const {
     return preset || radius || mass || mean_density || youngs_modulus || crust_thickness || crust_density ||
            crust_youngs_modulus || tensile_strength || failure_strain || core_radius || core_density ||
-           core_youngs_modulus;
+           core_youngs_modulus || spin_period;
   }
 };
 
@@ -156,12 +157,14 @@ struct MoonModelValues {
   std::optional<double> core_radius;
   std::optional<double> core_density_ratio;
   std::optional<double> core_modulus_ratio;
+  /// [spin]'s angular_velocity Omega = 2 pi t_grav / P, rad/t_grav (with spin_period)
+  std::optional<double> spin_angular_velocity;
 };
 /// The model values of `moon`: its given values, the rest from its preset. The mantle density of
 /// a core is what the crust (4 pi R^2 h_S rho_S, the model's) and the core leave of M in the ball
 /// under the crust. InputError "<origin>: moon.<key> ..." naming the key for a bad value, a missing
 /// one, two alternatives given together (mass and mean_density, tensile_strength and
-/// failure_strain), or a core that leaves the mantle no mass.
+/// failure_strain), or a core that leaves the mantle no mass. (resolve_moon checks the spin's range.)
 MoonModelValues moon_model_values(const MoonConfig& moon, const std::string& origin);
 
 /// The moon whose units a [moon] workflow's output is also written in (docs/moon.md, "Output in SI").

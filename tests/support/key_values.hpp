@@ -17,6 +17,8 @@ namespace tidalcrust::test_support {
 inline std::vector<std::string> other_key_values(const KeyInfo& key) {
   if (key.type == "boolean") return {key.value == "true" ? "false" : "true"};
   if (key.section == "moon" && key.name == "preset") return {"dione", "Europa"};
+  // A rotation period that is slower than 0.9 of breakup for the tiny moons (t_grav ~ 1 h).
+  if (key.section == "moon" && key.name == "spin_period") return {"'40 h'", "'100 h'"};
   if (const auto dimension = dimension_of_si_unit(key.unit); key.type == "string" && dimension) {
     // A [moon] quantity (the value as to_toml writes it, 'number unit'), scaled; unset: an example.
     const std::string text = key.value ? key.value->substr(1, key.value->size() - 2) : std::string(dimension_example(*dimension));
