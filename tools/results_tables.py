@@ -1330,6 +1330,65 @@ def spin(p):
     return lines
 
 
+# An ocean under the crust (issue 26, docs/ocean.md): T5 on ocean-L3 (welded-L3's material, a
+# floating crust over 0.3 R of liquid) at two shear fractions of the liquid's springs, beside the
+# body without ocean (crust-variation's uniform crust), 5-member ensembles; the static tide of each.
+OCEAN_RUNS = [("crust-L3-uniform", "workflows/welded-L3.toml", "", "no ocean (welded crust)"),
+              ("ocean-L3", "workflows/ocean-L3.toml", "", "ocean, shear fraction 0.01"),
+              ("ocean-L3-s1e-3", "workflows/ocean-L3.toml", "--set ocean.shear_fraction=0.001 ",
+               "ocean, shear fraction 0.001")]
+
+
+@full_table("ocean")
+def ocean(p):
+    """T5 on welded-L3 without an ocean and on ocean-L3 with shear fractions 0.01 and 0.001, 5-member
+    ensembles: the relaxed body (probe, largest crust strain), the static tide's h2 and l2 against
+    TS72 with the body's own layers (the liquid with its springs' shear modulus) and with a fluid
+    ocean, and per run the failures, their share on the subsatellite hemisphere, the median angle
+    and the crack orientation."""
+    runs = [r for r in OCEAN_RUNS if (p.work / r[0] / "T5_m0" / "analysis" / "summary.json").is_file()]
+    lines = commands(*[f"tidalcrust run {w} {s}--set ensemble.members=5 --threads 1 --out {f}" for f, w, s, _ in OCEAN_RUNS],
+                     *[f"tidalcrust validate {w} {s}--measure tide --threads 1 --out {f}" for f, w, s, _ in OCEAN_RUNS])
+    lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f, _, _, _ in runs])
+    bodies = []
+    for folder, _, _, label in runs:
+        record = p.inspect(p.work / folder / "body" / "relax.h5")["record"]
+        tide = p.work / folder / "validate" / "validation.json"
+        row = [label, f"{record['probe_failures']} ({sci(record['probe_max_shell_strain'])})",
+               sci(record["max_shell_strain"])]
+        if tide.is_file():
+            v = p.load(tide)
+            c = v["comparisons"]
+            fluid_h = c.get("tide-fluid-ocean", {}).get("theory")
+            fluid_l = c.get("tide-l2-fluid-ocean", {}).get("theory")
+            row += [fixed(c["tide"]["measured"], 3), fixed(c["tide"]["theory"], 3),
+                    "-" if fluid_h is None else fixed(fluid_h, 3), fixed(c["tide-l2"]["measured"], 3),
+                    fixed(c["tide-l2"]["theory"], 3), "-" if fluid_l is None else fixed(fluid_l, 3),
+                    fixed(c["tide-correlation"]["measured"], 3)]
+        else:
+            row += ["-"] * 7
+        bodies.append(row)
+    lines += table(["relaxed body", "probe failures (largest strain)", "largest crust strain relaxed",
+                    "h2", "h2 TS72 own layers", "h2 TS72 fluid ocean", "l2", "l2 TS72 own layers",
+                    "l2 TS72 fluid ocean", "crust strain correlation"], bodies) + [""]
+    rows = []
+    for folder, _, _, label in runs:
+        members = [p.load(m) for m in sorted((p.work / folder).glob("T5_m*/analysis/summary.json"))]
+        failures = [m["failures"] for m in members]
+        column = lambda key: [f[key] for f in failures]
+        rows.append([label, str(len(members)), mean_sd_interval(column("count"), 1),
+                     mean_sd_interval([100 * x for x in column("failed_area_fraction")], 2),
+                     mean_sd_interval(column("hemisphere_fraction"), 3),
+                     mean_sd_interval(column("median_angle_from_subsatellite_deg"), 1),
+                     mean_sd_interval(column("concentricity"), 3),
+                     mean_sd_interval(column("crack_rose_peak_deg"), 0),
+                     sci(max(m["conservation"]["max_energy_error"] for m in members))])
+    lines += table(["body", "members", "failed shell springs", "failed area [%]",
+                    "share on the subsatellite hemisphere", "median angle [deg]", "concentricity",
+                    "crack rose peak [deg]", "largest energy error (of 3/5 G M^2/R)"], rows)
+    return lines
+
+
 # ---------------------------------------------------------------- pages
 
 

@@ -259,7 +259,8 @@ BuiltBody build_body(const Config& config) {
   vary_crust(out, config);
   if (config.ocean.present())
     add_ocean(out, *config.ocean.thickness,
-              config.ocean.bulk_modulus ? *config.ocean.bulk_modulus : *config.material.youngs_modulus / 1.5);
+              config.ocean.bulk_modulus ? *config.ocean.bulk_modulus : *config.material.youngs_modulus / 1.5,
+              config.ocean.shear_fraction.value_or(OceanConfig::default_shear_fraction));
 
   std::vector<Vec3> positions(interior.nodes);
   positions.insert(positions.end(), shell.nodes.begin(), shell.nodes.end());

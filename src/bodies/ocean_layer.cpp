@@ -77,7 +77,7 @@ std::vector<std::array<std::int32_t, 4>> liquid_tetrahedra(const Body& body, con
 
 }  // namespace
 
-void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
+void add_ocean(BuiltBody& built, double thickness, double bulk_modulus, double shear_fraction) {
   Body& body = built.body;
   State& state = built.state;
   const std::size_t n = body.particle_count();
@@ -93,8 +93,8 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
     throw InputError(fmt::format("ocean.thickness = {}: no interior node lies above the ocean floor at r = {}", thickness,
                                  floor_radius));
 
-  // A spring with a liquid end becomes a liquid spring (stiffness 0 in the spring law; the
-  // volumetric energy instead); a cross spring between the crust and a solid node below the ocean
+  // A spring with a liquid end becomes a liquid spring (shear_fraction of its stiffness: the
+  // volumetric energy carries the pressure); a cross spring between the crust and a solid node below the ocean
   // would cross it and goes. Order and everything stored per spring are kept.
   std::size_t kept = 0;
   const bool factors = !body.strength_factor.empty();
@@ -106,7 +106,7 @@ void add_ocean(BuiltBody& built, double thickness, double bulk_modulus) {
     body.spring_kind[kept] = wet ? static_cast<std::uint8_t>(SpringKind::liquid) : body.spring_kind[s];
     if (factors) body.strength_factor[kept] = body.strength_factor[s];
     state.springs.rest_length[kept] = state.springs.rest_length[s];
-    state.springs.stiffness[kept] = wet ? liquid_shear_fraction * state.springs.stiffness[s] : state.springs.stiffness[s];
+    state.springs.stiffness[kept] = wet ? shear_fraction * state.springs.stiffness[s] : state.springs.stiffness[s];
     state.springs.failed[kept] = state.springs.failed[s];
     ++kept;
   }

@@ -446,7 +446,8 @@ int command_validate(int argc, char** argv) {
              network_material.youngs_modulus, moduli.youngs_factor, network_material.poisson_ratio, moduli.bulk_factor,
              moduli.shear_factor);
   if (std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.source != nullptr; }))
-    fmt::print("tide and ring-down against the layered sphere of the body's own layers (it has a core)\n");
+    fmt::print("tide and ring-down against the layered sphere of the body's own layers (it has {})\n",
+               relaxed.body.liquid.present() ? "an ocean" : "a core");
   fmt::print("results: {}\n", (out / "validation.json").string());
   return exit_ok;
 }

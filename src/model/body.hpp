@@ -19,17 +19,18 @@ inline const char* species_name(std::uint8_t species) {
          : species == static_cast<std::uint8_t>(Species::liquid) ? "liquid"
                                                                   : "interior";
 }
-/// liquid: a spring of a liquid layer (LiquidLayer): stiffness 0 in the spring law, the volumetric
-/// energy of its liquid ends instead.
+/// liquid: a spring of a liquid layer (LiquidLayer): ocean.shear_fraction of its stiffness (a small
+/// static shear modulus that steadies the liquid) and damping; the pressure is the layer's.
 enum class SpringKind : std::uint8_t { interior = 0, shell = 1, cross = 2, liquid = 3 };
 
 /// A liquid layer (docs/ocean.md; forces/liquid_pressure.hpp): the liquid particles
 /// (Species::liquid) and the tetrahedra that fill the layer between them and the solid particles
 /// around it carry an energy of volume alone: a bulk modulus and no shear modulus. The layer's
-/// springs (SpringKind::liquid) have stiffness 0 and only damp.
+/// springs (SpringKind::liquid) add a small shear modulus (ocean.shear_fraction) and damping.
 struct LiquidLayer {
   double bulk_modulus = 0;  ///< K, e_g (G M^2/R^4); 0: no liquid layer
-  /// [Nt] particle indices, positively oriented as built, each with at least one liquid particle
+  /// [Nt] particle indices, positively oriented as built, each with a liquid or crust corner; every
+  /// corner is a pressure node (forces/liquid_pressure.hpp)
   std::vector<std::array<std::int32_t, 4>> tetrahedra;
   bool present() const { return bulk_modulus > 0; }
 };

@@ -307,6 +307,9 @@ void visit_keys(C& c, V&& visit) {
                           "from the crust down to the ocean floor (unset: no ocean)", 0, 0.9, true});
   key(c.ocean.bulk_modulus, {"ocean", "bulk_modulus", reads(build, stretch), "e_g",
                              "K of the liquid; default the interior's, E_I / 1.5 (nu = 1/4)", 0, 1e6, true});
+  key(c.ocean.shear_fraction, {"ocean", "shear_fraction", reads(build), "-",
+                               "stiffness the liquid's springs keep, of the interior's: a small static shear modulus "
+                               "that steadies the liquid (docs/ocean.md); default 0.01", 1e-4, 1, true});
 
   // issue 25: [moon], the moon in SI (docs/moon.md); all optional. Quantities are strings with their
   // unit (the key's unit is the SI unit they are converted to). They fill [material] and [core]
@@ -1251,7 +1254,8 @@ void validate(const Config& config, const std::string& origin) {
   if (config.ocean.present() != (config.relax.crust_support == CrustSupport::floating))
     throw InputError(fmt::format("{}: {}", origin,
                                  config.ocean.present()
-                                     ? "a crust on an ocean floats: [ocean] needs relax.crust_support = \"floating\""
+                                     ? fmt::format("ocean.thickness = {}: a crust on an ocean floats: it needs "
+                                                   "relax.crust_support = \"floating\"", *config.ocean.thickness)
                                      : "relax.crust_support = \"floating\" needs an ocean to float on ([ocean] thickness)"));
   if (config.ocean.present() && !config.shell.enabled)
     throw InputError(fmt::format("{}: [ocean] needs a crust to float (shell.enabled = true)", origin));
@@ -1260,6 +1264,8 @@ void validate(const Config& config, const std::string& origin) {
                                  "interior's, from material.youngs_modulus)", origin));
   if (!config.ocean.present() && config.ocean.bulk_modulus)
     throw InputError(fmt::format("{}: ocean.bulk_modulus needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
+  if (!config.ocean.present() && config.ocean.shear_fraction)
+    throw InputError(fmt::format("{}: ocean.shear_fraction needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
   if (config.ocean.present() && config.core.present() && *config.core.radius >= 1 - *config.ocean.thickness)
     throw InputError(fmt::format("{}: core.radius = {} reaches into the ocean (its floor lies at 1 - ocean.thickness "
                                  "= {})", origin, *config.core.radius, 1 - *config.ocean.thickness));

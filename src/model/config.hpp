@@ -180,6 +180,11 @@ struct CoreConfig {
 struct OceanConfig {
   std::optional<double> thickness;      ///< from the shell down to the ocean floor, R (unset: no ocean)
   std::optional<double> bulk_modulus;   ///< K of the liquid, e_g; default the interior's K = E_I / (3 (1 - 2 nu)) at nu = 1/4
+  /// The fraction of their stiffness the liquid's springs keep: a small static shear modulus that
+  /// holds the liquid's zero-energy modes (docs/ocean.md measures what it costs in h2)
+  /// (default default_shear_fraction)
+  std::optional<double> shear_fraction;
+  static constexpr double default_shear_fraction = 1e-2;
   bool present() const { return thickness.has_value() && *thickness > 0; }
 };
 

@@ -35,7 +35,7 @@ inline TimeseriesSample sample_timeseries(const Body& body, const State& state, 
   TimeseriesSample s = sample_timeseries(body, state);
   const Energies e = forces.energies(state);
   s.internal_kinetic_energy = internal_kinetic_energy(body, state);
-  s.spring_energy = e.spring;
+  s.spring_energy = e.spring + e.liquid;  // a liquid layer's volume energy is elastic too (0 without one)
   s.hinge_energy = e.hinge;
   s.self_gravity_energy = e.self_gravity;
   s.perturber_energy = e.perturber;

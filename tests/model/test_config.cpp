@@ -163,7 +163,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
   const auto keys = describe_keys(config);
-  EXPECT_EQ(keys.size(), 90u);  // every key of Config, [workflow] to [spin]
+  EXPECT_EQ(keys.size(), 93u);  // every key of Config, [workflow] to [spin] and [ocean]
   for (const KeyInfo& key : keys) {
     if (!key.value) {  // an unset optional key: to_toml leaves it out
       EXPECT_TRUE(key.optional) << key.section << "." << key.name;
@@ -190,7 +190,7 @@ TEST(Config, ABareWordOverridesAStringKeyAndIsRefusedForANumber) {
     apply_override(config, "relax.crust_support=glued");
     ADD_FAILURE() << "an unknown crust support was accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "--set: relax.crust_support = \"glued\" is not one of: paper, balanced, lithostatic");
+    EXPECT_EQ(std::string(e.what()), "--set: relax.crust_support = \"glued\" is not one of: paper, balanced, lithostatic, floating");
   }
 }
 
