@@ -249,19 +249,8 @@ TEST(OceanBody, RelaxResumesBitForBitOnAnyThreadCount) {
   omp_set_num_threads(threads);
   EXPECT_EQ(state_hash(one.state), state_hash(straight.state));
 
-  const ScratchFolder scratch("ocean_resume");
-  for (std::int64_t k : {25, 45, 65}) {  // creep phase, settle phase, stability probe
-    Checkpoint c = begin_relax(ocean_stretched(), config);
-    StepLoopOptions o = quiet_loop();
-    o.mid_checkpoint = scratch.path / "relax.mid.h5";
-    o.stop_after_step = c.stage.clock.start_step + k;
-    ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted) << k;
-    Checkpoint resumed = read_checkpoint(o.mid_checkpoint);
-    o.stop_after_step = -1;
-    ASSERT_EQ(run_relax(resumed, config, o), LoopOutcome::finished) << k;
-    EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state)) << k;
-    EXPECT_EQ(resumed.state.liquid_rest_volume, straight.state.liquid_rest_volume) << k;
-  }
+  // creep phase, settle phase, stability probe
+  expect_relax_resumes_bit_for_bit(ocean_stretched(), config, straight, {25, 45, 65}, "ocean_resume");
 }
 
 TEST(OceanBody, TheStoredLayerRoundTripsAndAnEditedOneIsAOneLineError) {

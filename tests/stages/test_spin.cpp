@@ -312,19 +312,9 @@ TEST(SpinningBody, RelaxAndEncounterResumeBitForBitOnAnyThreadCount) {
   // It spins (in the inertial frame) and differs from the body without spin.
   EXPECT_NEAR(body_angular_velocity(straight.body, straight.state).z(), 0.6, 1e-9);
 
-  const ScratchFolder scratch("spin_resume");
-  for (std::int64_t k : {25, 45, 65}) {  // creep phase, settle phase, stability probe
-    Checkpoint c = begin_relax(stretched, config);
-    StepLoopOptions o = quiet_loop();
-    o.mid_checkpoint = scratch.path / "relax.mid.h5";
-    o.stop_after_step = c.stage.clock.start_step + k;
-    ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted) << k;
-    Checkpoint resumed = read_checkpoint(o.mid_checkpoint);
-    o.stop_after_step = -1;
-    ASSERT_EQ(run_relax(resumed, config, o), LoopOutcome::finished) << k;
-    EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state)) << k;
-    EXPECT_EQ(resumed.stage.record, straight.stage.record) << k;
-  }
+  // creep phase, settle phase, stability probe
+  expect_relax_resumes_bit_for_bit(stretched, config, straight, {25, 45, 65}, "spin_resume");
+  const ScratchFolder scratch("spin_resume_encounter");
 
   const Encounter spec = config.find_encounter("strong");
   Checkpoint done = begin_encounter(straight, config, spec);

@@ -1,8 +1,11 @@
 #pragma once
 // The quick workflow (workflows/quick.toml): its config, its body built, stretched, relaxed once.
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 
+#include "io/checkpoint_file.hpp"
+#include "io/state_hash.hpp"
 #include "model/checkpoint.hpp"
 #include "model/config.hpp"
 #include "stages/build_stage.hpp"
@@ -110,6 +113,27 @@ inline const Checkpoint& quick_relaxed(bool stability_probe = true) {
   }
   static const Checkpoint unprobed = detail::relax_quick_body(false);
   return unprobed;
+}
+
+/// Relaxes `stretched` by `config` interrupted after each of `stops` steps (a mid-stage checkpoint
+/// in a scratch folder named `name`), resumes from the file, and expects the state and record of
+/// the straight run `straight`, bit for bit.
+inline void expect_relax_resumes_bit_for_bit(const Checkpoint& stretched, const Config& config, const Checkpoint& straight,
+                                             std::initializer_list<std::int64_t> stops, const std::string& name) {
+  const ScratchFolder scratch(name);
+  for (std::int64_t k : stops) {
+    Checkpoint c = begin_relax(stretched, config);
+    StepLoopOptions o = quiet_loop();
+    o.mid_checkpoint = scratch.path / "relax.mid.h5";
+    o.stop_after_step = c.stage.clock.start_step + k;
+    ASSERT_EQ(run_relax(c, config, o), LoopOutcome::interrupted) << k;
+    Checkpoint resumed = read_checkpoint(o.mid_checkpoint);
+    o.stop_after_step = -1;
+    ASSERT_EQ(run_relax(resumed, config, o), LoopOutcome::finished) << k;
+    EXPECT_EQ(state_hash(resumed.state), state_hash(straight.state)) << k;
+    EXPECT_EQ(resumed.state.liquid_rest_volume, straight.state.liquid_rest_volume) << k;
+    EXPECT_EQ(resumed.stage.record, straight.stage.record) << k;
+  }
 }
 
 }  // namespace tidalcrust::test_support
