@@ -68,6 +68,13 @@ std::vector<std::pair<std::string, Config>> bases() {
   validate(variant, "variant");
   out.emplace_back("paper-T variant", variant);
   out.emplace_back("core-T", load_config(test_support::workflow_file("core-T.toml")));
+  // An ocean (its keys have no other valid base). With the paper's coupling: in a welded [material]
+  // body material.crust_thickness also sets interior.radius, which the stretch reads, while the
+  // key declares build only (a gap of the welded coupling's declarations, not of the ocean's).
+  Config ocean = load_config(test_support::workflow_file("ocean-L3.toml"));
+  apply_override(ocean, "cross.coupling=paper");
+  validate(ocean, "ocean-L3 with the paper's coupling");
+  out.emplace_back("ocean-L3 (paper coupling)", ocean);
   // The crust by its 2D modulus and density instead of its thickness and mass, without a core.
   std::string text = test_support::read_file(test_support::workflow_file("core-T.toml"));
   for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
@@ -137,7 +144,7 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
       }
     }
   }
-  EXPECT_EQ(covered.size(), 101u);  // 90 keys of Config, 11 of [[encounters]]
+  EXPECT_EQ(covered.size(), 104u);  // 93 keys of Config, 11 of [[encounters]]
   for (const auto& [key, count] : covered) EXPECT_GT(count, 0) << key << ": no valid other value in any base";
 }
 
