@@ -440,6 +440,12 @@ void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state) {
     if (body.species[i] == shell)
       weight += body.mass[i] * (enclosed_mass(radius[i]) + 0.5 * crust_mass) / (radius[i] * radius[i]);
   const double top_pressure = (weight - push_of_depth) / push_per_pressure;
+  double deepest = top_pressure;
+  for (std::size_t i = 0; i < n; ++i) deepest = std::max(deepest, top_pressure + pressure[i]);
+  if (!(deepest < 0.5 * bulk))
+    throw InputError(fmt::format("ocean.bulk_modulus = {:.4g} e_g is too small for the ocean's pressure (up to {:.4g} e_g): "
+                                 "the liquid would be compressed by more than half",
+                                 bulk, deepest));
   state.liquid_rest_volume.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i)
     if (volume[i] > 0) state.liquid_rest_volume[i] = volume[i] / (1 - (top_pressure + pressure[i]) / bulk);

@@ -25,7 +25,8 @@ StretchRecord stretch_springs(const Body& body, const State& built, const Config
 /// hydrostatic: P_top + rho int_r^{r_c} g(s) ds (rho the liquid's density, g(s) = m(< s)/s^2 of
 /// everything under the crust, r_c the crust's mean radius; crust nodes P_top), with P_top chosen
 /// so that the layer's radial push on the crust equals the crust nodes' weight (docs/ocean.md).
-/// V0 = V / (1 - P/K). Body::liquid must be present; r from the centre of mass.
+/// V0 = V / (1 - P/K). Body::liquid must be present; r from the centre of mass. InputError when
+/// the deepest pressure reaches K/2 (ocean.bulk_modulus too small).
 void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state);
 
 }  // namespace tidalcrust

@@ -317,6 +317,14 @@ TEST(OceanConfig, AnOceanNeedsAFloatingCrustAndAShearFractionNeedsAnOcean) {
   no_ocean.replace(no_ocean.find("thickness = 0.3"), 15, "shear_fraction = 0.001");
   no_ocean.replace(no_ocean.find("crust_support = \"floating\""), 26, "crust_support = \"balanced\"");
   EXPECT_NE(error_of("dry.toml", no_ocean).find("ocean.shear_fraction needs ocean.thickness"), std::string::npos);
+
+  // A liquid too soft for its own pressure: the stretch refuses it, one line, nothing relaxed.
+  const CliResult soft = run_cli("run " + quoted(workflow_file("ocean-L3.toml")) + " --body-only --quiet --out " +
+                                 quoted(scratch.path / "soft") + " --set ocean.bulk_modulus=0.01");
+  EXPECT_EQ(soft.exit_code, 2) << soft.err;
+  EXPECT_EQ(count_lines(soft.err), 1) << soft.err;
+  EXPECT_NE(soft.err.find("ocean.bulk_modulus = 0.01"), std::string::npos) << soft.err;
+  EXPECT_FALSE(fs::exists(scratch.path / "soft" / "body" / "stretch.h5"));
 }
 
 }  // namespace
