@@ -15,5 +15,10 @@ namespace tidalcrust::portable_math {
 inline double sin(double x, bool portable) { return portable ? Sleef_sin_u10(x) : std::sin(x); }
 inline double cos(double x, bool portable) { return portable ? Sleef_cos_u10(x) : std::cos(x); }
 inline double pow(double x, double y, bool portable) { return portable ? Sleef_pow_u10(x, y) : std::pow(x, y); }
+inline double tan(double x, bool portable) { return portable ? Sleef_tan_u10(x) : std::tan(x); }
+inline double atan(double x, bool portable) { return portable ? Sleef_atan_u10(x) : std::atan(x); }
+inline double atan2(double y, double x, bool portable) { return portable ? Sleef_atan2_u10(y, x) : std::atan2(y, x); }
+inline double sinh(double x, bool portable) { return portable ? Sleef_sinh_u10(x) : std::sinh(x); }
+inline double cbrt(double x, bool portable) { return portable ? Sleef_cbrt_u10(x) : std::cbrt(x); }
 
 }  // namespace tidalcrust::portable_math

@@ -196,7 +196,7 @@ void ForceField::refresh_half_rest_angles(const HingeState& hinges) {
     // Bitwise comparison: the table is a pure function of the rest angle's bits.
     if (std::memcmp(&cached_rest_angle_[h], &hinges.rest_angle[h], sizeof(double)) != 0) {
       cached_rest_angle_[h] = hinges.rest_angle[h];
-      half_rest_[h] = HalfRestAngle::of(hinges.rest_angle[h], options_.gravity_kernel == GravityKernel::portable);
+      half_rest_[h] = HalfRestAngle::of(hinges.rest_angle[h], uses_portable_math(options_.gravity_kernel));
     }
   }
 }
