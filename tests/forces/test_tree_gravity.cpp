@@ -14,6 +14,7 @@
 #include "forces/gravity.hpp"
 #include "forces/tree_gravity.hpp"
 #include "support/force_test_bodies.hpp"
+#include "support/random_ball.hpp"
 
 using namespace tidalcrust;
 
@@ -25,14 +26,8 @@ struct Cloud {
 
 /// n particles uniform in the unit ball, unequal masses summing to about 1.
 Cloud random_ball(std::size_t n, std::uint64_t seed) {
-  Random random(seed);
   Cloud c;
-  while (c.mass.size() < n) {
-    const double p[3] = {random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)};
-    if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1) continue;
-    c.mass.push_back(random.uniform(0.5, 1.5) / static_cast<double>(n));
-    c.position.insert(c.position.end(), p, p + 3);
-  }
+  test_support::fill_random_ball(n, seed, c.mass, c.position);
   return c;
 }
 

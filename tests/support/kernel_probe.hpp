@@ -3,8 +3,8 @@
 // self_gravity_energy, and TreeGravity (accelerations and potential energy), compute for it,
 // shared by tools/kernel_probe.cpp (built without AVX-512, target
 // tidalcrust_kernel_probe_generic) and tests/forces/test_gravity_kernels.cpp (the native build),
-// which compare the two. Depends on forces/gravity.cpp, forces/tree_gravity.cpp, SLEEF and the
-// standard library only.
+// which compare the two. Depends on forces/gravity.cpp, forces/tree_gravity.cpp, SLEEF,
+// support/random_ball.hpp and the standard library only.
 #include <xxhash.h>
 
 #include <cstdint>
@@ -15,6 +15,7 @@
 #include "base/random.hpp"
 #include "forces/gravity.hpp"
 #include "forces/tree_gravity.hpp"
+#include "support/random_ball.hpp"
 
 namespace tidalcrust::test_support {
 
@@ -59,15 +60,8 @@ inline std::string probe_hash(GravityKernel kernel) {
 /// 6,000 particles (enough for a tree of many levels, the moment tasks, and groups not filling
 /// the last vector) of the same law as probe_cloud(), from seed 2025, in a ball of radius 1 R.
 inline ProbeCloud tree_probe_cloud() {
-  constexpr std::size_t n = 6001;
-  Random random(2025);
   ProbeCloud c;
-  while (c.mass.size() < n) {
-    const double p[3] = {random.uniform(-1, 1), random.uniform(-1, 1), random.uniform(-1, 1)};
-    if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] > 1) continue;
-    c.mass.push_back(random.uniform(0.5, 1.5) / static_cast<double>(n));
-    c.position.insert(c.position.end(), p, p + 3);
-  }
+  fill_random_ball(6001, 2025, c.mass, c.position);
   c.softening = 0.002;
   return c;
 }
