@@ -6,7 +6,7 @@
 BUILD    ?= build
 JOBS     ?= $(shell nproc 2>/dev/null || echo 2)
 PACKAGES := g++ cmake make pkg-config git libeigen3-dev libhdf5-dev libcxxopts-dev libfmt-dev \
-            libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libboost-dev libudunits2-dev libcgal-dev \
+            libtomlplusplus-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libxxhash-dev libboost-dev libudunits2-dev libcgal-dev libsleef-dev \
             slurm-wlm munge python3 \
             python3-h5py python3-numpy python3-xarray python3-matplotlib python3-pyproj python3-geopandas \
             python3-shapely python3-cartopy python3-nbclient python3-nbformat python3-ipykernel

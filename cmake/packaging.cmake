@@ -16,7 +16,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "https://github.com/tidalcrust/tidalcrust")
-# The shared libraries the program links (HDF5, fmt, toml++, xxHash, libgomp, libstdc++, ...) become
+# The shared libraries the program links (HDF5, fmt, toml++, xxHash, SLEEF, libgomp, libstdc++, ...) become
 # Depends through dpkg-shlibdeps, with the versions this build needs.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # The Python package lies in lib/python3.X/dist-packages under /usr (TIDALCRUST_PYTHON_SITE, read by

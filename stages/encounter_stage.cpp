@@ -107,7 +107,7 @@ void check_encounter(const Config& config, const Encounter& spec) {
                                  what));
   double duration = 0;
   try {
-    const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
+    const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed, portable_mode(config));
     duration = encounter_start(orbit, config.encounter.start_distance).time_to_pericenter +
                orbit.time_to_pericenter(config.encounter.end_distance);
   } catch (const InputError& err) {
@@ -145,7 +145,7 @@ Checkpoint begin_encounter(const Checkpoint& parent, const Config& config, const
 
   const double start_distance = config.encounter.start_distance;
   const double end_distance = config.encounter.end_distance;
-  const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed);
+  const TwoBodyOrbit orbit = perturber_orbit(spec.perturber_mass, spec.pericenter, spec.pericenter_speed, portable_mode(config));
   const EncounterStart start = encounter_start(orbit, start_distance);
   const double time_after_pericenter = orbit.time_to_pericenter(end_distance);  // the orbit is symmetric
 

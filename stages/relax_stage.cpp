@@ -28,9 +28,9 @@ constexpr double weak_crust_failure_strain = 0.002;
 
 /// Removes the crust stress exactly: shell rest lengths = current lengths, hinge rest angles =
 /// current angles.
-void zero_crust_stress(const Body& body, State& state) {
+void zero_crust_stress(const Body& body, State& state, bool portable) {
   creep_shell_rest_lengths(body, state, 1.0);
-  reset_hinge_rest_angles(body, state);
+  reset_hinge_rest_angles(body, state, portable);
 }
 
 /// The "balanced" support: the crust stress removed exactly, then the cross springs' rest
@@ -42,7 +42,7 @@ void zero_crust_stress(const Body& body, State& state) {
 /// A spinning body (docs/spin.md) relaxes in the co-rotating frame: a node's weight is then
 /// gravity plus the centrifugal acceleration.
 void support_crust_by_cross_springs(ForceField& forces, const Body& body, State& state, const Config& config) {
-  zero_crust_stress(body, state);
+  zero_crust_stress(body, state, portable_mode(config));
   std::vector<double> gravity(state.position.size());
   forces.compute_gravity(state.position.data(), gravity.data());
   add_rotating_frame_acceleration(body, config.spin.rate(), state.position.data(), nullptr, gravity);
@@ -104,9 +104,9 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
         support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else if (c.state.step < creep_end) {
       if (done % relax.rest_length_interval == 0) creep_shell_rest_lengths(c.body, c.state, relax.rest_length_rate);
-      if (done % relax.hinge_reset_interval == 0) reset_hinge_rest_angles(c.body, c.state);
+      if (done % relax.hinge_reset_interval == 0) reset_hinge_rest_angles(c.body, c.state, portable_mode(config));
     } else if (c.state.step == creep_end) {
-      zero_crust_stress(c.body, c.state);
+      zero_crust_stress(c.body, c.state, portable_mode(config));
     }
     if (done % config.encounter.sample_interval == 0)
       c.observables.timeseries.push_back(sample_timeseries(c.body, c.state));
@@ -125,7 +125,7 @@ void finish_relaxation(Checkpoint& checkpoint, const Config& config) {
   record.max_shell_tension = max_shell_tension(body, state);
   record.internal_kinetic_energy = internal_kinetic_energy(body, state);
   record.mean_shell_radius = mean_shell_radius(body, state);
-  rotating_to_inertial(body, state, config.spin.rate());
+  rotating_to_inertial(body, state, config.spin.rate(), portable_mode(config));
   record.relaxed = true;
 }
 
@@ -187,7 +187,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
       ForceField forces(c.body, force_options(config, record.damping));
       support_crust_by_cross_springs(forces, c.body, c.state, config);
     } else {
-      zero_crust_stress(c.body, c.state);
+      zero_crust_stress(c.body, c.state, portable_mode(config));
     }
   }
   c.observables.timeseries.push_back(sample_timeseries(c.body, c.state));

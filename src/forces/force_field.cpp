@@ -56,7 +56,7 @@ ForceField::ForceField(const Body& body, ForceOptions options)
       options_(options),
       cross_{options.cross_strain_scale, options.cross_min_force_factor} {
   if (options.gravity_method == GravityMethod::tree)
-    tree_.emplace(body.mass, body.softening, options.force_error);
+    tree_.emplace(body.mass, body.softening, options.force_error, options.gravity_kernel);
   else
     gravity_.emplace(body.mass, body.softening, options.gravity_kernel);
   if (body.liquid.present()) liquid_.emplace(body);
@@ -199,7 +199,7 @@ void ForceField::refresh_half_rest_angles(const HingeState& hinges) {
     // Bitwise comparison: the table is a pure function of the rest angle's bits.
     if (std::memcmp(&cached_rest_angle_[h], &hinges.rest_angle[h], sizeof(double)) != 0) {
       cached_rest_angle_[h] = hinges.rest_angle[h];
-      half_rest_[h] = HalfRestAngle::of(hinges.rest_angle[h]);
+      half_rest_[h] = HalfRestAngle::of(hinges.rest_angle[h], uses_portable_math(options_.gravity_kernel));
     }
   }
 }
@@ -240,18 +240,22 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
     liquid_->compute(position, liquid_rest_volume, n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
-  if (self_gravity) {
-    if (tree_) tree_->build(position);  // the tree, a pure function of the positions
-    else gravity_->load_positions(position);
-  }
+  TreeGravity* tree = self_gravity && tree_ ? &*tree_ : nullptr;
+  if (tree) tree->prepare(position);  // Morton order and nodes, a pure function of the positions
+  else if (self_gravity) gravity_->load_positions(position);
 
-  // One parallel region per pass: first every independent piece of work (gravity blocks, the
-  // largest, then spring and hinge chunks) from one dynamic queue, then the per-particle gather.
-  const std::size_t gravity_items =
-      !self_gravity ? 0 : tree_ ? tree_->chunk_count() : static_cast<std::size_t>(DirectGravity::block_count);
+  // One parallel region per pass, with as few barriers as possible (a thread that the OS pauses,
+  // other jobs on the cores, holds up the others at each one): first every piece of work that
+  // needs no other from one dynamic queue (the tree's moment tasks or the direct sum's blocks,
+  // then spring and hinge chunks); with the tree, one thread then finishes its top nodes, and
+  // each chunk of groups is walked and its particles gathered at once; with the direct sum the
+  // per-particle gather follows. Every result is written per particle or per element, summed
+  // in a fixed order: the same bits for any thread count and schedule.
+  const std::size_t first_items =
+      tree ? tree->moment_task_count() : self_gravity ? static_cast<std::size_t>(DirectGravity::block_count) : 0;
   const std::size_t spring_items = (ns + spring_chunk - 1) / spring_chunk;
   const std::size_t hinge_items = (nh + hinge_chunk - 1) / hinge_chunk;
-  const std::size_t items = gravity_items + spring_items + hinge_items;
+  const std::size_t items = first_items + spring_items + hinge_items;
   const bool parallel = n * n / 128 + ns + 4 * nh >= options_.min_parallel_items;
   std::int64_t collapsed = std::numeric_limits<std::int64_t>::max();
   double* acc = out.body.data();
@@ -259,21 +263,31 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
   {
 #pragma omp for schedule(dynamic, 1) reduction(min : collapsed)
     for (std::size_t item = 0; item < items; ++item) {
-      if (item < gravity_items) {
-        if (tree_) tree_->accumulate_chunk(item);
+      if (item < first_items) {
+        if (tree) tree->moment_task(item);
         else gravity_->accumulate_block(static_cast<int>(item));
-      } else if (item < gravity_items + spring_items) {
-        const std::size_t c = item - gravity_items;
+      } else if (item < first_items + spring_items) {
+        const std::size_t c = item - first_items;
         spring_range(c * spring_chunk, std::min(ns, (c + 1) * spring_chunk), position, velocity, springs);
       } else {
-        const std::size_t c = item - gravity_items - spring_items;
+        const std::size_t c = item - first_items - spring_items;
         const std::int64_t h = hinge_range(c * hinge_chunk, std::min(nh, (c + 1) * hinge_chunk), position);
         if (h >= 0) collapsed = std::min(collapsed, h);
       }
     }
-    // Dynamic too: a thread that the OS pauses (other jobs on the cores) holds up little.
+    if (tree) {
+#pragma omp single
+      tree->finish_build();
+      const std::size_t chunks = tree->chunk_count();
+#pragma omp for schedule(dynamic, 1)
+      for (std::size_t c = 0; c < chunks; ++c) {
+        tree->accumulate_chunk(c);
+        for (std::size_t k = tree->chunk_begin(c); k < tree->chunk_end(c); ++k) gather(tree->original_index(k), true, acc);
+      }
+    } else {
 #pragma omp for schedule(dynamic, 256)
-    for (std::size_t p = 0; p < n; ++p) gather(p, self_gravity, acc);
+      for (std::size_t p = 0; p < n; ++p) gather(p, self_gravity, acc);
+    }
   }
   ForceAlarms alarms;
   alarms.collapsed_hinge = collapsed == std::numeric_limits<std::int64_t>::max() ? -1 : collapsed;

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>  // cross()
 
+#include "base/portable_math.hpp"
 #include "base/vec3.hpp"
 
 namespace tidalcrust {
@@ -35,11 +36,14 @@ inline double hinge_prefactor(const Vec3& x1, const Vec3& x2, const Vec3& x3, co
 inline constexpr double collapsed_face_fraction = 1e-3;
 
 /// sin and cos of half the rest angle: the only trigonometry the force needs, computed once
-/// per rest angle rather than every step.
+/// per rest angle rather than every step; `portable` (the portable mode): from portable_math,
+/// the same bits on every CPU.
 struct HalfRestAngle {
   double sin = 0;
   double cos = 1;
-  static HalfRestAngle of(double rest_angle) { return {std::sin(0.5 * rest_angle), std::cos(0.5 * rest_angle)}; }
+  static HalfRestAngle of(double rest_angle, bool portable = false) {
+    return {portable_math::sin(0.5 * rest_angle, portable), portable_math::cos(0.5 * rest_angle, portable)};
+  }
 };
 
 /// One hinge as an evaluator of force AND energy (as HOOMD-blue's bond evaluators), built from

@@ -1,5 +1,7 @@
 #include "forces/tree_gravity.hpp"
 
+#include "base/portable_math.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -29,51 +31,18 @@ std::uint64_t spread_bits(std::uint64_t v) {
 /// Which of the 8 children of a node at `level` (0: the root) a key falls in.
 unsigned octant(std::uint64_t key, int level) { return static_cast<unsigned>(key >> (3 * (deepest_level - level))) & 7u; }
 
-// One vector of `lanes` doubles: AVX-512 intrinsics when available (explicit FMAs: the project
-// compiles with -ffp-contract=off), else plain loops. Both give deterministic results; their
-// last bits differ, like DirectGravity's two paths.
-#if defined(__AVX512F__)
-struct V {
-  __m512d v;
-};
-inline V splat(double a) { return {_mm512_set1_pd(a)}; }
-inline V load(const double* p) { return {_mm512_loadu_pd(p)}; }
-inline void store(double* p, V a) { _mm512_storeu_pd(p, a.v); }
-inline V operator+(V a, V b) { return {_mm512_add_pd(a.v, b.v)}; }
-inline V operator-(V a, V b) { return {_mm512_sub_pd(a.v, b.v)}; }
-inline V operator*(V a, V b) { return {_mm512_mul_pd(a.v, b.v)}; }
-/// a * b + c
-inline V fma(V a, V b, V c) { return {_mm512_fmadd_pd(a.v, b.v, c.v)}; }
-/// 1/sqrt(s): the 14-bit hardware estimate and two Newton steps (~1 ulp), as DirectGravity.
-inline V rsqrt(V s) {
-  const __m512d three_halves = _mm512_set1_pd(1.5);
-  const __m512d half_s = _mm512_mul_pd(_mm512_set1_pd(0.5), s.v);
-  __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, s.v);
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(half_s, _mm512_mul_pd(y, y), three_halves));
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(half_s, _mm512_mul_pd(y, y), three_halves));
-  return {y};
-}
-/// a with the lanes whose bit in `keep` is 0 set to zero.
-inline V keep_lanes(V a, unsigned keep) { return {_mm512_maskz_mov_pd(static_cast<__mmask8>(keep), a.v)}; }
-#else
-/// Plain-loop vectors of N values of T (the portable path of V and F below): lane by lane the
-/// same operations as the intrinsics, no FMA, so the same bits on every x86-64 CPU.
+// Vectors of `lanes` doubles (V) and 2 * lanes floats (F), in two kinds with the same interface
+// (a struct of static functions plus free operators, fma, rsqrt and keep_lanes):
+// * PlainMath: plain loops, lane by lane, with only correctly rounded IEEE operations (+, -, *,
+//   /, sqrt; fma(a, b, c) is a * b + c, two roundings, as the project compiles with
+//   -ffp-contract=off): the same bits in every x86-64 build, whatever the compiler vectorises
+//   them with. The portable kernel (GravityKernel::portable), and the fast one without AVX-512.
+// * Avx512Math: AVX-512 intrinsics, explicit FMAs and the 14-bit reciprocal square root
+//   estimate refined by Newton steps; deterministic, but its last bits differ from PlainMath's.
 template <class T, std::size_t N>
 struct Lanes {
   T v[N];
 };
-template <class T, std::size_t N>
-inline Lanes<T, N> lanes_splat(T a) {
-  Lanes<T, N> r;
-  for (T& x : r.v) x = a;
-  return r;
-}
-template <class T, std::size_t N>
-inline Lanes<T, N> lanes_load(const T* p) {
-  Lanes<T, N> r;
-  for (std::size_t l = 0; l < N; ++l) r.v[l] = p[l];
-  return r;
-}
 #define TIDALCRUST_LANEWISE(op)                                        \
   template <class T, std::size_t N>                                    \
   inline Lanes<T, N> operator op(Lanes<T, N> a, Lanes<T, N> b) {        \
@@ -88,6 +57,7 @@ template <class T, std::size_t N>
 inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
   return a * b + c;
 }
+/// 1/sqrt(s), correctly rounded square root and division.
 template <class T, std::size_t N>
 inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
   for (T& x : s.v) x = T(1) / std::sqrt(x);
@@ -100,49 +70,97 @@ inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {
   return a;
 }
 
-using V = Lanes<double, lanes>;
-inline V splat(double a) { return lanes_splat<double, lanes>(a); }
-inline V load(const double* p) { return lanes_load<double, lanes>(p); }
-inline void store(double* p, V a) {
-  for (std::size_t l = 0; l < lanes; ++l) p[l] = a.v[l];
-}
-#endif
+struct PlainMath {
+  using V = Lanes<double, lanes>;
+  using F = Lanes<float, 2 * lanes>;
+  static V splat(double a) {
+    V r;
+    for (double& x : r.v) x = a;
+    return r;
+  }
+  static V load(const double* p) {
+    V r;
+    for (std::size_t l = 0; l < lanes; ++l) r.v[l] = p[l];
+    return r;
+  }
+  static void store(double* p, V a) {
+    for (std::size_t l = 0; l < lanes; ++l) p[l] = a.v[l];
+  }
+  static F splat_f(float a) {
+    F r;
+    for (float& x : r.v) x = a;
+    return r;
+  }
+  static F load_f(const float* p) {
+    F r;
+    for (std::size_t l = 0; l < 2 * lanes; ++l) r.v[l] = p[l];
+    return r;
+  }
+  /// The first (half 0) or last (half 1) `lanes` floats of a, widened to doubles.
+  static V widen(F a, int half) {
+    V r;
+    for (std::size_t l = 0; l < lanes; ++l) r.v[l] = static_cast<double>(a.v[static_cast<std::size_t>(half) * lanes + l]);
+    return r;
+  }
+};
 
-// One vector of 2 * lanes floats (the near field of a whole group): single precision, on
-// positions relative to the group's first particle (so the differences keep ~1e-7 relative
-// accuracy), summed in float and added to the double far field at the end.
 #if defined(__AVX512F__)
-struct F {
+struct Vd {
+  __m512d v;
+};
+inline Vd operator+(Vd a, Vd b) { return {_mm512_add_pd(a.v, b.v)}; }
+inline Vd operator-(Vd a, Vd b) { return {_mm512_sub_pd(a.v, b.v)}; }
+inline Vd operator*(Vd a, Vd b) { return {_mm512_mul_pd(a.v, b.v)}; }
+/// a * b + c
+inline Vd fma(Vd a, Vd b, Vd c) { return {_mm512_fmadd_pd(a.v, b.v, c.v)}; }
+/// 1/sqrt(s): the 14-bit hardware estimate and two Newton steps (~1 ulp), as DirectGravity.
+inline Vd rsqrt(Vd s) {
+  const __m512d three_halves = _mm512_set1_pd(1.5);
+  const __m512d half_s = _mm512_mul_pd(_mm512_set1_pd(0.5), s.v);
+  __m512d y = _mm512_maskz_rsqrt14_pd(0xFF, s.v);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(half_s, _mm512_mul_pd(y, y), three_halves));
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(half_s, _mm512_mul_pd(y, y), three_halves));
+  return {y};
+}
+/// a with the lanes whose bit in `keep` is 0 set to zero.
+inline Vd keep_lanes(Vd a, unsigned keep) { return {_mm512_maskz_mov_pd(static_cast<__mmask8>(keep), a.v)}; }
+
+// The near field of a whole group: single precision, on positions relative to the group's first
+// particle (so the differences keep ~1e-7 relative accuracy), summed in float and added to the
+// double far field at the end.
+struct Vf {
   __m512 v;
 };
-inline F splat_f(float a) { return {_mm512_set1_ps(a)}; }
-inline F load_f(const float* p) { return {_mm512_loadu_ps(p)}; }
-inline F operator+(F a, F b) { return {_mm512_add_ps(a.v, b.v)}; }
-inline F operator-(F a, F b) { return {_mm512_sub_ps(a.v, b.v)}; }
-inline F operator*(F a, F b) { return {_mm512_mul_ps(a.v, b.v)}; }
-inline F fma(F a, F b, F c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
+inline Vf operator+(Vf a, Vf b) { return {_mm512_add_ps(a.v, b.v)}; }
+inline Vf operator-(Vf a, Vf b) { return {_mm512_sub_ps(a.v, b.v)}; }
+inline Vf operator*(Vf a, Vf b) { return {_mm512_mul_ps(a.v, b.v)}; }
+inline Vf fma(Vf a, Vf b, Vf c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
 /// 1/sqrt(s): the 14-bit estimate and one Newton step (~1 float ulp).
-inline F rsqrt(F s) {
+inline Vf rsqrt(Vf s) {
   const __m512 y = _mm512_maskz_rsqrt14_ps(0xFFFF, s.v);  // maskz: no GCC 12 false warning
   const __m512 half_s = _mm512_mul_ps(_mm512_set1_ps(0.5f), s.v);
   return {_mm512_mul_ps(y, _mm512_fnmadd_ps(half_s, _mm512_mul_ps(y, y), _mm512_set1_ps(1.5f)))};
 }
-inline F keep_lanes(F a, unsigned keep) { return {_mm512_maskz_mov_ps(static_cast<__mmask16>(keep), a.v)}; }
-/// The first (half 0) or last (half 1) `lanes` floats of a, widened to doubles.
-inline V widen(F a, int half) {
-  alignas(64) float b[2 * lanes];  // through memory: the 256-bit casts trip GCC 12's warnings
-  _mm512_store_ps(b, a.v);
-  return {_mm512_maskz_cvtps_pd(0xFF, _mm256_load_ps(b + half * lanes))};
-}
+inline Vf keep_lanes(Vf a, unsigned keep) { return {_mm512_maskz_mov_ps(static_cast<__mmask16>(keep), a.v)}; }
+
+struct Avx512Math {
+  using V = Vd;
+  using F = Vf;
+  static V splat(double a) { return {_mm512_set1_pd(a)}; }
+  static V load(const double* p) { return {_mm512_loadu_pd(p)}; }
+  static void store(double* p, V a) { _mm512_storeu_pd(p, a.v); }
+  static F splat_f(float a) { return {_mm512_set1_ps(a)}; }
+  static F load_f(const float* p) { return {_mm512_loadu_ps(p)}; }
+  /// The first (half 0) or last (half 1) `lanes` floats of a, widened to doubles.
+  static V widen(F a, int half) {
+    alignas(64) float b[2 * lanes];  // through memory: the 256-bit casts trip GCC 12's warnings
+    _mm512_store_ps(b, a.v);
+    return {_mm512_maskz_cvtps_pd(0xFF, _mm256_load_ps(b + half * lanes))};
+  }
+};
+using FastMath = Avx512Math;
 #else
-using F = Lanes<float, 2 * lanes>;
-inline F splat_f(float a) { return lanes_splat<float, 2 * lanes>(a); }
-inline F load_f(const float* p) { return lanes_load<float, 2 * lanes>(p); }
-inline V widen(F a, int half) {
-  V r;
-  for (std::size_t l = 0; l < lanes; ++l) r.v[l] = static_cast<double>(a.v[half * lanes + l]);
-  return r;
-}
+using FastMath = PlainMath;  // without AVX-512 the fast kernel is the portable code
 #endif
 
 /// Lanes of the vector of particles [first, first + lanes) other than particle j (self-pair).
@@ -157,7 +175,9 @@ inline unsigned all_but_self_group(std::uint32_t first, std::uint32_t j) {
 
 /// Positions of the group's particles [first, first + lanes) (Morton order), the last valid one
 /// repeated into lanes past `end` (their results are not used).
+template <class M>
 struct Targets {
+  using V = typename M::V;
   V x, y, z;
   Targets(const double* xs, const double* ys, const double* zs, std::uint32_t first, std::uint32_t end) {
     alignas(64) double bx[lanes], by[lanes], bz[lanes];
@@ -165,32 +185,34 @@ struct Targets {
       const std::size_t k = std::min<std::size_t>(first + l, end - 1);
       bx[l] = xs[k], by[l] = ys[k], bz[l] = zs[k];
     }
-    x = load(bx), y = load(by), z = load(bz);
+    x = M::load(bx), y = M::load(by), z = M::load(bz);
   }
 };
 
 /// What a cell's pull and potential share at the targets t (TreeGravity::Expansion e): r = x - c,
 /// y = 1/s (s^2 = r^2 + eps^2), y2 = y^2, v = 3 S r - (3/2) t, U' = (15/2) U (U_i = O_ijk r_j r_k),
 /// P' = r.U' and w = (15/2) (t.r - r.S.r). Inlined by force: a call per cell spills it all.
+template <class M>
 struct CellTerms {
+  using V = typename M::V;
   V rx, ry, rz, y, y2, vx, vy, vz, ux, uy, uz, p, w;
   template <class Expansion>
-  [[gnu::always_inline]] CellTerms(const Expansion& e, const Targets& t, V e2)
-      : rx(t.x - splat(e.com[0])), ry(t.y - splat(e.com[1])), rz(t.z - splat(e.com[2])) {
+  [[gnu::always_inline]] CellTerms(const Expansion& e, const Targets<M>& t, V e2)
+      : rx(t.x - M::splat(e.com[0])), ry(t.y - M::splat(e.com[1])), rz(t.z - M::splat(e.com[2])) {
     y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2))));
     y2 = y * y;
     const double* s = e.s3;  // 3 S: xx, xy, xz, yy, yz, zz
-    vx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, fma(splat(s[0]), rx, splat(e.mt15[0]))));
-    vy = fma(splat(s[4]), rz, fma(splat(s[3]), ry, fma(splat(s[1]), rx, splat(e.mt15[1]))));
-    vz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, fma(splat(s[2]), rx, splat(e.mt15[2]))));
+    vx = fma(M::splat(s[2]), rz, fma(M::splat(s[1]), ry, fma(M::splat(s[0]), rx, M::splat(e.mt15[0]))));
+    vy = fma(M::splat(s[4]), rz, fma(M::splat(s[3]), ry, fma(M::splat(s[1]), rx, M::splat(e.mt15[1]))));
+    vz = fma(M::splat(s[5]), rz, fma(M::splat(s[4]), ry, fma(M::splat(s[2]), rx, M::splat(e.mt15[2]))));
     // r.v + r.(-(3/2) t) = 3 r.S.r - 3 t.r
-    const V qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, splat(e.mt15[2]), fma(ry, splat(e.mt15[1]), rx * splat(e.mt15[0]))))));
-    w = splat(-2.5) * qt;
+    const V qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, M::splat(e.mt15[2]), fma(ry, M::splat(e.mt15[1]), rx * M::splat(e.mt15[0]))))));
+    w = M::splat(-2.5) * qt;
     const V xx = rx * rx, yy = ry * ry, zz = rz * rz, xy = rx * ry, xz = rx * rz, yz = ry * rz;
     const double* o = e.u;  // per component, the coefficients of xx, yy, zz, xy, xz, yz
-    ux = fma(splat(o[5]), yz, fma(splat(o[4]), xz, fma(splat(o[3]), xy, fma(splat(o[2]), zz, fma(splat(o[1]), yy, splat(o[0]) * xx)))));
-    uy = fma(splat(o[11]), yz, fma(splat(o[10]), xz, fma(splat(o[9]), xy, fma(splat(o[8]), zz, fma(splat(o[7]), yy, splat(o[6]) * xx)))));
-    uz = fma(splat(o[17]), yz, fma(splat(o[16]), xz, fma(splat(o[15]), xy, fma(splat(o[14]), zz, fma(splat(o[13]), yy, splat(o[12]) * xx)))));
+    ux = fma(M::splat(o[5]), yz, fma(M::splat(o[4]), xz, fma(M::splat(o[3]), xy, fma(M::splat(o[2]), zz, fma(M::splat(o[1]), yy, M::splat(o[0]) * xx)))));
+    uy = fma(M::splat(o[11]), yz, fma(M::splat(o[10]), xz, fma(M::splat(o[9]), xy, fma(M::splat(o[8]), zz, fma(M::splat(o[7]), yy, M::splat(o[6]) * xx)))));
+    uz = fma(M::splat(o[17]), yz, fma(M::splat(o[16]), xz, fma(M::splat(o[15]), xy, fma(M::splat(o[14]), zz, fma(M::splat(o[13]), yy, M::splat(o[12]) * xx)))));
     p = fma(rz, uz, fma(ry, uy, rx * ux));
   }
 };
@@ -219,15 +241,16 @@ ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::v
   return stats;
 }
 
-double opening_angle_for(double force_error) {
-  return std::clamp(3.0 * std::pow(force_error, 2.0 / 9.0), 0.1, 0.7);
+double opening_angle_for(double force_error, bool portable) {
+  return std::clamp(3.0 * portable_math::pow(force_error, 2.0 / 9.0, portable), 0.1, 0.7);
 }
 
-TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, double force_error)
-    : count_(mass.size()),
+TreeGravity::TreeGravity(const std::vector<double>& mass, double softening, double force_error, GravityKernel kernel)
+    : kernel_(kernel),
+      count_(mass.size()),
       eps2_(softening * softening),
-      theta_(opening_angle_for(force_error)),
-      theta_quadrupole_(std::pow(theta_, 5.0 / 3.0)),
+      theta_(opening_angle_for(force_error, uses_portable_math(kernel))),
+      theta_quadrupole_(portable_math::pow(theta_, 5.0 / 3.0, uses_portable_math(kernel))),
       mass_(mass),
       key_(mass.size()),
       order_(mass.size()),
@@ -371,13 +394,15 @@ void TreeGravity::finish_expansion(std::size_t index) {
   for (std::size_t k = 0; k < 18; ++k) f.u[k] = static_cast<float>(e.u[k]);
 }
 
-void TreeGravity::build(const double* position) {
+void TreeGravity::prepare(const double* position) {
   const std::size_t n = count_;
   nodes_.clear();
   groups_.clear();
   block_of_.clear();
   block_valid_.clear();
   block_leaf_.clear();
+  task_roots_.clear();
+  top_nodes_.clear();
   if (n == 0) return;
   double lo[3], hi[3];
   for (std::size_t k = 0; k < 3; ++k) lo[k] = hi[k] = position[k];
@@ -395,10 +420,8 @@ void TreeGravity::build(const double* position) {
   };
   std::vector<Keyed>& keyed = keyed_;
   keyed.resize(n);
-  // The per-particle loops of the build run on every thread (each writes its own slots): the
-  // build is otherwise serial, and at N ~ 60,000 it is ~5% of a step.
-  const bool parallel = n >= 4096;
-#pragma omp parallel for schedule(static) if (parallel)
+  // On one thread: the per-particle loops are memory-light (~0.5 ms at N ~ 60,000), and every
+  // parallel loop ends in a barrier where a thread paused by the OS holds up the others.
   for (std::size_t i = 0; i < n; ++i) {
     const double* p = position + 3 * i;
     keyed[i] = {spread_bits(quantize(p[0], 0)) << 2 | spread_bits(quantize(p[1], 1)) << 1 | spread_bits(quantize(p[2], 2)),
@@ -411,7 +434,6 @@ void TreeGravity::build(const double* position) {
   sorted_.resize(n);
   bool sorted = false;
   if (have_order_) {
-#pragma omp parallel for schedule(static) if (parallel)
     for (std::size_t k = 0; k < n; ++k) sorted_[k] = keyed[order_[k]];
     const auto before = [](const Keyed& a, const Keyed& b) { return a.key < b.key || (a.key == b.key && a.index < b.index); };
     std::size_t budget = 8 * n;
@@ -448,7 +470,6 @@ void TreeGravity::build(const double* position) {
     keyed.swap(sorted_);
   }
   have_order_ = true;
-#pragma omp parallel for schedule(static) if (parallel)
   for (std::size_t k = 0; k < n; ++k) {
     const std::uint32_t i = keyed[k].index;
     key_[k] = keyed[k].key;
@@ -463,49 +484,56 @@ void TreeGravity::build(const double* position) {
   expansion_.resize(node_total);
   expansion_f_.resize(node_total);
   moments_.resize(node_total);
-  // Inner nodes grouped by depth, deepest first: each level's nodes only read the level below.
-  inner_.clear();
-  std::vector<std::uint32_t> level_start;  ///< inner_[level_start[l], level_start[l + 1]): level deepest - l
-  {
-    std::vector<std::uint32_t> depth(node_total, 0);
-    std::uint32_t deepest = 0;
-    for (std::size_t i = 0; i < node_total; ++i)
-      if (!nodes_[i].leaf)
-        for (std::uint32_t c = static_cast<std::uint32_t>(i) + 1; c < nodes_[i].next; c = nodes_[c].next)
-          depth[c] = depth[i] + 1, deepest = std::max(deepest, depth[c]);
-    level_start.assign(deepest + 2, 0);
-    for (std::uint32_t level = deepest + 1; level-- > 0;) {
-      level_start[deepest - level] = static_cast<std::uint32_t>(inner_.size());
-      for (std::size_t i = 0; i < node_total; ++i)
-        if (!nodes_[i].leaf && depth[i] == level) inner_.push_back(static_cast<std::uint32_t>(i));
+  // The moment tasks: subtrees of at most 1/64 of the particles (or leaves), found in
+  // pre-order; the nodes above them are few (~100) and run in finish_build().
+  const std::size_t task_particles = std::max<std::size_t>(leaf_capacity, n / 64);
+  for (std::uint32_t i = 0; i < node_total;) {
+    if (nodes_[i].leaf || nodes_[i].end - nodes_[i].begin <= task_particles) {
+      task_roots_.push_back(i);
+      i = nodes_[i].next;
+    } else {
+      top_nodes_.push_back(i++);
     }
-    level_start[deepest + 1] = static_cast<std::uint32_t>(inner_.size());
   }
-  const std::size_t group_total = groups_.size();
-#pragma omp parallel if (parallel)
-  {
-    // Leaves from their particles, then inner nodes level by level from their children (each
-    // node's sums in a fixed order: any thread, the same bits), then the expansions.
-#pragma omp for schedule(dynamic, 32)
-    for (std::size_t i = 0; i < node_total; ++i)
-      if (nodes_[i].leaf) compute_moments(i);
-    for (std::size_t level = 0; level + 1 < level_start.size(); ++level) {
-#pragma omp for schedule(dynamic, 4)
-      for (std::size_t k = level_start[level]; k < level_start[level + 1]; ++k) combine_moments(inner_[k]);
+}
+
+void TreeGravity::moment_task(std::size_t task) {
+  const std::uint32_t root = task_roots_[task];
+  // Reverse pre-order: every node after its children (a node's subtree follows it).
+  for (std::uint32_t i = nodes_[root].next; i-- > root;) {
+    if (nodes_[i].leaf) compute_moments(i);
+    else combine_moments(i);
+    finish_expansion(i);
+  }
+  // The groups that start in this subtree (each group starts in exactly one).
+  const std::size_t first = (nodes_[root].begin + group_size - 1) / group_size;
+  const std::size_t end = (nodes_[root].end + group_size - 1) / group_size;
+  for (std::size_t gi = first; gi < end; ++gi) {
+    Group& g = groups_[gi];
+    for (std::size_t k = 0; k < 3; ++k) g.lo[k] = std::numeric_limits<double>::infinity(), g.hi[k] = -g.lo[k];
+    for (std::uint32_t k = g.begin; k < g.end; ++k) {
+      const double p[3] = {x_[k], y_[k], z_[k]};
+      for (std::size_t a = 0; a < 3; ++a) g.lo[a] = std::min(g.lo[a], p[a]), g.hi[a] = std::max(g.hi[a], p[a]);
     }
-#pragma omp for schedule(static) nowait
-    for (std::size_t i = 0; i < node_total; ++i) finish_expansion(i);
-#pragma omp for schedule(static)
-    for (std::size_t gi = 0; gi < group_total; ++gi) {
-      Group& g = groups_[gi];
-      for (std::size_t k = 0; k < 3; ++k) g.lo[k] = std::numeric_limits<double>::infinity(), g.hi[k] = -g.lo[k];
-      for (std::uint32_t k = g.begin; k < g.end; ++k) {
-        const double p[3] = {x_[k], y_[k], z_[k]};
-        for (std::size_t a = 0; a < 3; ++a) g.lo[a] = std::min(g.lo[a], p[a]), g.hi[a] = std::max(g.hi[a], p[a]);
-      }
-    }
+  }
+}
+
+void TreeGravity::finish_build() {
+  if (count_ == 0) return;
+  for (std::size_t k = top_nodes_.size(); k-- > 0;) {
+    combine_moments(top_nodes_[k]);
+    finish_expansion(top_nodes_[k]);
   }
   child_blocks();
+}
+
+void TreeGravity::build(const double* position) {
+  prepare(position);
+  const std::size_t tasks = moment_task_count();
+  // One dynamic loop, no barrier per tree level: a task's nodes only read nodes of the same task.
+#pragma omp parallel for schedule(dynamic, 1) if (count_ >= 4096)
+  for (std::size_t t = 0; t < tasks; ++t) moment_task(t);
+  finish_build();
 }
 
 void TreeGravity::child_blocks() {
@@ -636,12 +664,14 @@ constexpr std::size_t cells_per_block = 64;
 ///   a = y^3 (-M + y^2 ((3/2) tr S + y^2 (w - (7/3) P' y^2))) r + y^5 (v + y^2 U'),
 /// to quadrupole order (Octupole false; O = 0, so t = U' = P' = 0): v = 3 S r, w = -(5/2) r.v,
 ///   a = y^3 (-M + y^2 ((3/2) tr S + y^2 w)) r + y^5 v.
-template <bool Octupole, class Node, class ExpansionF>
+template <class M, bool Octupole, class Node, class ExpansionF>
 [[gnu::always_inline]] inline void sum_cells_f(const std::uint32_t* cells, std::size_t count, const Node* nodes,
-                                               const ExpansionF* expansion, const double* o, F tx, F ty, F tz,
-                                               F e2, V* a0, V* a1) {
-  const F minus_seven_thirds = splat_f(-7.0f / 3.0f), minus_five_halves = splat_f(-2.5f);
-  const F zero = splat_f(0.0f);
+                                               const ExpansionF* expansion, const double* o, typename M::F tx,
+                                               typename M::F ty, typename M::F tz, typename M::F e2,
+                                               typename M::V* a0, typename M::V* a1) {
+  using F = typename M::F;
+  const F minus_seven_thirds = M::splat_f(-7.0f / 3.0f), minus_five_halves = M::splat_f(-2.5f);
+  const F zero = M::splat_f(0.0f);
   for (std::size_t block = 0; block < count; block += cells_per_block) {
     F ax = zero, ay = zero, az = zero;
     const std::size_t block_end = std::min(count, block + cells_per_block);
@@ -649,54 +679,64 @@ template <bool Octupole, class Node, class ExpansionF>
       const std::uint32_t c = cells[n];
       const double* com = nodes[c].com;
       const ExpansionF& e = expansion[c];
-      const F rx = tx - splat_f(static_cast<float>(com[0] - o[0])), ry = ty - splat_f(static_cast<float>(com[1] - o[1])),
-              rz = tz - splat_f(static_cast<float>(com[2] - o[2]));
+      const F rx = tx - M::splat_f(static_cast<float>(com[0] - o[0])), ry = ty - M::splat_f(static_cast<float>(com[1] - o[1])),
+              rz = tz - M::splat_f(static_cast<float>(com[2] - o[2]));
       const F y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2)))), y2 = y * y;
       const float* s = e.s3;  // 3 S: xx, xy, xz, yy, yz, zz
       if constexpr (!Octupole) {
-        const F vx = fma(splat_f(s[2]), rz, fma(splat_f(s[1]), ry, splat_f(s[0]) * rx));
-        const F vy = fma(splat_f(s[4]), rz, fma(splat_f(s[3]), ry, splat_f(s[1]) * rx));
-        const F vz = fma(splat_f(s[5]), rz, fma(splat_f(s[4]), ry, splat_f(s[2]) * rx));
+        const F vx = fma(M::splat_f(s[2]), rz, fma(M::splat_f(s[1]), ry, M::splat_f(s[0]) * rx));
+        const F vy = fma(M::splat_f(s[4]), rz, fma(M::splat_f(s[3]), ry, M::splat_f(s[1]) * rx));
+        const F vz = fma(M::splat_f(s[5]), rz, fma(M::splat_f(s[4]), ry, M::splat_f(s[2]) * rx));
         const F w = minus_five_halves * fma(rz, vz, fma(ry, vy, rx * vx));
         const F y3 = y * y2, y5 = y3 * y2;
-        const F radial = y3 * fma(y2, fma(y2, w, splat_f(e.t15)), splat_f(e.neg_mass));
+        const F radial = y3 * fma(y2, fma(y2, w, M::splat_f(e.t15)), M::splat_f(e.neg_mass));
         ax = fma(y5, vx, fma(radial, rx, ax));
         ay = fma(y5, vy, fma(radial, ry, ay));
         az = fma(y5, vz, fma(radial, rz, az));
         continue;
       }
-      const F vx = fma(splat_f(s[2]), rz, fma(splat_f(s[1]), ry, fma(splat_f(s[0]), rx, splat_f(e.mt15[0]))));
-      const F vy = fma(splat_f(s[4]), rz, fma(splat_f(s[3]), ry, fma(splat_f(s[1]), rx, splat_f(e.mt15[1]))));
-      const F vz = fma(splat_f(s[5]), rz, fma(splat_f(s[4]), ry, fma(splat_f(s[2]), rx, splat_f(e.mt15[2]))));
+      const F vx = fma(M::splat_f(s[2]), rz, fma(M::splat_f(s[1]), ry, fma(M::splat_f(s[0]), rx, M::splat_f(e.mt15[0]))));
+      const F vy = fma(M::splat_f(s[4]), rz, fma(M::splat_f(s[3]), ry, fma(M::splat_f(s[1]), rx, M::splat_f(e.mt15[1]))));
+      const F vz = fma(M::splat_f(s[5]), rz, fma(M::splat_f(s[4]), ry, fma(M::splat_f(s[2]), rx, M::splat_f(e.mt15[2]))));
       // r.v + r.(-(3/2) t) = 3 r.S.r - 3 t.r
-      const F qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, splat_f(e.mt15[2]), fma(ry, splat_f(e.mt15[1]), rx * splat_f(e.mt15[0]))))));
+      const F qt = fma(rz, vz, fma(ry, vy, fma(rx, vx, fma(rz, M::splat_f(e.mt15[2]), fma(ry, M::splat_f(e.mt15[1]), rx * M::splat_f(e.mt15[0]))))));
       const F w = minus_five_halves * qt;
       const F xx = rx * rx, yy = ry * ry, zz = rz * rz, xy = rx * ry, xz = rx * rz, yz = ry * rz;
       const float* u = e.u;  // per component, the coefficients of xx, yy, zz, xy, xz, yz
-      const F ux = fma(splat_f(u[5]), yz, fma(splat_f(u[4]), xz, fma(splat_f(u[3]), xy, fma(splat_f(u[2]), zz, fma(splat_f(u[1]), yy, splat_f(u[0]) * xx)))));
-      const F uy = fma(splat_f(u[11]), yz, fma(splat_f(u[10]), xz, fma(splat_f(u[9]), xy, fma(splat_f(u[8]), zz, fma(splat_f(u[7]), yy, splat_f(u[6]) * xx)))));
-      const F uz = fma(splat_f(u[17]), yz, fma(splat_f(u[16]), xz, fma(splat_f(u[15]), xy, fma(splat_f(u[14]), zz, fma(splat_f(u[13]), yy, splat_f(u[12]) * xx)))));
+      const F ux = fma(M::splat_f(u[5]), yz, fma(M::splat_f(u[4]), xz, fma(M::splat_f(u[3]), xy, fma(M::splat_f(u[2]), zz, fma(M::splat_f(u[1]), yy, M::splat_f(u[0]) * xx)))));
+      const F uy = fma(M::splat_f(u[11]), yz, fma(M::splat_f(u[10]), xz, fma(M::splat_f(u[9]), xy, fma(M::splat_f(u[8]), zz, fma(M::splat_f(u[7]), yy, M::splat_f(u[6]) * xx)))));
+      const F uz = fma(M::splat_f(u[17]), yz, fma(M::splat_f(u[16]), xz, fma(M::splat_f(u[15]), xy, fma(M::splat_f(u[14]), zz, fma(M::splat_f(u[13]), yy, M::splat_f(u[12]) * xx)))));
       const F p = fma(rz, uz, fma(ry, uy, rx * ux));
       const F y3 = y * y2, y5 = y3 * y2;
-      const F radial = y3 * fma(y2, fma(y2, fma(minus_seven_thirds * p, y2, w), splat_f(e.t15)), splat_f(e.neg_mass));
+      const F radial = y3 * fma(y2, fma(y2, fma(minus_seven_thirds * p, y2, w), M::splat_f(e.t15)), M::splat_f(e.neg_mass));
       ax = fma(y5, fma(y2, ux, vx), fma(radial, rx, ax));
       ay = fma(y5, fma(y2, uy, vy), fma(radial, ry, ay));
       az = fma(y5, fma(y2, uz, vz), fma(radial, rz, az));
     }
-    a0[0] = a0[0] + widen(ax, 0), a0[1] = a0[1] + widen(ay, 0), a0[2] = a0[2] + widen(az, 0);
-    a1[0] = a1[0] + widen(ax, 1), a1[1] = a1[1] + widen(ay, 1), a1[2] = a1[2] + widen(az, 1);
+    a0[0] = a0[0] + M::widen(ax, 0), a0[1] = a0[1] + M::widen(ay, 0), a0[2] = a0[2] + M::widen(az, 0);
+    a1[0] = a1[0] + M::widen(ax, 1), a1[1] = a1[1] + M::widen(ay, 1), a1[2] = a1[2] + M::widen(az, 1);
   }
 }
 
 }  // namespace
 
 void TreeGravity::accumulate_chunk(std::size_t chunk) {
+#if defined(__AVX512F__)
+  if (kernel_ == GravityKernel::fast) return accumulate_chunk_with<FastMath>(chunk);
+#endif
+  accumulate_chunk_with<PlainMath>(chunk);
+}
+
+template <class M>
+void TreeGravity::accumulate_chunk_with(std::size_t chunk) {
+  using V = typename M::V;
+  using F = typename M::F;
   InteractionList list(nodes_.size());
   const std::vector<std::uint32_t>& ranges = list.ranges;
-  const F e2f = splat_f(static_cast<float>(eps2_));
+  const F e2f = M::splat_f(static_cast<float>(eps2_));
   const auto store_accelerations = [&](std::uint32_t first, std::uint32_t end, const V* a) {
     alignas(64) double b[3][lanes];
-    for (std::size_t k = 0; k < 3; ++k) store(b[k], a[k]);
+    for (std::size_t k = 0; k < 3; ++k) M::store(b[k], a[k]);
     for (std::size_t l = 0; l < lanes && first + l < end; ++l)
       for (std::size_t k = 0; k < 3; ++k) acceleration_[3 * static_cast<std::size_t>(order_[first + l]) + k] = b[k][l];
   };
@@ -716,24 +756,24 @@ void TreeGravity::accumulate_chunk(std::size_t chunk) {
       const std::size_t k = std::min<std::size_t>(g.begin + l, g.end - 1);
       ox[l] = static_cast<float>(x_[k] - cx), oy[l] = static_cast<float>(y_[k] - cy), oz[l] = static_cast<float>(z_[k] - cz);
     }
-    const F tx = load_f(ox), ty = load_f(oy), tz = load_f(oz);
+    const F tx = M::load_f(ox), ty = M::load_f(oy), tz = M::load_f(oz);
     V a0[3], a1[3];
-    for (std::size_t k = 0; k < 3; ++k) a0[k] = splat(0.0), a1[k] = a0[k];
-    sum_cells_f<false>(list.quadrupole_cells.get(), list.quadrupole_count, nodes_.data(), expansion_f_.data(), c, tx,
+    for (std::size_t k = 0; k < 3; ++k) a0[k] = M::splat(0.0), a1[k] = a0[k];
+    sum_cells_f<M, false>(list.quadrupole_cells.get(), list.quadrupole_count, nodes_.data(), expansion_f_.data(), c, tx,
                        ty, tz, e2f, a0, a1);
-    sum_cells_f<true>(list.cells.get(), list.cell_count, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
-    F ax = splat_f(0.0f), ay = ax, az = ax;
+    sum_cells_f<M, true>(list.cells.get(), list.cell_count, nodes_.data(), expansion_f_.data(), c, tx, ty, tz, e2f, a0, a1);
+    F ax = M::splat_f(0.0f), ay = ax, az = ax;
     for (std::size_t r = 0; r < ranges.size(); r += 2) {
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
-        const F dx = splat_f(static_cast<float>(x_[j] - cx)) - tx, dy = splat_f(static_cast<float>(y_[j] - cy)) - ty,
-                dz = splat_f(static_cast<float>(z_[j] - cz)) - tz;
+        const F dx = M::splat_f(static_cast<float>(x_[j] - cx)) - tx, dy = M::splat_f(static_cast<float>(y_[j] - cy)) - ty,
+                dz = M::splat_f(static_cast<float>(z_[j] - cz)) - tz;
         const F y = rsqrt(fma(dz, dz, fma(dy, dy, fma(dx, dx, e2f))));
-        const F f = keep_lanes(splat_f(static_cast<float>(m_[j])) * (y * y * y), all_but_self_group(g.begin, j));
+        const F f = keep_lanes(M::splat_f(static_cast<float>(m_[j])) * (y * y * y), all_but_self_group(g.begin, j));
         ax = fma(f, dx, ax), ay = fma(f, dy, ay), az = fma(f, dz, az);
       }
     }
-    a0[0] = a0[0] + widen(ax, 0), a0[1] = a0[1] + widen(ay, 0), a0[2] = a0[2] + widen(az, 0);
-    a1[0] = a1[0] + widen(ax, 1), a1[1] = a1[1] + widen(ay, 1), a1[2] = a1[2] + widen(az, 1);
+    a0[0] = a0[0] + M::widen(ax, 0), a0[1] = a0[1] + M::widen(ay, 0), a0[2] = a0[2] + M::widen(az, 0);
+    a1[0] = a1[0] + M::widen(ax, 1), a1[1] = a1[1] + M::widen(ay, 1), a1[2] = a1[2] + M::widen(az, 1);
     store_accelerations(g.begin, g.end, a0);
     store_accelerations(second, g.end, a1);
   }
@@ -751,51 +791,71 @@ double TreeGravity::covered_mass(std::size_t group) const {
 }
 
 void TreeGravity::accelerations(const double* position, double* acceleration, bool parallel) {
-  build(position);
-  const std::size_t chunks = chunk_count();
+  prepare(position);
+  const std::size_t tasks = moment_task_count();
+  // Three barriers: after the moment tasks, after the top of the tree, at the end. Each chunk
+  // writes its own particles' accelerations.
 #pragma omp parallel if (parallel)
   {
 #pragma omp for schedule(dynamic, 1)
-    for (std::size_t c = 0; c < chunks; ++c) accumulate_chunk(c);
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < count_; ++i) this->acceleration(i, acceleration + 3 * i);
+    for (std::size_t t = 0; t < tasks; ++t) moment_task(t);
+#pragma omp single
+    finish_build();
+    const std::size_t chunks = chunk_count();
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t c = 0; c < chunks; ++c) {
+      accumulate_chunk(c);
+      for (std::size_t k = chunk_begin(c); k < chunk_end(c); ++k) {
+        const std::size_t i = order_[k];
+        this->acceleration(i, acceleration + 3 * i);
+      }
+    }
   }
 }
 
 void TreeGravity::group_potential(const Group& g, InteractionList& list) {
+#if defined(__AVX512F__)
+  if (kernel_ == GravityKernel::fast) return group_potential_with<FastMath>(g, list);
+#endif
+  group_potential_with<PlainMath>(g, list);
+}
+
+template <class M>
+void TreeGravity::group_potential_with(const Group& g, InteractionList& list) {
+  using V = typename M::V;
   interaction_list(g, list);
   const std::vector<std::uint32_t>& ranges = list.ranges;
-  const V e2 = splat(eps2_), minus_third = splat(-1.0 / 3.0), fifth = splat(0.2);
+  const V e2 = M::splat(eps2_), minus_third = M::splat(-1.0 / 3.0), fifth = M::splat(0.2);
   for (std::uint32_t first = g.begin; first < g.end; first += lanes) {
-    const Targets t(x_.data(), y_.data(), z_.data(), first, g.end);
-    V phi = splat(0.0);
+    const Targets<M> t(x_.data(), y_.data(), z_.data(), first, g.end);
+    V phi = M::splat(0.0);
     for (std::size_t n = 0; n < list.quadrupole_count; ++n) {
       const Expansion& e = expansion_[list.quadrupole_cells[n]];
       // To quadrupole order (as the forces): phi = y (-M + y^2 ((1/2) tr S + y^2 w/5)),
       // w = -(5/2) r.(3 S r)
-      const V rx = t.x - splat(e.com[0]), ry = t.y - splat(e.com[1]), rz = t.z - splat(e.com[2]);
+      const V rx = t.x - M::splat(e.com[0]), ry = t.y - M::splat(e.com[1]), rz = t.z - M::splat(e.com[2]);
       const V y = rsqrt(fma(rz, rz, fma(ry, ry, fma(rx, rx, e2)))), y2 = y * y;
       const double* s = e.s3;
-      const V vx = fma(splat(s[2]), rz, fma(splat(s[1]), ry, splat(s[0]) * rx));
-      const V vy = fma(splat(s[4]), rz, fma(splat(s[3]), ry, splat(s[1]) * rx));
-      const V vz = fma(splat(s[5]), rz, fma(splat(s[4]), ry, splat(s[2]) * rx));
-      const V w = splat(-2.5) * fma(rz, vz, fma(ry, vy, rx * vx));
-      phi = fma(y, fma(y2, fma(y2, fifth * w, splat(e.t15 / 3.0)), splat(e.neg_mass)), phi);
+      const V vx = fma(M::splat(s[2]), rz, fma(M::splat(s[1]), ry, M::splat(s[0]) * rx));
+      const V vy = fma(M::splat(s[4]), rz, fma(M::splat(s[3]), ry, M::splat(s[1]) * rx));
+      const V vz = fma(M::splat(s[5]), rz, fma(M::splat(s[4]), ry, M::splat(s[2]) * rx));
+      const V w = M::splat(-2.5) * fma(rz, vz, fma(ry, vy, rx * vx));
+      phi = fma(y, fma(y2, fma(y2, fifth * w, M::splat(e.t15 / 3.0)), M::splat(e.neg_mass)), phi);
     }
     for (std::size_t n = 0; n < list.cell_count; ++n) {
       const Expansion& e = expansion_[list.cells[n]];
-      const CellTerms k(e, t, e2);
+      const CellTerms<M> k(e, t, e2);
       // phi = y (-M + y^2 ((1/2) tr S + y^2 (w/5 - (1/3) P' y^2)))
-      phi = fma(k.y, fma(k.y2, fma(k.y2, fma(minus_third * k.p, k.y2, fifth * k.w), splat(e.t15 / 3.0)), splat(e.neg_mass)), phi);
+      phi = fma(k.y, fma(k.y2, fma(k.y2, fma(minus_third * k.p, k.y2, fifth * k.w), M::splat(e.t15 / 3.0)), M::splat(e.neg_mass)), phi);
     }
     for (std::size_t r = 0; r < ranges.size(); r += 2)
       for (std::uint32_t j = ranges[r]; j < ranges[r + 1]; ++j) {
-        const V dx = splat(x_[j]) - t.x, dy = splat(y_[j]) - t.y, dz = splat(z_[j]) - t.z;
+        const V dx = M::splat(x_[j]) - t.x, dy = M::splat(y_[j]) - t.y, dz = M::splat(z_[j]) - t.z;
         const V y = rsqrt(fma(dz, dz, fma(dy, dy, fma(dx, dx, e2))));
-        phi = phi - keep_lanes(splat(m_[j]) * y, all_but_self(first, j));
+        phi = phi - keep_lanes(M::splat(m_[j]) * y, all_but_self(first, j));
       }
     alignas(64) double b[lanes];
-    store(b, phi);
+    M::store(b, phi);
     for (std::size_t l = 0; l < lanes && first + l < g.end; ++l) potential_[first + l] = b[l];
   }
 }

@@ -4,10 +4,13 @@
 // target relative force error (`[gravity] force_error`), turned into an opening angle by a
 // calibration measured on this code (opening_angle_for). Units: G = M = R = 1, masses M, lengths
 // R, accelerations G M/R^2, energies G M^2/R. docs/architecture.md ("Self-gravity methods").
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
+
+#include "model/choices.hpp"
 
 namespace tidalcrust {
 
@@ -24,7 +27,8 @@ namespace tidalcrust {
 /// target (with quadrupoles only the same error needed about 0.7 of the angle, three times the
 /// near field). The achieved error is measured, not assumed: bench reports median, 99th
 /// percentile and maximum against the direct sum.
-double opening_angle_for(double force_error);
+/// `portable`: pow from portable_math (the same bits on every CPU), as the portable kernel needs.
+double opening_angle_for(double force_error, bool portable = false);
 
 /// a_i = sum_j m_j (x_j - x_i) / (|x_j - x_i|^2 + eps^2)^(3/2), approximated by an octree:
 ///
@@ -37,7 +41,7 @@ double opening_angle_for(double force_error);
 /// * Moments of each node about its centre of mass c: mass M, the second moments
 ///   S = sum m (x - c)(x - c)^T, the third moments O = sum m (x - c)(x - c)(x - c) and
 ///   b_max = max |x - c|: a leaf's from its particles, an inner node's M, c, S and O from its
-///   children's (parallel-axis shifts, children in order, level by level), b_max exactly from
+///   children's (parallel-axis shifts, children in order, children before parents), b_max exactly from
 ///   its particles.
 /// * Far field: a cell is used as a whole for a group of particles when b_max < theta d, d the
 ///   distance from c to the group's bounding box (Salmon & Warren 1994). Its pull is the
@@ -70,6 +74,11 @@ double opening_angle_for(double force_error);
 ///   Breadth first because the next block to test is known before this one's test ends, so
 ///   the tests overlap; the walk took a quarter of the tree's time one node at a time.
 ///
+/// * Build: the Morton order and the nodes on one thread (prepare()); the moments in tasks of
+///   whole subtrees (at most 1/64 of the particles each, children before parents) taken
+///   dynamically by any thread, with no barrier per tree level; the ~100 nodes above them and
+///   the child blocks on one thread (finish_build()).
+///
 /// Usage: build(position), then accumulate_chunk(c) for every chunk (any order, any threads),
 /// then acceleration(i) for every particle; or accelerations() for all of it.
 /// The relative error per particle |a_i - b_i| / |b_i| of accelerations a against a reference b
@@ -83,15 +92,40 @@ ForceErrorStats relative_force_errors(const std::vector<double>& a, const std::v
 
 class TreeGravity {
  public:
-  /// mass [N] in M; softening eps in R (Body::softening); force_error in (0, 1).
-  TreeGravity(const std::vector<double>& mass, double softening, double force_error);
+  /// mass [N] in M; softening eps in R (Body::softening); force_error in (0, 1). `kernel`: how
+  /// the kernels evaluate the cells and pairs, like DirectGravity's: fast (AVX-512 estimates and
+  /// fused multiply-adds where available) or portable (plain lane loops with correctly rounded
+  /// operations only, and the opening angle from portable_math: the same bits in every x86-64
+  /// build; bench reports its cost). Both walk the same lists in the same order.
+  TreeGravity(const std::vector<double>& mass, double softening, double force_error,
+              GravityKernel kernel = GravityKernel::fast);
 
-  /// Builds the tree for positions [N*3] (R).
+  /// Builds the tree for positions [N*3] (R): prepare(), every moment_task() (in parallel, one
+  /// dynamic loop: no barrier per tree level), finish_build().
   void build(const double* position);
+  // build() in pieces, so a caller can run the moment tasks among its own work (ForceField does,
+  // with the spring and hinge chunks): prepare(position) on one thread (Morton order, nodes,
+  // groups), then moment_task(t) for every t < moment_task_count() (any order, any threads),
+  // then finish_build() on one thread. Each node's moments are computed by one task from its
+  // children's in a fixed order: the same bits however the tasks are scheduled.
+  void prepare(const double* position);
+  std::size_t moment_task_count() const { return task_roots_.size(); }
+  /// Moments and expansions of the nodes of one subtree, children before parents, and the
+  /// bounding boxes of the groups that start in it.
+  void moment_task(std::size_t task);
+  /// The nodes above the subtrees (few, near the root) and the walk's child blocks.
+  void finish_build();
   /// Number of independent units of work of accumulate_chunk after build().
   std::size_t chunk_count() const { return (groups_.size() + groups_per_chunk - 1) / groups_per_chunk; }
   /// Accelerations of the particles of one chunk of groups (into the internal buffer).
   void accumulate_chunk(std::size_t chunk);
+  /// The particles whose accelerations accumulate_chunk(chunk) writes: Morton positions
+  /// [chunk_begin(chunk), chunk_end(chunk)), original indices original_index(k) (after build).
+  std::size_t chunk_begin(std::size_t chunk) const { return groups_[chunk * groups_per_chunk].begin; }
+  std::size_t chunk_end(std::size_t chunk) const {
+    return groups_[std::min(groups_.size(), (chunk + 1) * groups_per_chunk) - 1].end;
+  }
+  std::size_t original_index(std::size_t k) const { return order_[k]; }
   /// a[3] = acceleration (G M/R^2) of particle i (original index) after every chunk ran.
   void acceleration(std::size_t i, double* a) const {
     for (std::size_t k = 0; k < 3; ++k) a[k] = acceleration_[3 * i + k];
@@ -116,6 +150,7 @@ class TreeGravity {
   /// or by the radix sort from the index order (false): the same tree either way.
   bool sorted_from_previous_order() const { return sorted_from_previous_order_; }
 
+  GravityKernel kernel() const { return kernel_; }
   double opening_angle() const { return theta_; }
   /// theta_q = theta^(5/3): a cell with b_max < theta_q d is summed to quadrupole order.
   double quadrupole_angle() const { return theta_quadrupole_; }
@@ -192,7 +227,13 @@ class TreeGravity {
   void child_blocks();
   /// phi (potential per unit mass) of the particles of group g, into potential_ (Morton order).
   void group_potential(const Group& g, InteractionList& list);
+  /// accumulate_chunk and group_potential with the vectors of one kernel (tree_gravity.cpp).
+  template <class Math>
+  void accumulate_chunk_with(std::size_t chunk);
+  template <class Math>
+  void group_potential_with(const Group& g, InteractionList& list);
 
+  GravityKernel kernel_;
   std::size_t count_;
   double eps2_;
   double theta_;
@@ -212,7 +253,9 @@ class TreeGravity {
   std::vector<Expansion> expansion_;  ///< [nodes_.size()]
   std::vector<ExpansionF> expansion_f_;  ///< [nodes_.size()]
   std::vector<Moments> moments_;      ///< [nodes_.size()]
-  std::vector<std::uint32_t> inner_;  ///< inner nodes, by depth (deepest last)
+  /// Roots of the subtrees of the moment tasks, in pre-order (their particle ranges partition
+  /// the particles), and the nodes above them (pre-order; finish_build() runs them backwards).
+  std::vector<std::uint32_t> task_roots_, top_nodes_;
   std::vector<std::uint32_t> block_of_;  ///< [nodes] an inner node's child block (leaves: unused)
   /// Child blocks [8 * blocks]: slot 8 b + l is the l-th child of the inner node of block b.
   std::vector<double> walk_x_, walk_y_, walk_z_, walk_bmax2_;

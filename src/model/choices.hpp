@@ -133,6 +133,18 @@ struct ChoiceTable<GravityKernel> {
   };
 };
 
+/// Whether `kernel` takes its transcendental functions (and the state's path takes its own) from
+/// base/portable_math.hpp: portable does, and so does fast in a build without AVX-512, where fast
+/// is the portable code (gravity_kernel_label "fast/generic": the same bits as portable).
+inline bool uses_portable_math(GravityKernel kernel) {
+#if defined(__AVX512F__)
+  return kernel == GravityKernel::portable;
+#else
+  (void)kernel;
+  return true;
+#endif
+}
+
 /// [ensemble] vary: what differs between the members of an ensemble (docs/ensembles.md).
 enum class EnsembleVariation {
   pericenter,  ///< the trajectory: q (1 + delta u_k), one relaxed body

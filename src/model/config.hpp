@@ -297,6 +297,11 @@ struct Config {
   std::vector<Encounter> encounters_named(const std::string& name) const;
 };
 
+/// Whether the state's path takes its transcendental functions from base/portable_math.hpp: in
+/// the portable mode (`[gravity] kernel = "portable"`), and for fast in a build without AVX-512
+/// (uses_portable_math; docs/determinism.md).
+inline bool portable_mode(const Config& config) { return uses_portable_math(config.gravity.kernel); }
+
 /// The seed of the body `encounter` branches from: its body_seed, or workflow.seed; for an
 /// encounter with `after`, that of the first encounter of its history.
 std::uint64_t body_seed_of(const Config& config, const Encounter& encounter);

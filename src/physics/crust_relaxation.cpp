@@ -29,11 +29,11 @@ void creep_shell_rest_lengths(const Body& body, State& state, double rate) {
   }
 }
 
-void reset_hinge_rest_angles(const Body& body, State& state) {
+void reset_hinge_rest_angles(const Body& body, State& state, bool portable) {
   for (std::size_t h = 0; h < body.hinge_count(); ++h) {
     const auto& v = body.hinges[h];
     auto at = [&](int k) { return vec3_at(state.position, static_cast<std::size_t>(v[k])); };
-    state.hinges.rest_angle[h] = hinge_angle(at(0), at(1), at(2), at(3));
+    state.hinges.rest_angle[h] = hinge_angle(at(0), at(1), at(2), at(3), portable);
   }
 }
 

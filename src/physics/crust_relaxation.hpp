@@ -15,7 +15,7 @@ void creep_shell_rest_lengths(const Body& body, State& state, double rate);
 
 /// Every hinge's rest angle becomes its current angle (hinge_angle of hinge_geometry.hpp):
 /// no flexural stress left.
-void reset_hinge_rest_angles(const Body& body, State& state);
+void reset_hinge_rest_angles(const Body& body, State& state, bool portable = false);
 
 /// What balance_cross_springs() achieved.
 struct CrossBalance {

@@ -5,14 +5,15 @@
 
 #include <Eigen/Dense>
 
+#include "base/portable_math.hpp"
 #include "model/center_of_mass.hpp"
 
 namespace tidalcrust {
 
-Matrix3 spin_rotation(double angular_velocity, double time) {
+Matrix3 spin_rotation(double angular_velocity, double time, bool portable) {
   const double angle = angular_velocity * time;
   if (angle == 0) return Matrix3::Identity();
-  const double c = std::cos(angle), s = std::sin(angle);
+  const double c = portable_math::cos(angle, portable), s = portable_math::sin(angle, portable);
   Matrix3 r;
   r << c, -s, 0, s, c, 0, 0, 0, 1;
   return r;
@@ -34,9 +35,9 @@ void add_rotating_frame_acceleration(const Body& body, double angular_velocity, 
   }
 }
 
-void rotating_to_inertial(const Body& body, State& state, double angular_velocity) {
+void rotating_to_inertial(const Body& body, State& state, double angular_velocity, bool portable) {
   if (angular_velocity == 0) return;
-  const Matrix3 turn = spin_rotation(angular_velocity, state.time);
+  const Matrix3 turn = spin_rotation(angular_velocity, state.time, portable);
   const Vec3 c = body_center_of_mass(body, state);
   const Vec3 spin(0, 0, angular_velocity);
   for (std::size_t i = 0; i < body.particle_count(); ++i) {

@@ -16,7 +16,7 @@ namespace tidalcrust {
 /// Rz(Omega t): the body frame's axes at time t (t_grav) in the inertial frame, for a body that
 /// spins at Omega (rad/t_grav) about +z and whose frame was the inertial frame at t = 0. Exactly
 /// the identity for Omega t = 0.
-Matrix3 spin_rotation(double angular_velocity, double time);
+Matrix3 spin_rotation(double angular_velocity, double time, bool portable = false);
 
 /// Adds the fictitious accelerations of the frame co-rotating at Omega about +z through the
 /// mass-weighted centre c of `x` (model/center_of_mass.hpp; one pass in index order):
@@ -29,7 +29,7 @@ void add_rotating_frame_acceleration(const Body& body, double angular_velocity, 
 /// A state relaxed in the frame co-rotating since t = 0 turned into the inertial frame at its
 /// time t: positions about the centre of mass c turned by Rz(Omega t), velocities
 /// Rz(Omega t) (v + Omega z x (x - c)); the perturber is left alone. Nothing changes for Omega = 0.
-void rotating_to_inertial(const Body& body, State& state, double angular_velocity);
+void rotating_to_inertial(const Body& body, State& state, double angular_velocity, bool portable = false);
 
 /// The fit r_i = a0 + a2 P2(cos theta_i) of the shell nodes' distances from the centre of mass
 /// (least squares, theta from the body frame's +z after `to_body` is applied to x - c) and the

@@ -28,9 +28,10 @@ class TwoBodyOrbit {
   /// this relative accuracy at the switch.
   static constexpr double default_parabolic_tolerance = 1e-9;
 
-  /// InputError unless mu, q and V_q are finite and > 0.
+  /// InputError unless mu, q and V_q are finite and > 0. `portable`: the transcendental
+  /// functions from base/portable_math.hpp (the portable mode: the same bits on every CPU).
   TwoBodyOrbit(double mu, double pericenter, double pericenter_speed,
-               double parabolic_tolerance = default_parabolic_tolerance);
+               double parabolic_tolerance = default_parabolic_tolerance, bool portable = false);
 
   double mu() const { return mu_; }
   double pericenter() const { return q_; }
@@ -67,6 +68,7 @@ class TwoBodyOrbit {
 
   double mu_, q_, vq_, e_;
   OrbitType type_;
+  bool portable_ = false;
 };
 
 /// Where an encounter begins: the relative state at distance r_start on the incoming branch,
@@ -77,7 +79,8 @@ struct EncounterStart {
 };
 
 /// The orbit of a perturber of mass M2 (units of M) about the body: mu = 1 + M2 (G = M = 1).
-TwoBodyOrbit perturber_orbit(double perturber_mass, double pericenter, double pericenter_speed);
+TwoBodyOrbit perturber_orbit(double perturber_mass, double pericenter, double pericenter_speed,
+                             bool portable = false);
 
 /// Relative state and time to pericenter at r_start before pericenter (InputError if r_start < q
 /// or beyond an elliptic orbit's apocenter).

@@ -1,5 +1,5 @@
-// The portable gravity kernel gives the same bits in a build without AVX-512 as in this (native)
-// build; the fast kernel differs from it exactly when it uses AVX-512.
+// The portable gravity kernels (direct sum and tree) give the same bits in a build without AVX-512
+// as in this (native) build; the fast kernels differ from them exactly when they use AVX-512.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -41,6 +41,21 @@ TEST(GravityKernels, PortableBitsEqualAcrossBuilds) {
   EXPECT_EQ(generic.at("portable"), probe_hash(GravityKernel::portable));
   // Without AVX-512 the fast kernel is the portable code, which same_gravity_bits relies on.
   EXPECT_EQ(generic.at("fast"), generic.at("portable"));
+}
+
+TEST(GravityKernels, PortableTreeBitsEqualAcrossBuilds) {
+  // The tree code's portable kernel (plain lane loops, correctly rounded operations, the opening
+  // angle from SLEEF's pow): the same accelerations, potential energy and angle in the
+  // x86-64-v2 build as in this one; without AVX-512 its fast kernel is that same code.
+  const auto generic = generic_probe();
+  ASSERT_EQ(generic.count("tree_portable"), 1u) << "no tree output from " << TIDALCRUST_KERNEL_PROBE;
+  EXPECT_EQ(generic.at("tree_portable"), test_support::tree_probe_hash(GravityKernel::portable));
+  EXPECT_EQ(generic.at("tree_fast"), generic.at("tree_portable"));
+#if defined(__AVX512F__)
+  EXPECT_NE(test_support::tree_probe_hash(GravityKernel::fast), test_support::tree_probe_hash(GravityKernel::portable));
+#else
+  EXPECT_EQ(test_support::tree_probe_hash(GravityKernel::fast), test_support::tree_probe_hash(GravityKernel::portable));
+#endif
 }
 
 TEST(GravityKernels, FastDiffersFromPortableExactlyWithAvx512) {

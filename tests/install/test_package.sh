@@ -19,7 +19,7 @@ for f in usr/bin/tidalcrust "usr/$pydir/tidalcrust/__init__.py" "usr/$pydir/tida
   grep -q " \./$f\$" <<< "$contents" || fail "the package lacks /$f: $contents"
 done
 depends=$(dpkg-deb -f "$deb" Depends)
-for d in libhdf5 libfmt libtomlplusplus3 libxxhash0 libudunits2-0 libgomp1 libstdc++6 libc6 python3 python3-h5py python3-numpy python3-xarray python3-matplotlib python3-cartopy; do
+for d in libhdf5 libfmt libtomlplusplus3 libxxhash0 libudunits2-0 libsleef3 libgomp1 libstdc++6 libc6 python3 python3-h5py python3-numpy python3-xarray python3-matplotlib python3-cartopy; do
   grep -q "\(^\|, \)$d" <<< "$depends" || fail "Depends lacks $d: $depends"
 done
 [ "$(dpkg-deb -f "$deb" Package)" = tidalcrust ] || fail "package name: $(dpkg-deb -f "$deb" Package)"
