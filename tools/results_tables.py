@@ -1161,7 +1161,9 @@ def speed_here(p):
     """Medians over the runs bench/NAME-<i>.json of the runs folder; ratios taken run by run."""
     rows, lines = [], []
     for name, command in BENCH_RUNS:
-        runs = [json.loads(f.read_text()) for f in sorted((p.work / "bench").glob(f"{name}-*.json"))]
+        # NAME-<digits>.json only: paper-T's runs are not paper-T-tree's.
+        runs = [json.loads(f.read_text()) for f in sorted((p.work / "bench").glob(f"{name}-*.json"))
+                if re.fullmatch(re.escape(name) + r"-\d+\.json", f.name)]
         if not runs:
             continue
         lines.append(command + f"   ({len(runs)} runs)")
