@@ -72,6 +72,7 @@ bench: microbench
 	$(EXE) bench --config workflows/paper-T.toml --steps 20 --set gravity.method=tree
 	$(EXE) bench --config workflows/bench-L5.toml --steps 10 --repeats 3 --textbook-steps 0
 	$(EXE) bench --config workflows/bench-L6.toml --steps 5 --repeats 3 --textbook-steps 0 --direct-steps 1
+	$(EXE) bench --config workflows/bench-L7.toml --steps 3 --repeats 3 --textbook-steps 0 --direct-steps 1
 	$(EXE) bench --random 262144 --repeats 3
 	$(BUILD)/tidalcrust_microbench --benchmark_min_time=0.2
 

@@ -1153,6 +1153,8 @@ BENCH_RUNS = [("paper-T", "tidalcrust bench --config workflows/paper-T.toml --st
               ("bench-L5", "tidalcrust bench --config workflows/bench-L5.toml --steps 10 --repeats 3 "
                            "--textbook-steps 0 --json"),
               ("bench-L6", "tidalcrust bench --config workflows/bench-L6.toml --steps 5 --repeats 3 "
+                           "--textbook-steps 0 --direct-steps 1 --json"),
+              ("bench-L7", "tidalcrust bench --config workflows/bench-L7.toml --steps 3 --repeats 3 "
                            "--textbook-steps 0 --direct-steps 1 --json")]
 
 
