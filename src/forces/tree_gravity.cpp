@@ -3,6 +3,8 @@
 #include "base/portable_math.hpp"
 
 #include <algorithm>
+#include <type_traits>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -57,11 +59,21 @@ template <class T, std::size_t N>
 inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
   return a * b + c;
 }
-/// 1/sqrt(s), correctly rounded square root and division.
+/// 1/sqrt(s) for s > 0 from + and * alone: the exponent-halving integer guess (relative error
+/// < 3.5e-2; Lomont 2003, "Fast inverse square root") and Newton steps y <- y (3/2 - (s/2) y^2),
+/// each squaring the error: three in float (to rounding, ~1e-7), four in double (~1e-16). Cheaper
+/// than a correctly rounded sqrt and division (which cost ~20 cycles a vector and took most of the
+/// portable kernel's time), and as portable: the same operations in the same order on every CPU.
 template <class T, std::size_t N>
 inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
-  for (T& x : s.v) x = T(1) / std::sqrt(x);
-  return s;
+  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
+  constexpr Bits magic = sizeof(T) == 4 ? Bits(0x5f375a86u) : Bits(0x5fe6eb50c7b537a9ull);
+  constexpr int steps = sizeof(T) == 4 ? 3 : 4;
+  Lanes<T, N> y;
+  for (std::size_t l = 0; l < N; ++l) y.v[l] = std::bit_cast<T>(Bits(magic - (std::bit_cast<Bits>(s.v[l]) >> 1)));
+  for (int k = 0; k < steps; ++k)
+    for (std::size_t l = 0; l < N; ++l) y.v[l] = y.v[l] * (T(1.5) - (T(0.5) * s.v[l]) * (y.v[l] * y.v[l]));
+  return y;
 }
 template <class T, std::size_t N>
 inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {

@@ -94,9 +94,9 @@ class TreeGravity {
  public:
   /// mass [N] in M; softening eps in R (Body::softening); force_error in (0, 1). `kernel`: how
   /// the kernels evaluate the cells and pairs, like DirectGravity's: fast (AVX-512 estimates and
-  /// fused multiply-adds where available) or portable (plain lane loops with correctly rounded
-  /// operations only, and the opening angle from portable_math: the same bits in every x86-64
-  /// build; bench reports its cost). Both walk the same lists in the same order.
+  /// fused multiply-adds where available) or portable (plain lane loops of IEEE + and *, the
+  /// inverse square root by an integer guess and Newton steps, and the opening angle from
+  /// portable_math: the same bits in every x86-64 build; bench reports its cost). Both walk the same lists in the same order.
   TreeGravity(const std::vector<double>& mass, double softening, double force_error,
               GravityKernel kernel = GravityKernel::fast);
 
