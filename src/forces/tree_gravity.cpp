@@ -47,7 +47,7 @@ struct Lanes {
 };
 #define TIDALCRUST_LANEWISE(op)                                        \
   template <class T, std::size_t N>                                    \
-  inline Lanes<T, N> operator op(Lanes<T, N> a, Lanes<T, N> b) {        \
+  [[gnu::always_inline]] inline Lanes<T, N> operator op(Lanes<T, N> a, Lanes<T, N> b) {        \
     for (std::size_t l = 0; l < N; ++l) a.v[l] = a.v[l] op b.v[l];      \
     return a;                                                          \
   }
@@ -56,7 +56,7 @@ TIDALCRUST_LANEWISE(-)
 TIDALCRUST_LANEWISE(*)
 #undef TIDALCRUST_LANEWISE
 template <class T, std::size_t N>
-inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
+[[gnu::always_inline]] inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
   return a * b + c;
 }
 /// 1/sqrt(s) for s > 0 from + and * alone: the exponent-halving integer guess (relative error
@@ -65,7 +65,7 @@ inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
 /// than a correctly rounded sqrt and division (which cost ~20 cycles a vector and took most of the
 /// portable kernel's time), and as portable: the same operations in the same order on every CPU.
 template <class T, std::size_t N>
-inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
+[[gnu::always_inline]] inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
   using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
   constexpr Bits magic = sizeof(T) == 4 ? Bits(0x5f375a86u) : Bits(0x5fe6eb50c7b537a9ull);
   constexpr int steps = sizeof(T) == 4 ? 3 : 4;
@@ -76,7 +76,7 @@ inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
   return y;
 }
 template <class T, std::size_t N>
-inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {
+[[gnu::always_inline]] inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {
   for (std::size_t l = 0; l < N; ++l)
     if (!((keep >> l) & 1u)) a.v[l] = T(0);
   return a;
