@@ -35,10 +35,11 @@ unsigned octant(std::uint64_t key, int level) { return static_cast<unsigned>(key
 
 // Vectors of `lanes` doubles (V) and 2 * lanes floats (F), in two kinds with the same interface
 // (a struct of static functions plus free operators, fma, rsqrt and keep_lanes):
-// * PlainMath: plain loops, lane by lane, with only correctly rounded IEEE operations (+, -, *,
-//   /, sqrt; fma(a, b, c) is a * b + c, two roundings, as the project compiles with
-//   -ffp-contract=off): the same bits in every x86-64 build, whatever the compiler vectorises
-//   them with. The portable kernel (GravityKernel::portable), and the fast one without AVX-512.
+// * PlainMath: plain loops, lane by lane, with IEEE + and * only (fma(a, b, c) is a * b + c, two
+//   roundings, as the project compiles with -ffp-contract=off; rsqrt an integer guess and Newton
+//   steps): the same bits in every x86-64 build, whatever the compiler vectorises them with. The
+//   portable kernel (GravityKernel::portable), and the fast one without AVX-512. Always inlined:
+//   GCC 12 left some of them calls, which made the portable step 1.8x as long.
 // * Avx512Math: AVX-512 intrinsics, explicit FMAs and the 14-bit reciprocal square root
 //   estimate refined by Newton steps; deterministic, but its last bits differ from PlainMath's.
 template <class T, std::size_t N>
