@@ -65,15 +65,14 @@ run: program
 	$(EXE) compare checkpoints/quick-balanced/strong/encounter.h5 checkpoints/quick-balanced/dt0.5/strong/encounter.h5
 	@echo; echo "figures: $$(ls checkpoints/quick-balanced/strong/analysis/*.png | tr '\n' ' ')"
 
-# Direct sum vs tree code (issue 13) at N ~ 4k (paper-T), 16k and 61k (shell levels 5 and 6: bench
-# bodies, not physical ones), and gravity alone at 256k random points (direct timed on 65k, scaled).
+# Direct sum vs tree code (issue 13) at N ~ 4k (paper-T), 16k, 61k and 224k (shell levels 5-7:
+# bench bodies, not physical ones), ending with the table of docs/results/speed.md (the runs and
+# the table: tools/results_tables.py, BENCH_RUNS), then gravity alone at 256k random points
+# (direct timed on 65k, scaled).
 bench: microbench
 	$(EXE) bench --config workflows/quick.toml --steps 50
-	$(EXE) bench --config workflows/paper-T.toml --steps 20 --set gravity.method=tree
-	$(EXE) bench --config workflows/bench-L5.toml --steps 10 --repeats 3 --textbook-steps 0
-	$(EXE) bench --config workflows/bench-L6.toml --steps 5 --repeats 3 --textbook-steps 0 --direct-steps 1
-	$(EXE) bench --config workflows/bench-L7.toml --steps 3 --repeats 3 --textbook-steps 0 --direct-steps 1
 	$(EXE) bench --random 262144 --repeats 3
+	python3 tools/results_tables.py bench --exe $(EXE) --work $(BUILD)/bench-runs
 	$(BUILD)/tidalcrust_microbench --benchmark_min_time=0.2
 
 # Every .xdmf sidecar of a quick run opened in ParaView's default and legacy XDMF readers, and

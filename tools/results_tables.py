@@ -17,6 +17,9 @@ text.
          temporary folder and regenerates the `results-quick` tables.
   full   regenerates the `results-full` tables from runs already made into --runs DIR by the
          commands each table names (hours of CPU; they are not rerun here).
+  bench  runs the benchmarks of the speed table (BENCH_RUNS) --repeat times each into
+         --work DIR/bench (what `full --only speed-here --runs DIR` reads) and prints that table
+         (`make bench`).
 
 --write rewrites the pages in place. --check writes a temporary copy of the pages instead and
 exits 1 naming each table that differs from the page and its first differing line (CTest
@@ -32,6 +35,7 @@ import difflib
 import json
 import os
 import re
+import shlex
 import shutil
 import statistics
 import subprocess
@@ -1158,6 +1162,25 @@ BENCH_RUNS = [("paper-T", "tidalcrust bench --config workflows/paper-T.toml --st
                            "--textbook-steps 0 --direct-steps 1 --json")]
 
 
+def run_benchmarks(p, repeat):
+    """Runs every BENCH_RUNS command `repeat` times into p.work/bench/NAME-<i>.json (and the
+    program's version into version.txt), then prints the speed table of those files."""
+    folder = p.work / "bench"
+    folder.mkdir(parents=True, exist_ok=True)
+    for stale in folder.glob("*.json"):
+        stale.unlink()
+    (folder / "version.txt").write_text(p("--version"))
+    for i in range(1, repeat + 1):
+        for name, command in BENCH_RUNS:
+            out = p(*shlex.split(command)[1:])
+            (folder / f"{name}-{i}.json").write_text(out)
+            run = json.loads(out)
+            print(f"bench {name} ({run['particles']:,} particles), run {i} of {repeat}: "
+                  f"{run['ms_per_step']:.4g} ms per step", flush=True)
+    print()
+    print("\n".join(speed_here(p)))
+
+
 @full_table("speed-here")
 def speed_here(p):
     """Medians over the runs bench/NAME-<i>.json of the runs folder; ratios taken run by run."""
@@ -1168,7 +1191,7 @@ def speed_here(p):
                 if re.fullmatch(re.escape(name) + r"-\d+\.json", f.name)]
         if not runs:
             continue
-        lines.append(command + f"   ({len(runs)} runs)")
+        lines.append(command + f"   ({len(runs)} run{'' if len(runs) == 1 else 's'})")
         step = [r["ms_per_step"] for r in runs]
         tree = runs[0]["gravity_method"] == "tree"
         other = [r["direct_ms_per_step"] if tree else r.get("textbook_ms_per_step") for r in runs]
@@ -1540,13 +1563,15 @@ def has_fma():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("kind", choices=["quick", "full"])
+    parser.add_argument("kind", choices=["quick", "full", "bench"])
     parser.add_argument("--exe", required=True, help="the tidalcrust executable")
     parser.add_argument("--source", default=Path(__file__).resolve().parent.parent, help="the repository")
     parser.add_argument("--pages", help="the folder of the pages (default SOURCE/docs/results)")
-    parser.add_argument("--work", help="quick: run into this folder (default: a fresh temporary one)")
+    parser.add_argument("--work", help="quick: run into this folder (default: a fresh temporary one); "
+                                       "bench: run into FOLDER/bench (required)")
+    parser.add_argument("--repeat", type=int, default=1, help="bench: runs of each benchmark (default 1)")
     parser.add_argument("--runs", help="full: the folder the runs were made into")
-    mode = parser.add_mutually_exclusive_group(required=True)
+    mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--write", action="store_true", help="rewrite the tables in the pages")
     mode.add_argument("--check", action="store_true", help="compare, do not write (exit 1 on a difference)")
     parser.add_argument("--no-self-check", action="store_true", help="--check without the edited-copy test")
@@ -1558,6 +1583,19 @@ def main():
     exe = Path(args.exe).resolve()
     if not exe.is_file():
         print(f"{exe}: no such executable", file=sys.stderr)
+        return 2
+    if args.kind == "bench":
+        if not args.work or args.repeat < 1:
+            print("results_tables.py: bench needs --work DIR and --repeat >= 1", file=sys.stderr)
+            return 2
+        try:
+            run_benchmarks(Program(exe, source, Path(args.work).resolve()), args.repeat)
+        except Failure as e:
+            print(f"results_tables.py: {e}", file=sys.stderr)
+            return 2
+        return 0
+    if not (args.write or args.check):
+        print(f"results_tables.py: {args.kind} needs --write or --check", file=sys.stderr)
         return 2
     if args.kind == "quick" and not has_fma():
         print("SKIP: this CPU has no FMA; glibc's sin/cos/atan2 then round differently (docs/determinism.md), so the "
