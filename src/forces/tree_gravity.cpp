@@ -3,10 +3,11 @@
 #include "base/portable_math.hpp"
 
 #include <algorithm>
-#include <type_traits>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
