@@ -14,7 +14,7 @@ namespace tidalcrust {
 
 void add_common_options(cxxopts::Options& options) {
   options.add_options("common")
-      ("config", "replace the stored configuration with this TOML file", cxxopts::value<std::string>())
+      ("config", "the workflow TOML (build), or a TOML file that replaces the stored configuration", cxxopts::value<std::string>())
       ("set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())
       ("threads", "number of threads (results do not depend on it)", cxxopts::value<int>()->default_value("0"))
       ("dt-factor", "scale the time step by this factor", cxxopts::value<double>()->default_value("1.0"))

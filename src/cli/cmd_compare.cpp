@@ -202,7 +202,7 @@ int command_compare(int argc, char** argv) {
       ("h,help", "show this help")
       ("files", "A.h5 B.h5", cxxopts::value<std::vector<std::string>>());
   options.parse_positional({"files"});
-  options.positional_help("A.h5 B.h5 | --resolution A.h5 B.h5 [C.h5 ...]");
+  options.positional_help("A.h5 B.h5 | --resolution A.h5 B.h5 [C.h5 ...] | --ensembles A.json B.json");
   const auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) {
     fmt::print("{}", options.help());

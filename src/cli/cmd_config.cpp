@@ -54,7 +54,7 @@ const char* const intro =
     "\"-\" for a pure number), accepted range and meaning. \"Stages\" are the stages whose results the key\n"
     "changes: `tidalcrust run` recomputes exactly those (and the stages after them) when its value\n"
     "changes, and keeps the others; \"none\" changes no result. An optional key (default \"unset\") is\n"
-    "used only when given. A [sweep] table expands into [[encounters]] tables (docs/cluster.md); an\n"
+    "used only when given. A [sweep] table expands into [[encounters]] tables (docs/results/sweeps.md); an\n"
     "[ensemble] table (members = 3..1000, pericenter_perturbation = delta in (0, 0.05], default 5e-3,\n"
     "vary = \"pericenter\", \"body_seed\" or \"both\") runs every encounter as members NAME_m<k> at\n"
     "q (1 + delta ((2k + 1)/members - 1)), or on the body of seed workflow.seed + k (its body_seed), or\n"

@@ -167,7 +167,7 @@ int command_validate(int argc, char** argv) {
                                      cxxopts::value<int>()->default_value("0"))(
       "set", "override one value: section.key=value (repeatable)", cxxopts::value<std::vector<std::string>>())(
       "quiet", "no progress lines")("h,help", "show this help")(
-      "measure", "comma-separated subset of breathing,love,flexure,p-wave,tide,ringdown (default: the first four)",
+      "measure", "comma-separated subset of breathing,love,flexure,p-wave,tide,ringdown",
       cxxopts::value<std::string>()->default_value("breathing,love,flexure,p-wave"));
   options.parse_positional({"workflow"});
   auto parsed = parse_arguments(options, argc, argv);

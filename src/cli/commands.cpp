@@ -25,7 +25,7 @@ const std::vector<Command>& commands() {
          command_analyze},
         {"inspect", "Validate a checkpoint and print its stage, counts, Table 3 quantities and conservation totals.",
          command_inspect},
-        {"compare", "Compare the fractures of encounter checkpoints branched from the same body.", command_compare},
+        {"compare", "Compare the fractures of encounters: two checkpoints, one encounter at several resolutions, or two ensemble tables.", command_compare},
         {"estimate", "Physical units of a body (paper Table 1) and the impulse estimates of an encounter (section 1.1).",
          command_estimate},
         {"bench", "Time full integration steps of a body and the textbook step at the same N.", command_bench},
