@@ -1003,11 +1003,11 @@ def sweep_t_ensemble(p):
             + table(["", "half the members crack at", "95% range", "eq. 5"], bounds))
 
 
-@full_table("crust-coupling-seeds")
-def crust_coupling_seeds(p):
-    """welded-L4's tide and 0S2 on three body seeds: the spread of each line between bodies."""
-    columns = [(f"seed {k}", p.work / f"welded-L4-s{k}") for k in (1, 2, 3)
-               if (p.work / f"welded-L4-s{k}" / "validate" / "validation.json").is_file()]
+def coupling_seed_lines(p, prefix, settings=""):
+    """The tide and 0S2 of welded-L4 validated on body seeds 1-3 in folders PREFIX-s1..s3 (with the
+    extra `--set` options SETTINGS): each line's ratio per seed, mean +- sd, the tolerance."""
+    columns = [(f"seed {k}", p.work / f"{prefix}-s{k}") for k in (1, 2, 3)
+               if (p.work / f"{prefix}-s{k}" / "validate" / "validation.json").is_file()]
     docs = [p.load(folder / "validate" / "validation.json") for _, folder in columns]
     rows = []
     for key, label in COUPLING_ROWS:
@@ -1019,13 +1019,50 @@ def crust_coupling_seeds(p):
         tol = docs[0]["comparisons"][key]["tolerance"]
         rows.append([label] + [fixed(x, 3) + "x" for x in ratios] + [f"{fixed(mean, 3)} +- {fixed(sd, 3)}",
                                                                      f"{round(tol * 100):d}%"])
-    return (commands(*[f"tidalcrust validate workflows/welded-L4.toml --out {folder.name} --measure tide,ringdown"
+    return (commands(*[f"tidalcrust validate workflows/welded-L4.toml --out {folder.name}{settings} --measure tide,ringdown"
                        + ("" if label == "seed 1" else f" --set workflow.seed={label.split()[1]}")
                        for label, folder in columns])
             + measured_line(p, *[folder / "body" / "relax.h5" for _, folder in columns])
             + ["Each cell: measured / theory (the homogeneous sphere of that body's measured network moduli); "
                "last columns: mean +- sd over the seeds, and the issue's tolerance.", ""]
             + table(["", *[label for label, _ in columns], "mean +- sd", "tolerance"], rows))
+
+
+@full_table("crust-coupling-seeds")
+def crust_coupling_seeds(p):
+    """welded-L4's tide and 0S2 on three body seeds: the spread of each line between bodies."""
+    return coupling_seed_lines(p, "welded-L4")
+
+
+@full_table("crust-coupling-fine-interior")
+def crust_coupling_fine_interior(p):
+    """welded-L4 with level 5's interior spacing (d_IS = 0.0707 R) on three body seeds: the crust
+    springs' correlation with the continuum is set by the interior's grain under the crust."""
+    return coupling_seed_lines(p, "welded-L4-fine", " --set resolution.interior_spacing=0.0707")
+
+
+@full_table("crust-coupling-interior-spacing")
+def crust_coupling_interior_spacing(p):
+    """welded-L4 (shell level 4, seed 1) over interiors of four spacings d_IS: the crust springs'
+    correlation with the continuum and the spring-by-spring scatter against the interior's grain."""
+    runs = [(0.141, "welded-L4-dIS0.141"), (0.10, "welded-L4-s1"), (0.085, "welded-L4-dIS0.085"),
+            (0.0707, "welded-L4-fine-s1")]
+    runs = [(d, p.work / f) for d, f in runs if (p.work / f / "validate" / "validation.json").is_file()]
+    rows = []
+    for d_is, folder in runs:
+        v = p.load(folder / "validate" / "validation.json")
+        i = p.inspect(folder / "body" / "relax.h5")
+        c = v["comparisons"]
+        rows.append([f"{d_is:g} R" + (" (default)" if d_is == 0.10 else ""), count(i["counts"]["interior"]),
+                     count(i["counts"]["interior"] + i["counts"]["shell"]), fixed(i["dt"], 5), fixed(c["tide-correlation"]["measured"], 3),
+                     fixed(v["details"]["tide"]["ratio_scatter"], 3), fixed(c["tide"]["ratio"], 3) + "x",
+                     fixed(c["tide-l2-over-h2"]["ratio"], 3) + "x", fixed(c["tide-peak-tension"]["ratio"], 3) + "x"])
+    return (commands(*[f"tidalcrust validate workflows/welded-L4.toml --out {folder.name}"
+                       + ("" if d_is == 0.10 else f" --set resolution.interior_spacing={d_is:g}") + " --measure tide"
+                       for d_is, folder in runs])
+            + measured_line(p, *[folder / "body" / "relax.h5" for _, folder in runs])
+            + table(["interior spacing d_IS", "interior nodes", "particles", "dt", "correlation with the continuum",
+                     "scatter of the ratio", "h2 / TS72", "l2/h2 / TS72", "peak tension / TS72"], rows))
 
 
 @full_table("sweep-T")
