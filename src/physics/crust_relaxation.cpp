@@ -95,7 +95,8 @@ CrossBalance balance_cross_springs(const Body& body, State& state, const std::ve
       if (!(rest > 0.5 * length[c]) || !(rest < 2 * length[c]))
         throw InputError(fmt::format(
             "balanced crust support: cross spring {} would need rest length {} for length {} (strain beyond "
-            "+-50%); the cross springs are too weak for the shell's weight (raise cross.spring_constant)",
+            "+-50%): the cross springs are too weak for the shell's weight (raise cross.spring_constant), or the "
+            "relaxation went unstable (integrator.dt above the stability bound: see the warning at the start)",
             n, rest, length[c]));
       state.springs.rest_length[n] = rest;
     }
