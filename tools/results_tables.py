@@ -1136,6 +1136,14 @@ def crust_coupling(p):
                                        for _, folder in columns])
 
 
+@full_table("crust-coupling-crust-T")
+def crust_coupling_crust_t(p):
+    """crust-T's own body (the paper's spring constants) welded: the crust-T equivalent of issue 23."""
+    return coupling_lines(p, [("crust-T welded (level 4)", p.work / "welded-crust-T")], [
+        "tidalcrust validate workflows/crust-T.toml --out welded-crust-T --set cross.coupling=welded "
+        "--set integrator.dt=0.0015 --measure tide,ringdown"])
+
+
 @full_table("crust-coupling-L5")
 def crust_coupling_l5(p):
     """Level 5 welded, and a welded body with a core (issue 23): the runs of this session's folder."""
