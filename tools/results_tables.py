@@ -920,21 +920,38 @@ def ensembles_t5(p):
     return lines
 
 
+def resolution_welded_rule_lines(p, rule, settings="", only=""):
+    """T5 on the welded bodies of levels 3-5 (and 6 where run) with failure rule `rule` and the
+    extra `--set` options `settings` (the single runs also with `only`): the single runs, then each level as an ensemble of members at
+    perturbed pericenters."""
+    folders = [f"{rule}-welded-L{level}" for level in (3, 4, 5, 6) if level < 6 or (p.work / f"{rule}-welded-L6").is_dir()]
+    levels = "-L4, -L5" + (", -L6" if len(folders) > 3 else "")
+    base = f"workflows/welded-L3.toml --set encounter.failure_rule={rule}{settings}"
+    lines = resolution_lines(p, folders, [
+        f"tidalcrust run {base}{only} --out {rule}-welded-L3   (and {levels})",
+        f"tidalcrust run {base} --set ensemble.members=5 --only T5 --out {rule}-welded-L3   (and {levels})",
+        f"tidalcrust report {base} --set ensemble.members=5 --out {rule}-welded-L3   (and {levels})",
+        f"tidalcrust compare --resolution {rule}-welded-L{{{','.join(f[-1] for f in folders)}}}/T5/encounter.h5 --json"])
+    runs = [(f, f"level {f[-1]}") for f in folders if (p.work / f / "report" / "ensembles.json").is_file()]
+    if runs:
+        lines += ["", "The same, each level as an ensemble (members at pericenters q (1 + 5e-3 u_k)):", ""]
+        lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
+                       ensemble_rows(p, runs, "T5"))
+    return lines
+
+
 @full_table("resolution-welded-griffith")
 def resolution_welded_griffith(p):
-    """T5 on the welded bodies of levels 3-5 with the griffith failure rule (issue 24 item 4): the
-    single runs, then each level as a 5-member ensemble."""
-    folders = ["griffith-welded-L3", "griffith-welded-L4", "griffith-welded-L5"]
-    lines = resolution_lines(p, folders, [
-        "tidalcrust run workflows/welded-L3.toml --set encounter.failure_rule=griffith --out griffith-welded-L3   (and -L4, -L5)",
-        "tidalcrust run workflows/welded-L3.toml --set encounter.failure_rule=griffith --set ensemble.members=5 --only T5 --out griffith-welded-L3   (and -L4, -L5)",
-        "tidalcrust report workflows/welded-L3.toml --set encounter.failure_rule=griffith --set ensemble.members=5 --out griffith-welded-L3   (and -L4, -L5)",
-        "tidalcrust compare --resolution griffith-welded-L{3,4,5}/T5/encounter.h5 --json"])
-    runs = [(f, f"level {f[-1]}") for f in folders if (p.work / f / "report" / "ensembles.json").is_file()]
-    lines += ["", "The same, each level as an ensemble (members at pericenters q (1 + 5e-3 u_k)):", ""]
-    lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
-                   ensemble_rows(p, runs, "T5"))
-    return lines
+    """T5 on the welded bodies of levels 3-5 with the griffith failure rule (issue 24 item 4)."""
+    return resolution_welded_rule_lines(p, "griffith")
+
+
+@full_table("resolution-welded-critical-distance")
+def resolution_welded_critical_distance(p):
+    """T5 at eps_S = 2e-3 on the welded bodies of levels 3-5 (6 where run) with the critical_distance
+    failure rule (issue 24 item 4); tree gravity at every level, no stability probe."""
+    return resolution_welded_rule_lines(p, "critical_distance", " --set encounters.T5.failure_strain=0.002 --set "
+                                        "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
 
 
 def compare_ensembles_lines(p, a, b, title, *pair):

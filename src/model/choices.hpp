@@ -88,6 +88,7 @@ enum class FailureRuleKind {
   local,  ///< every over-strained spring may fail, at most one per crack neighbourhood per relaxation interval
   shadow, ///< local, and a new crack does not start within shadow_distance of an existing one
   griffith, ///< shadow, a new crack opens as a flaw of flaw_length and grows at the Griffith tip strain
+  critical_distance, ///< shadow, a crack opens or grows by a segment of flaw_length whose mean strain reaches eps_S
 };
 template <>
 struct ChoiceTable<FailureRuleKind> {
@@ -97,6 +98,8 @@ struct ChoiceTable<FailureRuleKind> {
       ChoiceRow<FailureRuleKind>{FailureRuleKind::shadow, "shadow", "local, no new crack in a crack's stress shadow"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::griffith, "griffith",
                                  "shadow, cracks open as flaws of flaw_length and grow at a fixed toughness"},
+      ChoiceRow<FailureRuleKind>{FailureRuleKind::critical_distance, "critical_distance",
+                                 "shadow, cracks open and grow by segments of flaw_length whose mean strain is eps_S"},
   };
 };
 

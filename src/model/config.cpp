@@ -65,14 +65,20 @@ constexpr Condition welded_crust{"cross.coupling = \"welded\"",
 /// Snapshots at a chosen interval: an encounter without them keeps the fingerprint it had before the key.
 constexpr Condition snapshot_series{"encounter.snapshot_interval > 0",
                                     [](const Config& c) { return c.encounter.snapshot_interval > 0; }};
-/// The shadow rule's length (the griffith rule's too): the local rule's fingerprints stay what
-/// they were before the key.
-constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\" or \"griffith\"", [](const Config& c) {
-  return c.encounter.failure_rule == FailureRuleKind::shadow || c.encounter.failure_rule == FailureRuleKind::griffith;
+/// The shadow rule's length (the griffith and critical_distance rules' too): the local rule's
+/// fingerprints stay what they were before the key.
+constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\", \"griffith\" or \"critical_distance\"",
+                                [](const Config& c) {
+                                  return c.encounter.failure_rule == FailureRuleKind::shadow ||
+                                         c.encounter.failure_rule == FailureRuleKind::griffith ||
+                                         c.encounter.failure_rule == FailureRuleKind::critical_distance;
+                                }};
+/// The griffith and critical_distance rules' length: the other rules' fingerprints stay what they
+/// were before the key.
+constexpr Condition flaw_rule{"encounter.failure_rule = \"griffith\" or \"critical_distance\"", [](const Config& c) {
+  return c.encounter.failure_rule == FailureRuleKind::griffith ||
+         c.encounter.failure_rule == FailureRuleKind::critical_distance;
 }};
-/// The griffith rule's flaw: the other rules' fingerprints stay what they were before the key.
-constexpr Condition griffith_rule{"encounter.failure_rule = \"griffith\"",
-                                  [](const Config& c) { return c.encounter.failure_rule == FailureRuleKind::griffith; }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
@@ -245,8 +251,9 @@ void visit_keys(C& c, V&& visit) {
       {"encounter", "shadow_distance", changes_no_result.and_when(shadow_rule, relax, encounter), "R",
        "shadow rule: a new crack starts no closer than this to a failed spring (resolve it: >= 3 L_S)", 0, 2, true});
   key(c.encounter.flaw_length,
-      {"encounter", "flaw_length", changes_no_result.and_when(griffith_rule, relax, encounter), "R",
-       "griffith rule: a new crack opens as a flaw this long; it sets the toughness (resolve it: >= 3 L_S)", 0, 2,
+      {"encounter", "flaw_length", changes_no_result.and_when(flaw_rule, relax, encounter), "R",
+       "griffith rule: a new crack opens as a flaw this long, it sets the toughness; critical_distance rule: the "
+       "segment a crack opens or grows by, over which the strain is averaged (resolve it: >= 3 L_S)", 0, 2,
        true});
 
   // The kernel gives other bits but the same physics: it is recorded and checked on its own
@@ -1269,6 +1276,16 @@ void validate(const Config& config, const std::string& origin) {
   if (config.ocean.present() && config.core.present() && *config.core.radius >= 1 - *config.ocean.thickness)
     throw InputError(fmt::format("{}: core.radius = {} reaches into the ocean (its floor lies at 1 - ocean.thickness "
                                  "= {})", origin, *config.core.radius, 1 - *config.ocean.thickness));
+  // The welded springs continue the interior network up to the shell; they do not bridge a missing
+  // layer (docs/crust-support.md, "The interior must reach the crust"). A [material] body fills
+  // r_I = 1 - h_S itself; an ocean lies between on purpose.
+  if (config.cross.coupling == CrossCoupling::welded && config.shell.enabled && !config.from_material() &&
+      !config.ocean.present() && 1 - config.interior.radius > config.interior.min_separation / 2)
+    throw InputError(fmt::format("{}: cross.coupling = \"welded\" needs an interior that reaches the crust: "
+                                 "interior.radius = {} leaves {:.3g} R under the shell, more than half "
+                                 "interior.min_separation ({}); raise interior.radius to at least {:.4g}",
+                                 origin, config.interior.radius, 1 - config.interior.radius,
+                                 config.interior.min_separation, 1 - config.interior.min_separation / 2));
   // The [crust] grammar (model/crust_field.hpp); the map file was read by resolve_crust.
   const std::string crust = origin + ": crust";
   if (config.crust.thickness_harmonics) parse_harmonics(*config.crust.thickness_harmonics, crust + ".thickness_harmonics");

@@ -56,9 +56,23 @@ struct GriffithFailureRule {
   bool operator==(const GriffithFailureRule&) const = default;
 };
 
+/// "critical_distance" (docs/failure-rule.md, "A strength over a length: the critical-distance
+/// rule"): the shadow rule, where a candidate that starts or extends a crack fails together with
+/// every unfailed shell spring across the great-circle segment of length segment_length centred on
+/// its midpoint, perpendicular to its axis, and only if their mean strain (each over its own
+/// strength factor) reaches eps_S: the line method of the theory of critical distances (Taylor
+/// 2007), strength and length both physical, so no decision reads a single spring's lattice-scale
+/// strain. Its relaxation interval is set by the segment, not by L_S.
+struct CriticalDistanceFailureRule {
+  ShadowFailureRule shadow;     ///< relaxation interval (of a segment), neighbourhood and stress shadow
+  double segment_length = 0;    ///< 2 L, the averaging segment a crack opens or grows by, R
+  bool operator==(const CriticalDistanceFailureRule&) const = default;
+};
+
 /// The rule; its alternatives in FailureRuleKind order (a new kind: its struct here, its row in
 /// the choice table, and its code in physics/shell_failure.cpp).
-using FailureRule = std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule>;
+using FailureRule =
+    std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule, CriticalDistanceFailureRule>;
 static_assert(std::variant_size_v<FailureRule> == ChoiceTable<FailureRuleKind>::rows.size());
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::local), FailureRule>,
                              LocalFailureRule>);
@@ -66,6 +80,9 @@ static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>
                              ShadowFailureRule>);
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::griffith), FailureRule>,
                              GriffithFailureRule>);
+static_assert(
+    std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::critical_distance), FailureRule>,
+                   CriticalDistanceFailureRule>);
 
 /// Which kind `rule` is.
 inline FailureRuleKind kind_of(const FailureRule& rule) { return static_cast<FailureRuleKind>(rule.index()); }
@@ -99,6 +116,11 @@ inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
     stored.growth_strain_factor = griffith->growth_strain_factor;
     return stored;
   }
+  if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule)) {
+    StoredFailureRule stored = shadow_fields(critical->shadow, FailureRuleKind::critical_distance);
+    stored.flaw_length = critical->segment_length;
+    return stored;
+  }
   return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0, 0.0, 0.0};
 }
 
@@ -111,6 +133,8 @@ inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
       return ShadowFailureRule{local, stored.shadow_distance};
     case FailureRuleKind::griffith:
       return GriffithFailureRule{{local, stored.shadow_distance}, stored.flaw_length, stored.growth_strain_factor};
+    case FailureRuleKind::critical_distance:
+      return CriticalDistanceFailureRule{{local, stored.shadow_distance}, stored.flaw_length};
     case FailureRuleKind::paper:
       break;
   }
@@ -128,7 +152,8 @@ void visit_failure_rule(Rule& rule, Visit&& visit) {
   visit("relaxation_steps", stored.relaxation_steps, "steps", "local rule: relaxation interval of a crack neighbourhood");
   visit("exclusion_distance", stored.exclusion_distance, "R", "local rule: crack neighbourhood radius");
   visit("shadow_distance", stored.shadow_distance, "R", "shadow rule: no new crack this close to a crack");
-  visit("flaw_length", stored.flaw_length, "R", "griffith rule: length of a new crack's flaw");
+  visit("flaw_length", stored.flaw_length, "R",
+        "griffith rule: length of a new crack's flaw; critical_distance rule: the averaging segment");
   visit("growth_strain_factor", stored.growth_strain_factor, "1", "griffith rule: crack-tip failure strain / eps_S");
   if constexpr (!std::is_const_v<Rule>) rule = failure_rule_of(stored);
 }

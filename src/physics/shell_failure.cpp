@@ -147,42 +147,107 @@ class CrackMap {
   std::vector<Vec3> axis_;   // unit axis of each failed spring, by grid id
 };
 
-/// The unfailed shell springs, in index order, that cross the flaw a new crack opens at spring n:
-/// the arc of the great circle (about `center`) through n's midpoint m, perpendicular to n's
-/// axis, whose points r lie within flaw_length / 2 of m as rho |sin theta| (rho = |m - center|,
-/// theta the angle from m; no transcendental function, so the same bits on every CPU). Spring n
-/// itself crosses it.
+/// The great-circle segment of a flaw (the griffith rule) or of an averaging segment (the
+/// critical_distance rule) at spring n: the arc of the circle about `center` through n's midpoint
+/// m, perpendicular to n's axis, whose points r lie within length / 2 of m as rho |sin theta|
+/// (rho = |m - center|, theta the angle from m; no transcendental function, so the same bits on
+/// every CPU). Spring n itself crosses it.
+class GreatCircleSegment {
+ public:
+  GreatCircleSegment(const Body& body, const State& state, std::size_t n, const Vec3& center, double length)
+      : center_(center), length_(length) {
+    const Vec3 a = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0]));
+    const Vec3 b = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1]));
+    const Vec3 m = 0.5 * (a + b) - center;
+    rho_ = m.norm();
+    up_ = m / rho_;
+    normal_ = (b - a) - (b - a).dot(up_) * up_;  // the circle's plane normal: the axis, tangential part
+    normal_.normalize();
+    along_ = normal_.cross(up_);
+  }
+  /// Whether spring k's ends lie on opposite sides of the circle's plane with the crossing point
+  /// on the segment.
+  bool crossed_by(const Body& body, const State& state, std::size_t k) const {
+    const Vec3 p = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][0])) - center_;
+    const Vec3 q = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][1])) - center_;
+    const double sp = p.dot(normal_), sq = q.dot(normal_);
+    if (!(sp * sq < 0)) return false;
+    const Vec3 r = p + (q - p) * (sp / (sp - sq));
+    if (!(r.dot(up_) > 0)) return false;
+    const double sideways = rho_ * r.dot(along_);  // rho sin(theta) |r|
+    return 4 * sideways * sideways <= length_ * length_ * r.squaredNorm();
+  }
+
+ private:
+  Vec3 center_;
+  double length_;
+  double rho_ = 0;
+  Vec3 up_, normal_, along_;
+};
+
+/// The unfailed shell springs, in index order, across the flaw a new crack opens at spring n (the
+/// griffith rule): every spring is tested.
 std::vector<std::size_t> springs_across_flaw(const Body& body, const State& state, std::size_t n, const Vec3& center,
                                              double flaw_length) {
-  const Vec3 a = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0]));
-  const Vec3 b = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1]));
-  const Vec3 m = 0.5 * (a + b) - center;
-  const double rho = m.norm();
-  const Vec3 up = m / rho;
-  Vec3 normal = (b - a) - (b - a).dot(up) * up;  // the circle's plane normal: the axis, tangential part
-  normal.normalize();
-  const Vec3 along = normal.cross(up);
+  const GreatCircleSegment flaw(body, state, n, center, flaw_length);
   std::vector<std::size_t> across;
-  for (std::size_t k = 0; k < body.spring_count(); ++k) {
-    if (!is_unfailed_shell(body, state, k)) continue;
-    const Vec3 p = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][0])) - center;
-    const Vec3 q = vec3_at(state.position, static_cast<std::size_t>(body.springs[k][1])) - center;
-    const double sp = p.dot(normal), sq = q.dot(normal);
-    if (!(sp * sq < 0)) continue;
-    const Vec3 r = p + (q - p) * (sp / (sp - sq));
-    if (!(r.dot(up) > 0)) continue;
-    const double sideways = rho * r.dot(along);  // rho sin(theta) |r|
-    if (4 * sideways * sideways <= flaw_length * flaw_length * r.squaredNorm()) across.push_back(k);
-  }
+  for (std::size_t k = 0; k < body.spring_count(); ++k)
+    if (is_unfailed_shell(body, state, k) && flaw.crossed_by(body, state, k)) across.push_back(k);
   return across;
 }
 
+/// The shell springs' midpoints in a grid, for the critical_distance rule, which looks for the
+/// springs across a segment at every check: the springs tested are those whose midpoints lie
+/// within segment_length + 2 (longest shell spring) of the candidate's, which holds every spring
+/// across the segment while the crust stays within segment_length / 2 of the candidate's radius.
+class ShellSpringGrid {
+ public:
+  ShellSpringGrid(const Body& body, const State& state, double segment_length) : grid_(grid(body, state, segment_length)) {
+    for (std::size_t n = 0; n < body.spring_count(); ++n)
+      if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell)) {
+        grid_.insert(spring_midpoint(body, state, n));
+        spring_.push_back(n);
+        const auto i = static_cast<std::size_t>(body.springs[n][0]);
+        const auto j = static_cast<std::size_t>(body.springs[n][1]);
+        longest_ = std::max(longest_, (vec3_at(state.position, i) - vec3_at(state.position, j)).norm());
+      }
+    reach_ = segment_length + 2 * longest_;
+  }
+  /// The unfailed shell springs across `segment` (centred on the midpoint `mid`), in index order.
+  std::vector<std::size_t> across(const Body& body, const State& state, const GreatCircleSegment& segment,
+                                  const Vec3& mid) const {
+    std::vector<std::size_t> found;
+    for (const std::int32_t id : grid_.closer_than(mid, reach_)) {  // ids in increasing order: index order
+      const std::size_t k = spring_[static_cast<std::size_t>(id)];
+      if (!state.springs.failed[k] && segment.crossed_by(body, state, k)) found.push_back(k);
+    }
+    return found;
+  }
+
+ private:
+  static NeighborGrid grid(const Body& body, const State& state, double segment_length) {
+    Vec3 lo = vec3_at(state.position, 0), hi = lo;
+    for (std::size_t i = 1; i < body.particle_count(); ++i) {
+      const Vec3 p = vec3_at(state.position, i);
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    return NeighborGrid(lo, hi, std::max(segment_length / 2, (hi - lo).maxCoeff() / 64));
+  }
+
+  NeighborGrid grid_;
+  std::vector<std::size_t> spring_;  // spring index of each grid id
+  double longest_ = 0;
+  double reach_ = 0;
+};
+
 /// The crack rules' parameters beyond the local rule's: 0 shadow distance for the local rule;
-/// flaw_length > 0 only for the griffith rule.
+/// flaw_length > 0 only for the griffith rule, segment_length > 0 only for the critical_distance rule.
 struct CrackGrowth {
   double shadow_distance = 0;
   double flaw_length = 0;
   double growth_strain_factor = 1;
+  double segment_length = 0;
 };
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
@@ -191,7 +256,9 @@ struct CrackGrowth {
 /// shadow and griffith rules) a candidate that extends no crack (CrackMap) also waits while any
 /// failed shell spring lies within the shadow distance. With a flaw length (the griffith rule) a
 /// candidate that extends a crack fails only beyond growth_strain_factor eps_S, and one that starts
-/// a crack fails with every spring across its flaw (springs_across_flaw).
+/// a crack fails with every spring across its flaw (springs_across_flaw). With a segment length (the
+/// critical_distance rule) a candidate that starts or extends a crack fails, with every unfailed
+/// shell spring across the segment centred on it, only if their mean of strain / f reaches eps_S.
 std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
   // A spring of strength factor f fails beyond f eps_S; candidates go by strain / f, the most
@@ -222,6 +289,7 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
                    growth.flaw_length > 0 ? std::max(growth.shadow_distance, rule.exclusion_distance)
                                           : growth.shadow_distance);
   std::optional<Vec3> center;  // the flaws' great circles are about the body's centre of mass
+  std::optional<ShellSpringGrid> shell_grid;  // the critical_distance rule's, made at its first segment
   const double r2 = rule.exclusion_distance * rule.exclusion_distance;
   const double growth_strain = growth.growth_strain_factor * threshold.failure_strain;
   std::size_t failed = 0;
@@ -241,6 +309,19 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     if (role == CrackRole::shadowed) continue;
     if (growth.flaw_length > 0 && role == CrackRole::extends && !(strain > growth_strain * body.failure_strain_factor(n)))
       continue;
+    if (growth.segment_length > 0) {
+      if (!center) center = body_center_of_mass(body, state);
+      if (!shell_grid) shell_grid.emplace(body, state, growth.segment_length);
+      const GreatCircleSegment segment(body, state, n, *center, growth.segment_length);
+      const std::vector<std::size_t> across = shell_grid->across(body, state, segment, mid);
+      double sum = 0;  // in index order: the same bits for any thread count
+      for (const std::size_t k : across) sum += spring_strain(body, state, k) / body.failure_strain_factor(k);
+      if (!(sum >= threshold.failure_strain * static_cast<double>(across.size()))) continue;
+      fail(n, strain);  // the log names the candidate first, then the segment's other springs in index order
+      for (const std::size_t k : across)
+        if (k != n) fail(k, spring_strain(body, state, k));
+      continue;
+    }
     if (growth.flaw_length > 0 && role == CrackRole::starts) {
       if (!center) center = body_center_of_mass(body, state);
       const std::vector<std::size_t> flaw = springs_across_flaw(body, state, n, *center, growth.flaw_length);
@@ -263,14 +344,18 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
       break;
     case FailureRuleKind::local:
     case FailureRuleKind::shadow:
-    case FailureRuleKind::griffith: {
+    case FailureRuleKind::griffith:
+    case FailureRuleKind::critical_distance: {
       // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
       if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
       if (!(q.L_S > 0) || !(q.V_SP > 0))
         throw InputError(fmt::format("encounter.failure_rule = \"{}\" needs a shell (no shell springs in this body)",
                                      choice_name(config.encounter.failure_rule)));
-      const double crossing_time = q.L_S / q.V_SP;
+      // The critical_distance rule's cracks grow by half a segment at a time: the crust relaxes
+      // over that length, so the crack tip runs at V_SP / relaxation_crossings at every resolution.
+      const bool by_segments = config.encounter.failure_rule == FailureRuleKind::critical_distance;
+      const double crossing_time = (by_segments ? config.encounter.flaw_length / 2 : q.L_S) / q.V_SP;
       LocalFailureRule rule;
       rule.relaxation_steps = std::max<std::int64_t>(
           1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
@@ -285,6 +370,7 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
         return GriffithFailureRule{{rule, config.encounter.shadow_distance},
                                    config.encounter.flaw_length,
                                    std::max(1.0, std::sqrt(config.encounter.flaw_length / (2 * q.L_S)))};
+      if (by_segments) return CriticalDistanceFailureRule{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
       return rule;
     }
   }
@@ -293,7 +379,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
 
 std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state) {
   const FailureRuleKind kind = config.encounter.failure_rule;
-  if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith) return "";
+  if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith && kind != FailureRuleKind::critical_distance)
+    return "";
   if (body.count_species(Species::shell) == 0) return "";
   const double L_S = derive_quantities(body, state, config.interior.radius).L_S;
   std::vector<std::string> short_ones;
@@ -301,7 +388,7 @@ std::string unresolved_rule_lengths(const Config& config, const Body& body, cons
     if (length < 3 * L_S) short_ones.push_back(fmt::format("encounter.{} = {:g} R is {:.1f} L_S", name, length, length / L_S));
   };
   check("shadow_distance", config.encounter.shadow_distance);
-  if (kind == FailureRuleKind::griffith) check("flaw_length", config.encounter.flaw_length);
+  if (kind != FailureRuleKind::shadow) check("flaw_length", config.encounter.flaw_length);
   if (short_ones.empty()) return "";
   return fmt::format("warning: {} (L_S = {:.3g} R): the {} rule's lengths are drawn by the lattice from 3 L_S on "
                      "(docs/failure-rule.md)",
@@ -316,6 +403,9 @@ std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& 
   if (const auto* griffith = std::get_if<GriffithFailureRule>(&rule))
     return fail_local(griffith->shadow.local,
                       {griffith->shadow.shadow_distance, griffith->flaw_length, griffith->growth_strain_factor},
+                      threshold, body, state, log);
+  if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule))
+    return fail_local(critical->shadow.local, {critical->shadow.shadow_distance, 0.0, 1.0, critical->segment_length},
                       threshold, body, state, log);
   if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);

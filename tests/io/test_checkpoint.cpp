@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "support/bad_checkpoints.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/shared_checkpoint.hpp"
 #include "io/checkpoint_file.hpp"
 #include "model/config.hpp"
 #include "base/errors.hpp"
@@ -155,6 +157,30 @@ TEST(Checkpoint, RoundTripIsBitwiseIdentical) {
   EXPECT_EQ(state_hash(back.state), state_hash(original.state));
   EXPECT_TRUE(is_valid_checkpoint(dir / "c.h5"));
   EXPECT_TRUE(tmp_files_in(dir).empty());
+}
+
+// The tests' shared relaxed bodies (tests/support/shared_checkpoint.hpp): the first call computes
+// and stores, a later one (another test process) reads the same bits without computing; without
+// the variable every call computes.
+TEST(Checkpoint, SharedTestCheckpointIsComputedOnceAndReadBackBitForBit) {
+  const ScratchFolder scratch("shared_checkpoint");
+  const char* before = std::getenv("TIDALCRUST_TEST_CACHE");
+  const std::string saved = before ? before : "";
+  int computed = 0;
+  auto compute = [&] {
+    ++computed;
+    return synthetic_checkpoint();
+  };
+  ::setenv("TIDALCRUST_TEST_CACHE", (scratch.path / "cache").c_str(), 1);
+  const Checkpoint first = shared_checkpoint("body", compute);
+  const Checkpoint second = shared_checkpoint("body", compute);
+  EXPECT_EQ(computed, 1);
+  expect_identical(first, second);
+  expect_identical(first, synthetic_checkpoint());
+  ::unsetenv("TIDALCRUST_TEST_CACHE");
+  shared_checkpoint("body", compute);
+  EXPECT_EQ(computed, 2);
+  if (before) ::setenv("TIDALCRUST_TEST_CACHE", saved.c_str(), 1);
 }
 
 TEST(Checkpoint, EveryEnergyBudgetColumnIsRequired) {

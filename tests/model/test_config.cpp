@@ -708,3 +708,23 @@ TEST(Config, AnEncounterHistoryNamesEncountersOfTheWorkflowWithoutACycle) {
     EXPECT_EQ(body_seed_of(ensemble, b), body_seed_of(ensemble, ensemble.find_encounter(fmt::format("A_m{}", k))));
   }
 }
+
+// A welded crust needs an interior that reaches it (docs/crust-support.md): crust-T's own body
+// welded (r_I = 0.897, d_IS = 0.10) relaxed strained to 9.5e-4 with 6,134 probe failures. A body
+// whose interior stops more than d_IS / 2 under the shell is refused, naming the radius that would
+// do; a [material] body fills the ball itself, and an ocean lies between on purpose.
+TEST(Config, AWeldedCrustWhoseInteriorStopsShortOfItIsRefused) {
+  const std::string short_interior =
+      message_of("[interior]\nradius = 0.897\nmin_separation = 0.10\n[cross]\ncoupling = \"welded\"\n");
+  EXPECT_EQ(short_interior,
+            "bad.toml: cross.coupling = \"welded\" needs an interior that reaches the crust: interior.radius = 0.897 "
+            "leaves 0.103 R under the shell, more than half interior.min_separation (0.1); raise interior.radius to "
+            "at least 0.95");
+  EXPECT_EQ(message_of("[interior]\nradius = 0.96\nmin_separation = 0.10\n[cross]\ncoupling = \"welded\"\n"), "");
+  EXPECT_EQ(message_of("[interior]\nradius = 0.897\nmin_separation = 0.10\n"), "");  // the paper's coupling
+  for (const char* name : {"quick-welded.toml", "welded-L4.toml", "ocean-L3.toml", "dione.toml"})
+    EXPECT_NO_THROW(load_config(workflow(name))) << name;
+  auto crust_t = load_config(workflow("crust-T.toml"));
+  apply_override(crust_t, "cross.coupling=welded");
+  EXPECT_THROW(validate(crust_t, "--set"), InputError);
+}

@@ -7,6 +7,7 @@
 #include "base/errors.hpp"
 #include "base/vec3.hpp"
 #include "model/config.hpp"
+#include "model/derived_quantities.hpp"
 #include "physics/shell_failure.hpp"
 
 using namespace tidalcrust;
@@ -348,6 +349,8 @@ struct FlawScene {
   void strain(std::size_t n, double e) { state.springs.rest_length[n] = length(n) / (1 + e); }
   /// Neighbourhood 0.06 (just over h), relaxation 1 step, shadow 0.3, flaw 0.22, tip strain 1.5 eps_S.
   static FailureRule griffith() { return GriffithFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22, 1.5}; }
+  /// The same neighbourhood, relaxation and shadow; segments of 0.22.
+  static FailureRule critical() { return CriticalDistanceFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22}; }
   static constexpr FailureThreshold threshold{0.01, 0.005};
 };
 
@@ -457,4 +460,86 @@ TEST(GriffithFailureRule, LengthsTheLatticeCannotDrawAreNamedInOneWarning) {
   EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("the shadow rule's"), std::string::npos);
   config.encounter.failure_rule = FailureRuleKind::local;
   EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
+}
+
+namespace {
+
+std::vector<std::int32_t> x_springs(const FlawScene& s, int column, int first_row, int last_row) {
+  std::vector<std::int32_t> springs;
+  for (int j = first_row; j <= last_row; ++j) springs.push_back(static_cast<std::int32_t>(s.x_spring(column, j)));
+  std::sort(springs.begin(), springs.end());
+  return springs;
+}
+
+}  // namespace
+
+TEST(CriticalDistanceFailureRule, ACrackOpensOnlyWhereTheMeanStrainAcrossItsSegmentReachesEpsS) {
+  // The segment at the centre spring: the x springs of column 12 in rows 4-8 (as the griffith
+  // rule's flaw of the same length). The candidate at 2 eps_S alone: mean 0.4 eps_S, nothing fails.
+  FlawScene s;
+  s.strain(s.x_spring(12, 6), 0.02);
+  std::vector<FailureEvent> log;
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, log), 0u);
+  // The other four at 0.7 eps_S: mean 0.96 eps_S, still nothing.
+  for (const int j : {4, 5, 7, 8}) s.strain(s.x_spring(12, j), 0.007);
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, log), 0u);
+  // At 0.8 eps_S: mean 1.04 eps_S, the whole segment fails at one step, the candidate first.
+  for (const int j : {4, 5, 7, 8}) s.strain(s.x_spring(12, j), 0.008);
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, log), 5u);
+  EXPECT_EQ(sorted_failed_springs(log), x_springs(s, 12, 4, 8));
+  EXPECT_EQ(log.front().spring, static_cast<std::int32_t>(s.x_spring(12, 6)));
+  for (const auto& e : log) EXPECT_EQ(e.step, 10);
+}
+
+TEST(CriticalDistanceFailureRule, ACrackGrowsByTheSegmentAheadOfItsTipWhenItsMeanReachesEpsS) {
+  FlawScene s;
+  for (int j = 4; j <= 8; ++j) s.strain(s.x_spring(12, j), 0.012);
+  std::vector<FailureEvent> log;
+  ASSERT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, log), 5u);
+  // The tip (row 9, 0.05 beyond the crack) at 1.2 eps_S: its segment spans rows 7-11, of which
+  // 9-11 are intact; mean 0.4 eps_S, it waits however strained the tip spring alone is.
+  s.state.step = 11;
+  const std::size_t tip = s.x_spring(12, 9);
+  s.strain(tip, 0.03);
+  std::vector<FailureEvent> second;
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, second), 0u);
+  // Rows 10 and 11 at eps_S: mean 1.67 eps_S, the crack grows by the three.
+  s.state.step = 12;
+  s.strain(s.x_spring(12, 10), 0.01);
+  s.strain(s.x_spring(12, 11), 0.01);
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, second), 3u);
+  EXPECT_EQ(second.front().spring, static_cast<std::int32_t>(tip));
+  EXPECT_EQ(sorted_failed_springs(second), x_springs(s, 12, 9, 11));
+  // A candidate in the crack's shadow (column 14, 0.1 beside it) waits at any mean.
+  s.state.step = 13;
+  for (int j = 4; j <= 8; ++j) s.strain(s.x_spring(14, j), 0.05);
+  std::vector<FailureEvent> third;
+  EXPECT_EQ(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, s.body, s.state, 0, third), 0u);
+}
+
+TEST(CriticalDistanceFailureRule, RelaxesOverHalfASegmentAndIsStoredAsConfigured) {
+  Config config;
+  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  config.encounter.shadow_distance = 0.3;
+  config.encounter.flaw_length = 0.4;
+  Row r;
+  const double dt = 1e-4;
+  const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, dt);
+  ASSERT_EQ(kind_of(rule), FailureRuleKind::critical_distance);
+  const auto& critical = std::get<CriticalDistanceFailureRule>(rule);
+  EXPECT_EQ(critical.segment_length, 0.4);
+  EXPECT_EQ(critical.shadow.shadow_distance, 0.3);
+  // The relaxation interval: relaxation_crossings (2) times half a segment over V_SP, not L_S / V_SP.
+  const DerivedQuantities q = derive_quantities(r.body, r.state, config.interior.radius);
+  EXPECT_EQ(critical.shadow.local.relaxation_steps, std::llround(2 * 0.2 / q.V_SP / dt));
+  config.encounter.failure_rule = FailureRuleKind::shadow;
+  const auto shadow = std::get<ShadowFailureRule>(make_failure_rule(config, std::nullopt, r.body, r.state, dt));
+  EXPECT_EQ(critical.shadow.local.exclusion_distance, shadow.local.exclusion_distance);
+  EXPECT_EQ(shadow.local.relaxation_steps, std::llround(2 * q.L_S / q.V_SP / dt));
+  EXPECT_EQ(failure_rule_of(stored_failure_rule(rule)), rule);
+  // Its segment is named where the lattice cannot draw it.
+  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  config.encounter.flaw_length = 0.2;
+  EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("encounter.flaw_length = 0.2 R is 2.0 L_S"),
+            std::string::npos);
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "physics/two_body_orbit.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/shared_checkpoint.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -51,16 +53,21 @@ struct StrongRun {
 };
 
 const StrongRun& strong_run() {
-  static const ScratchFolder straight_folder("encounter_straight");
   static const StrongRun run = [] {
     StrongRun r;
     r.config = quick_config();
     r.spec = r.config.find_encounter("strong");
     r.begun = begin_encounter(quick_parent(), r.config, r.spec);
-    r.done = r.begun;
-    r.output = straight_folder.path / "strong.h5";
-    omp_set_num_threads(2);
-    EXPECT_EQ(run_encounter(r.done, r.config, quiet_loop(), r.output), LoopOutcome::finished);
+    // The run and its snapshot files, made by the first test process that needs them
+    // (tests/support/shared_checkpoint.hpp).
+    const fs::path folder = shared_folder("quick-strong-encounter", [&](const fs::path& f) {
+      Checkpoint done = r.begun;
+      omp_set_num_threads(2);
+      EXPECT_EQ(run_encounter(done, r.config, quiet_loop(), f / "strong.h5"), LoopOutcome::finished);
+      write_checkpoint(f / "strong.h5", done);
+    });
+    r.output = folder / "strong.h5";
+    r.done = read_checkpoint(r.output);
     return r;
   }();
   return run;
@@ -545,6 +552,34 @@ TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
   for (const auto& e : failures) first_step += e.step == failures.front().step ? 1 : 0;
   EXPECT_GE(first_step, 3u);
   EXPECT_GT(failures.front().strain, record.failure_strain);  // the candidate that opened it
+}
+
+// The critical_distance rule in a whole encounter: its record holds the segment, its relaxation
+// interval is half a segment's crossing time, cracks open and grow by whole segments at one step
+// (on the quick body a segment of 0.8 R crosses about 5 springs), and the run resumes bit for bit.
+// The quick crust's failures at eps_S = 3e-3 come from its pre-stress, which a segment's mean
+// averages away (no failure), so eps_S is 1.5e-3 here (23 failures when written).
+TEST(EncounterStage, CriticalDistanceRuleFailsWholeSegmentsAndResumesBitIdentically) {
+  Config config = quick_config();
+  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  config.encounter.shadow_distance = 0.8;
+  config.encounter.flaw_length = 0.8;  // ~ 3 L_S on the quick body (level 3)
+  for (auto& e : config.encounters)
+    if (e.name == "strong") e.failure_strain = 1.5e-3;
+  const Checkpoint straight = run_and_check_resume(config, "encounter_critical_distance");
+  const auto& record = straight.stage.as<EncounterRecord>();
+  const auto* rule = std::get_if<CriticalDistanceFailureRule>(&record.failure_rule);
+  ASSERT_NE(rule, nullptr);
+  EXPECT_EQ(rule->segment_length, 0.8);
+  const auto& failures = straight.observables.failures;
+  ASSERT_FALSE(failures.empty());
+  std::size_t first_step = 0;
+  for (const auto& e : failures) first_step += e.step == failures.front().step ? 1 : 0;
+  EXPECT_GE(first_step, 3u);
+  // Every failure belongs to a segment: no step fails a single spring.
+  std::map<std::int64_t, int> per_step;
+  for (const auto& e : failures) ++per_step[e.step];
+  for (const auto& [step, count] : per_step) EXPECT_GE(count, 2) << "step " << step;
 }
 
 // A crust that varies (docs/crust.md): the quick body's crust given a strength dichotomy (weak toward

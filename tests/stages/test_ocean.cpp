@@ -24,6 +24,7 @@
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/shared_checkpoint.hpp"
 
 namespace tidalcrust {
 namespace {
@@ -168,13 +169,13 @@ TEST(OceanBody, TheHydrostaticStartCarriesTheCrustNodeByNode) {
 
 /// ocean-L3 relaxed as `run` relaxes it, probed also at eps_S = 5e-4 (about a minute).
 const Checkpoint& ocean_relaxed() {
-  static const Checkpoint relaxed = [] {
+  static const Checkpoint relaxed = shared_checkpoint("ocean-L3-relaxed", [] {
     Config config = ocean_relax_config();
     config.encounters[0].failure_strain = 5e-4;
     Checkpoint c = begin_relax(ocean_stretched(), config);
     EXPECT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);
     return c;
-  }();
+  });
   return relaxed;
 }
 

@@ -19,6 +19,7 @@
 #include "io/checkpoint_file.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/shared_checkpoint.hpp"
 
 using namespace tidalcrust;
 using namespace tidalcrust::test_support;
@@ -297,8 +298,10 @@ Checkpoint relaxed_welded(CrustSupport support) {
 }
 
 const Checkpoint& relaxed_welded_once(CrustSupport support) {
-  static const Checkpoint balanced = relaxed_welded(CrustSupport::balanced);
-  static const Checkpoint lithostatic = relaxed_welded(CrustSupport::lithostatic);
+  static const Checkpoint balanced =
+      shared_checkpoint("quick-welded-balanced", [] { return relaxed_welded(CrustSupport::balanced); });
+  static const Checkpoint lithostatic =
+      shared_checkpoint("quick-welded-lithostatic", [] { return relaxed_welded(CrustSupport::lithostatic); });
   return support == CrustSupport::balanced ? balanced : lithostatic;
 }
 

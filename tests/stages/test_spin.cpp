@@ -31,6 +31,7 @@
 #include "support/cli_runner.hpp"
 #include "support/files.hpp"
 #include "support/quick_workflow.hpp"
+#include "support/shared_checkpoint.hpp"
 #include "support/synthetic_encounter.hpp"
 
 namespace tidalcrust {
@@ -223,8 +224,11 @@ SpinningBody relax_spinning_welded_l3(double spin) {
   b.config.encounters[0].failure_strain = 5e-4;  // probed too
   const Checkpoint stretched = stretch_stage(build_stage(b.config), b.config);
   settle_time_step(b.config, stretched, "stretch.h5");
-  b.relaxed = begin_relax(stretched, b.config);
-  EXPECT_EQ(run_relax(b.relaxed, b.config, quiet_loop()), LoopOutcome::finished);
+  b.relaxed = shared_checkpoint("spinning-welded-L3-" + std::to_string(spin), [&] {
+    Checkpoint c = begin_relax(stretched, b.config);
+    EXPECT_EQ(run_relax(c, b.config, quiet_loop()), LoopOutcome::finished);
+    return c;
+  });
   return b;
 }
 

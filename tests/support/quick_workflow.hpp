@@ -13,6 +13,7 @@
 #include "stages/step_loop.hpp"
 #include "stages/stretch_stage.hpp"
 #include "support/files.hpp"
+#include "support/shared_checkpoint.hpp"
 
 namespace tidalcrust::test_support {
 
@@ -108,10 +109,11 @@ inline Checkpoint relax_quick_body(bool stability_probe) {
 /// copy); only the probe fields of its RelaxRecord are empty.
 inline const Checkpoint& quick_relaxed(bool stability_probe = true) {
   if (stability_probe) {
-    static const Checkpoint probed = detail::relax_quick_body(true);
+    static const Checkpoint probed = shared_checkpoint("quick-relaxed", [] { return detail::relax_quick_body(true); });
     return probed;
   }
-  static const Checkpoint unprobed = detail::relax_quick_body(false);
+  static const Checkpoint unprobed =
+      shared_checkpoint("quick-relaxed-unprobed", [] { return detail::relax_quick_body(false); });
   return unprobed;
 }
 
