@@ -81,15 +81,17 @@ TEST(Choices, EveryNameTableRoundTrips) {
 }
 
 TEST(Choices, EveryChoiceKeyRoundTripsThroughTheResolvedConfiguration) {
-  // "lithostatic" needs the welded coupling, "floating" an ocean (and an ocean nothing else).
+  // "lithostatic" needs the welded coupling, "floating" an ocean (and an ocean nothing else); the
+  // welded coupling an interior that reaches the crust.
   expect_config_round_trips<CrustSupport>("relax.crust_support", [](const Config& c) { return c.relax.crust_support; },
-                                          "[cross]\ncoupling = \"welded\"\n", {"floating"});
+                                          "[interior]\nradius = 0.96\n[cross]\ncoupling = \"welded\"\n", {"floating"});
   // "floating" and an ocean need each other: from a file only, and back through the print.
   const Config floating =
       parse_config("[ocean]\nthickness = 0.3\nbulk_modulus = 2.0\n[relax]\ncrust_support = \"floating\"\n", "file.toml");
   EXPECT_EQ(floating.relax.crust_support, CrustSupport::floating);
   EXPECT_EQ(parse_config(to_toml(floating), "printed").relax.crust_support, CrustSupport::floating);
-  expect_config_round_trips<CrossCoupling>("cross.coupling", [](const Config& c) { return c.cross.coupling; });
+  expect_config_round_trips<CrossCoupling>("cross.coupling", [](const Config& c) { return c.cross.coupling; },
+                                           "[interior]\nradius = 0.96\n");
   expect_config_round_trips<HydrostaticSupport>("stretch.hydrostatic_support",
                                                 [](const Config& c) { return c.stretch.hydrostatic_support; });
   expect_config_round_trips<FailureRuleKind>("encounter.failure_rule",

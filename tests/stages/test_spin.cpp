@@ -222,13 +222,16 @@ SpinningBody relax_spinning_welded_l3(double spin) {
   SpinningBody b;
   b.config = parse_config(with_spin(read_file(workflow_file("welded-L3.toml")), std::to_string(spin)), "spin.toml");
   b.config.encounters[0].failure_strain = 5e-4;  // probed too
-  const Checkpoint stretched = stretch_stage(build_stage(b.config), b.config);
-  settle_time_step(b.config, stretched, "stretch.h5");
   b.relaxed = shared_checkpoint("spinning-welded-L3-" + std::to_string(spin), [&] {
-    Checkpoint c = begin_relax(stretched, b.config);
-    EXPECT_EQ(run_relax(c, b.config, quiet_loop()), LoopOutcome::finished);
+    Config config = b.config;
+    const Checkpoint stretched = stretch_stage(build_stage(config), config);
+    settle_time_step(config, stretched, "stretch.h5");
+    Checkpoint c = begin_relax(stretched, config);
+    EXPECT_EQ(run_relax(c, config, quiet_loop()), LoopOutcome::finished);
     return c;
   });
+  b.config.integrator.dt = b.relaxed.stage.clock.dt;  // what settle_time_step chose
+  b.config.choose_dt = false;
   return b;
 }
 
