@@ -100,6 +100,14 @@ int command_report(int argc, char** argv) {
       return SampleSummary{};
     };
     const SampleSummary failures = stat("failures"), length = stat("total_crack_length");
+    if (failures.count < 2) {  // no spread yet: the values, not NaNs
+      fmt::print("  ensemble {}: {} of {} members finished, {} cracked{}\n", e.encounter.name, e.finished, e.members,
+                 e.cracked.successes,
+                 failures.count == 1 ? fmt::format("; failed springs {:.0f}, total crack length {:.3g} R (one member: "
+                                                   "no spread yet)", failures.mean, length.mean)
+                                     : std::string());
+      continue;
+    }
     fmt::print("  ensemble {}: {} of {} members finished, {} cracked; failed springs {:.1f} +- {:.1f} [{:.1f}, {:.1f}], "
                "total crack length {:.3g} +- {:.2g} R [{:.3g}, {:.3g}] (mean +- sd [95% interval of the mean])\n",
                e.encounter.name, e.finished, e.members, e.cracked.successes, failures.mean, failures.standard_deviation,

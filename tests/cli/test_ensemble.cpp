@@ -160,6 +160,13 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find(sweep_file.string() + ": not an ensemble table"), std::string::npos) << bad.err;
   EXPECT_EQ(count_lines(bad.err), 1) << bad.err;
+
+  // The report of an ensemble none of whose members has run yet (four members: other pericenters)
+  // says so, with no statistics of nothing ("nan").
+  const auto unrun = run_cli("report " + quoted(workflow) + " --set ensemble.members=4 --out " + quoted(straight));
+  ASSERT_EQ(unrun.exit_code, 0) << unrun.err;
+  EXPECT_NE(unrun.out.find("ensemble T: 0 of 4 members finished, 0 cracked\n"), std::string::npos) << unrun.out;
+  EXPECT_EQ(unrun.out.find("nan"), std::string::npos) << unrun.out;
 }
 
 // Issue 24 item 1: an ensemble that varies the body. Member k of every encounter branches from the
