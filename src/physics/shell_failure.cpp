@@ -89,6 +89,18 @@ enum class CrackRole {
   shadowed,  ///< extends no crack but lies in a crack's stress shadow
 };
 
+/// A grid over the particles' bounding box with cells of `cell_size` (at most 64 a side), for the
+/// crack rules' neighbour queries between spring midpoints.
+NeighborGrid grid_over_particles(const State& state, double cell_size) {
+  Vec3 lo = vec3_at(state.position, 0), hi = lo;
+  for (std::size_t i = 1; i < state.position.size() / 3; ++i) {
+    const Vec3 p = vec3_at(state.position, i);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return NeighborGrid(lo, hi, std::max(cell_size, (hi - lo).maxCoeff() / 64));
+}
+
 /// Where the failed shell springs are, for the shadow and griffith rules: their midpoints (in a
 /// grid) and axes. A failed spring's crack runs across it, so a candidate extends that crack when
 /// its midpoint lies within the crack neighbourhood (the exclusion distance) and at least 45
@@ -104,7 +116,7 @@ class CrackMap {
       : shadow_distance_(shadow_distance),
         neighbourhood_(neighbourhood),
         search_radius_(search_radius),
-        grid_(grid_over(state, shadow_distance)) {
+        grid_(grid_over_particles(state, shadow_distance)) {
     for (std::size_t n = 0; n < body.spring_count(); ++n)
       if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell) && state.springs.failed[n])
         add(body, state, n);
@@ -129,17 +141,6 @@ class CrackMap {
   }
 
  private:
-  /// A grid over the particles' bounding box, cells of the shadow distance (at most 64 a side).
-  static NeighborGrid grid_over(const State& state, double shadow_distance) {
-    Vec3 lo = vec3_at(state.position, 0), hi = lo;
-    for (std::size_t i = 1; i < state.position.size() / 3; ++i) {
-      const Vec3 p = vec3_at(state.position, i);
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    return NeighborGrid(lo, hi, std::max(shadow_distance, (hi - lo).maxCoeff() / 64));
-  }
-
   double shadow_distance_;
   double neighbourhood_;
   double search_radius_;
@@ -202,7 +203,8 @@ std::vector<std::size_t> springs_across_flaw(const Body& body, const State& stat
 /// across the segment while the crust stays within segment_length / 2 of the candidate's radius.
 class ShellSpringGrid {
  public:
-  ShellSpringGrid(const Body& body, const State& state, double segment_length) : grid_(grid(body, state, segment_length)) {
+  ShellSpringGrid(const Body& body, const State& state, double segment_length)
+      : grid_(grid_over_particles(state, segment_length / 2)) {
     for (std::size_t n = 0; n < body.spring_count(); ++n)
       if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell)) {
         grid_.insert(spring_midpoint(body, state, n));
@@ -225,16 +227,6 @@ class ShellSpringGrid {
   }
 
  private:
-  static NeighborGrid grid(const Body& body, const State& state, double segment_length) {
-    Vec3 lo = vec3_at(state.position, 0), hi = lo;
-    for (std::size_t i = 1; i < body.particle_count(); ++i) {
-      const Vec3 p = vec3_at(state.position, i);
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
-    return NeighborGrid(lo, hi, std::max(segment_length / 2, (hi - lo).maxCoeff() / 64));
-  }
-
   NeighborGrid grid_;
   std::vector<std::size_t> spring_;  // spring index of each grid id
   double longest_ = 0;
