@@ -214,10 +214,10 @@ LoopOutcome run_encounter(Checkpoint& checkpoint, const Config& config, const St
   for (auto [name, steps] : {std::pair{"fail_interval", stored.fail_interval}, {"sample_interval", schedule.sample_interval}})
     if (steps < 1)
       throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@{} = {} must be >= 1", name, steps));
-  if (stored.kind == FailureRuleKind::local && stored.relaxation_steps < 1)
+  if (stored.kind != FailureRuleKind::paper && stored.relaxation_steps < 1)
     throw InputError(fmt::format("encounter checkpoint: /checkpoint/record@relaxation_steps = {} must be >= 1 for "
-                                 "the local failure rule",
-                                 stored.relaxation_steps));
+                                 "the {} failure rule",
+                                 stored.relaxation_steps, choice_name(stored.kind)));
   const std::int64_t start_step = checkpoint.stage.clock.start_step;
   const std::int64_t end_step = checkpoint.stage.end_step;
   const FailureRule rule = schedule.failure_rule;

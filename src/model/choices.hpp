@@ -89,6 +89,7 @@ enum class FailureRuleKind {
   shadow, ///< local, and a new crack does not start within shadow_distance of an existing one
   griffith, ///< shadow, a new crack opens as a flaw of flaw_length and grows at the Griffith tip strain
   critical_distance, ///< shadow, a crack opens or grows by a segment of flaw_length whose mean strain reaches eps_S
+  nonlocal, ///< critical_distance, judged by the strain tensor fitted to the springs within half a segment
 };
 template <>
 struct ChoiceTable<FailureRuleKind> {
@@ -100,6 +101,8 @@ struct ChoiceTable<FailureRuleKind> {
                                  "shadow, cracks open as flaws of flaw_length and grow at a fixed toughness"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::critical_distance, "critical_distance",
                                  "shadow, cracks open and grow by segments of flaw_length whose mean strain is eps_S"},
+      ChoiceRow<FailureRuleKind>{FailureRuleKind::nonlocal, "nonlocal",
+                                 "critical_distance, judged by the crust's strain averaged over half a segment around it"},
   };
 };
 

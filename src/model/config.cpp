@@ -65,20 +65,22 @@ constexpr Condition welded_crust{"cross.coupling = \"welded\"",
 /// Snapshots at a chosen interval: an encounter without them keeps the fingerprint it had before the key.
 constexpr Condition snapshot_series{"encounter.snapshot_interval > 0",
                                     [](const Config& c) { return c.encounter.snapshot_interval > 0; }};
-/// The shadow rule's length (the griffith and critical_distance rules' too): the local rule's
+/// The shadow rule's length (the griffith, critical_distance and nonlocal rules' too): the local rule's
 /// fingerprints stay what they were before the key.
-constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\", \"griffith\" or \"critical_distance\"",
-                                [](const Config& c) {
-                                  return c.encounter.failure_rule == FailureRuleKind::shadow ||
-                                         c.encounter.failure_rule == FailureRuleKind::griffith ||
-                                         c.encounter.failure_rule == FailureRuleKind::critical_distance;
-                                }};
-/// The griffith and critical_distance rules' length: the other rules' fingerprints stay what they
-/// were before the key.
-constexpr Condition flaw_rule{"encounter.failure_rule = \"griffith\" or \"critical_distance\"", [](const Config& c) {
-  return c.encounter.failure_rule == FailureRuleKind::griffith ||
-         c.encounter.failure_rule == FailureRuleKind::critical_distance;
-}};
+constexpr Condition shadow_rule{
+    "encounter.failure_rule = \"shadow\", \"griffith\", \"critical_distance\" or \"nonlocal\"", [](const Config& c) {
+      return c.encounter.failure_rule == FailureRuleKind::shadow || c.encounter.failure_rule == FailureRuleKind::griffith ||
+             c.encounter.failure_rule == FailureRuleKind::critical_distance ||
+             c.encounter.failure_rule == FailureRuleKind::nonlocal;
+    }};
+/// The griffith, critical_distance and nonlocal rules' length: the other rules' fingerprints stay
+/// what they were before the key.
+constexpr Condition flaw_rule{
+    "encounter.failure_rule = \"griffith\", \"critical_distance\" or \"nonlocal\"", [](const Config& c) {
+      return c.encounter.failure_rule == FailureRuleKind::griffith ||
+             c.encounter.failure_rule == FailureRuleKind::critical_distance ||
+             c.encounter.failure_rule == FailureRuleKind::nonlocal;
+    }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 
@@ -243,7 +245,7 @@ void visit_keys(C& c, V&& visit) {
       {"encounter", "failure_rule", reads(relax, encounter), "-", choice_doc<FailureRuleKind>()});
   key(c.encounter.exclusion_radius,
       {"encounter", "exclusion_radius", reads(relax, encounter), "L_S",
-       "local rule: crack neighbourhood radius in mean shell spacings", 0, 1e3, true});
+       "local rule: crack neighbourhood radius in mean shell spacings (nonlocal rule: left out of the fit)", 0, 1e3, true});
   key(c.encounter.relaxation_crossings,
       {"encounter", "relaxation_crossings", reads(relax, encounter), "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
@@ -252,8 +254,8 @@ void visit_keys(C& c, V&& visit) {
        "shadow rule: a new crack starts no closer than this to a failed spring (resolve it: >= 3 L_S)", 0, 2, true});
   key(c.encounter.flaw_length,
       {"encounter", "flaw_length", changes_no_result.and_when(flaw_rule, relax, encounter), "R",
-       "griffith rule: a new crack opens as a flaw this long, it sets the toughness; critical_distance rule: the "
-       "segment a crack opens or grows by, over which the strain is averaged (resolve it: >= 3 L_S)", 0, 2,
+       "griffith rule: a new crack opens as a flaw this long, it sets the toughness; critical_distance and nonlocal "
+       "rules: the segment a crack opens or grows by, over which the strain is averaged (resolve it: >= 3 L_S)", 0, 2,
        true});
 
   // The kernel gives other bits but the same physics: it is recorded and checked on its own

@@ -69,10 +69,25 @@ struct CriticalDistanceFailureRule {
   bool operator==(const CriticalDistanceFailureRule&) const = default;
 };
 
+/// "nonlocal" (docs/failure-rule.md, "A strain averaged over a length: the nonlocal rule"): the
+/// critical_distance rule (same segments, shadow and relaxation interval), where a candidate is
+/// judged by its nonlocal strain: the strain along its axis of the tangent-plane strain tensor
+/// fitted by least squares to the unfailed shell springs whose midpoints lie within half a segment
+/// of its own and outside the crack neighbourhood (no failed shell spring's midpoint within
+/// shadow.local.exclusion_distance), as nonlocal damage models average strain over a material
+/// length (Pijaudier-Cabot & Bazant 1987). Where that fit is not determined it is judged as by
+/// critical_distance.
+struct NonlocalFailureRule {
+  ShadowFailureRule shadow;     ///< relaxation interval (of a segment), neighbourhood (left out of the fit), shadow
+  double segment_length = 0;    ///< 2 L: the segment a crack opens or grows by; the fit's radius is L, R
+  bool operator==(const NonlocalFailureRule&) const = default;
+};
+
 /// The rule; its alternatives in FailureRuleKind order (a new kind: its struct here, its row in
 /// the choice table, and its code in physics/shell_failure.cpp).
 using FailureRule =
-    std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule, CriticalDistanceFailureRule>;
+    std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule, CriticalDistanceFailureRule,
+                 NonlocalFailureRule>;
 static_assert(std::variant_size_v<FailureRule> == ChoiceTable<FailureRuleKind>::rows.size());
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::local), FailureRule>,
                              LocalFailureRule>);
@@ -83,6 +98,8 @@ static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>
 static_assert(
     std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::critical_distance), FailureRule>,
                    CriticalDistanceFailureRule>);
+static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::nonlocal), FailureRule>,
+                             NonlocalFailureRule>);
 
 /// Which kind `rule` is.
 inline FailureRuleKind kind_of(const FailureRule& rule) { return static_cast<FailureRuleKind>(rule.index()); }
@@ -121,6 +138,11 @@ inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
     stored.flaw_length = critical->segment_length;
     return stored;
   }
+  if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule)) {
+    StoredFailureRule stored = shadow_fields(nonlocal->shadow, FailureRuleKind::nonlocal);
+    stored.flaw_length = nonlocal->segment_length;
+    return stored;
+  }
   return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0, 0.0, 0.0};
 }
 
@@ -135,6 +157,8 @@ inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
       return GriffithFailureRule{{local, stored.shadow_distance}, stored.flaw_length, stored.growth_strain_factor};
     case FailureRuleKind::critical_distance:
       return CriticalDistanceFailureRule{{local, stored.shadow_distance}, stored.flaw_length};
+    case FailureRuleKind::nonlocal:
+      return NonlocalFailureRule{{local, stored.shadow_distance}, stored.flaw_length};
     case FailureRuleKind::paper:
       break;
   }
@@ -153,7 +177,7 @@ void visit_failure_rule(Rule& rule, Visit&& visit) {
   visit("exclusion_distance", stored.exclusion_distance, "R", "local rule: crack neighbourhood radius");
   visit("shadow_distance", stored.shadow_distance, "R", "shadow rule: no new crack this close to a crack");
   visit("flaw_length", stored.flaw_length, "R",
-        "griffith rule: length of a new crack's flaw; critical_distance rule: the averaging segment");
+        "griffith rule: length of a new crack's flaw; critical_distance and nonlocal rules: the averaging segment");
   visit("growth_strain_factor", stored.growth_strain_factor, "1", "griffith rule: crack-tip failure strain / eps_S");
   if constexpr (!std::is_const_v<Rule>) rule = failure_rule_of(stored);
 }

@@ -121,14 +121,23 @@ class CrackMap {
       if (body.spring_kind[n] == static_cast<std::uint8_t>(SpringKind::shell) && state.springs.failed[n])
         add(body, state, n);
   }
-  CrackRole role(const Vec3& mid) const {
+  /// With `candidate_axis` (the nonlocal rule: the candidate's unit axis), "ahead" is judged
+  /// against it instead of the failed spring's: a candidate extends a crack that lies across its
+  /// own axis, where its segment continues the crack; one pulled along the direction in which the
+  /// crack lies beside it would open a parallel crack. A crack drawn on the lattice zig-zags over
+  /// springs of all three directions, so the failed spring's own axis is not the crack's normal.
+  /// `crack_point`, when given, receives the midpoint of the failed spring a candidate extends.
+  CrackRole role(const Vec3& mid, const Vec3* candidate_axis = nullptr, Vec3* crack_point = nullptr) const {
     bool in_shadow = false;
     for (const std::int32_t id : grid_.closer_than(mid, search_radius_)) {
       const Vec3 offset = mid - grid_.point(id);
       const double distance = offset.norm();
       // cos 45 deg = 1/sqrt(2): |offset . axis| <= |offset| / sqrt(2), squared to avoid the root.
-      const double along = offset.dot(axis_[static_cast<std::size_t>(id)]);
-      if (distance < neighbourhood_ && 2 * along * along <= distance * distance) return CrackRole::extends;
+      const double along = offset.dot(candidate_axis ? *candidate_axis : axis_[static_cast<std::size_t>(id)]);
+      if (distance < neighbourhood_ && 2 * along * along <= distance * distance) {
+        if (crack_point) *crack_point = grid_.point(id);
+        return CrackRole::extends;
+      }
       in_shadow = in_shadow || distance < shadow_distance_;
     }
     return in_shadow ? CrackRole::shadowed : CrackRole::starts;
@@ -139,6 +148,8 @@ class CrackMap {
     grid_.insert(spring_midpoint(body, state, n));
     axis_.push_back((vec3_at(state.position, j) - vec3_at(state.position, i)).normalized());
   }
+  /// Whether a failed spring's midpoint lies closer than the crack neighbourhood to `mid`.
+  bool in_neighbourhood(const Vec3& mid) const { return grid_.any_closer_than(mid, neighbourhood_); }
 
  private:
   double shadow_distance_;
@@ -152,7 +163,8 @@ class CrackMap {
 /// critical_distance rule) at spring n: the arc of the circle about `center` through n's midpoint
 /// m, perpendicular to n's axis, whose points r lie within length / 2 of m as rho |sin theta|
 /// (rho = |m - center|, theta the angle from m; no transcendental function, so the same bits on
-/// every CPU). Spring n itself crosses it.
+/// every CPU). Spring n itself crosses it. ahead_of(p) keeps only the part from p's abscissa on
+/// towards the side away from p (a crack's tip advancing away from its crack, with no gap behind).
 class GreatCircleSegment {
  public:
   GreatCircleSegment(const Body& body, const State& state, std::size_t n, const Vec3& center, double length)
@@ -176,12 +188,21 @@ class GreatCircleSegment {
     const Vec3 r = p + (q - p) * (sp / (sp - sq));
     if (!(r.dot(up_) > 0)) return false;
     const double sideways = rho_ * r.dot(along_);  // rho sin(theta) |r|
+    if (side_ != 0 && !(side_ * sideways >= start_ * r.norm())) return false;
     return 4 * sideways * sideways <= length_ * length_ * r.squaredNorm();
+  }
+  void ahead_of(const Vec3& p) {
+    const Vec3 r = p - center_;
+    const double sideways = rho_ * r.dot(along_) / r.norm();  // m itself has none
+    side_ = sideways > 0 ? -1 : 1;
+    start_ = side_ * sideways;  // <= 0: from p's side of m onward
   }
 
  private:
   Vec3 center_;
   double length_;
+  int side_ = 0;  // 0: both halves; +1 or -1: from start_ on towards where rho sin(theta) has that sign
+  double start_ = 0;
   double rho_ = 0;
   Vec3 up_, normal_, along_;
 };
@@ -225,6 +246,15 @@ class ShellSpringGrid {
     }
     return found;
   }
+  /// The unfailed shell springs whose midpoints lie closer than `radius` to `mid`, in index order.
+  std::vector<std::size_t> within(const State& state, const Vec3& mid, double radius) const {
+    std::vector<std::size_t> found;
+    for (const std::int32_t id : grid_.closer_than(mid, radius)) {
+      const std::size_t k = spring_[static_cast<std::size_t>(id)];
+      if (!state.springs.failed[k]) found.push_back(k);
+    }
+    return found;
+  }
 
  private:
   NeighborGrid grid_;
@@ -233,13 +263,57 @@ class ShellSpringGrid {
   double reach_ = 0;
 };
 
+/// The nonlocal rule's strain at spring n (docs/failure-rule.md, "A strain averaged over a length"):
+/// in the tangent plane at n's midpoint (normal: from `center` through it), with e1 along n's axis
+/// and e2 = normal x e1, the strain tensor (E11, E12, E22) whose strain along each spring k of
+/// `springs`, E11 c^2 + 2 E12 c s + E22 s^2 (c, s: the components of k's unit axis along e1, e2,
+/// renormalised in the plane), fits k's strain / f by least squares (sums in the order given).
+/// Returns E11 (dimensionless), or nothing when fewer than 6 springs or their directions do not
+/// determine the tensor (the normal matrix's determinant below 1e-3 of (trace / 3)^3; 0.87 for the
+/// three directions of a triangular lattice).
+std::optional<double> fitted_axial_strain(const Body& body, const State& state, std::size_t n, const Vec3& center,
+                                          const std::vector<std::size_t>& springs) {
+  if (springs.size() < 6) return std::nullopt;
+  auto ends = [&](std::size_t k) {
+    return std::pair{vec3_at(state.position, static_cast<std::size_t>(body.springs[k][0])),
+                     vec3_at(state.position, static_cast<std::size_t>(body.springs[k][1]))};
+  };
+  const auto [a, b] = ends(n);
+  const Vec3 normal = (0.5 * (a + b) - center).normalized();
+  const Vec3 e1 = ((b - a) - (b - a).dot(normal) * normal).normalized();
+  const Vec3 e2 = normal.cross(e1);
+  double m[3][3] = {}, y[3] = {};
+  for (const std::size_t k : springs) {
+    const auto [p, q] = ends(k);
+    const double c = (q - p).dot(e1), s = (q - p).dot(e2), in_plane = c * c + s * s;
+    if (!(in_plane > 0)) continue;
+    const double row[3] = {c * c / in_plane, 2 * c * s / in_plane, s * s / in_plane};
+    const double strain = spring_strain(body, state, k) / body.failure_strain_factor(k);
+    for (int r = 0; r < 3; ++r) {
+      y[r] += row[r] * strain;
+      for (int col = 0; col < 3; ++col) m[r][col] += row[r] * row[col];
+    }
+  }
+  auto det = [](const double (&x)[3][3]) {
+    return x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+           x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+  };
+  const double whole = det(m), scale = (m[0][0] + m[1][1] + m[2][2]) / 3;
+  if (!(whole > 1e-3 * scale * scale * scale)) return std::nullopt;
+  double first[3][3];  // Cramer's rule for E11: the first column replaced by the right-hand side
+  for (int r = 0; r < 3; ++r) first[r][0] = y[r], first[r][1] = m[r][1], first[r][2] = m[r][2];
+  return det(first) / whole;
+}
+
 /// The crack rules' parameters beyond the local rule's: 0 shadow distance for the local rule;
-/// flaw_length > 0 only for the griffith rule, segment_length > 0 only for the critical_distance rule.
+/// flaw_length > 0 only for the griffith rule, segment_length > 0 only for the critical_distance and
+/// nonlocal rules; nonlocal_strain only for the nonlocal rule.
 struct CrackGrowth {
   double shadow_distance = 0;
   double flaw_length = 0;
   double growth_strain_factor = 1;
   double segment_length = 0;
+  bool nonlocal_strain = false;
 };
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
@@ -250,7 +324,10 @@ struct CrackGrowth {
 /// candidate that extends a crack fails only beyond growth_strain_factor eps_S, and one that starts
 /// a crack fails with every spring across its flaw (springs_across_flaw). With a segment length (the
 /// critical_distance rule) a candidate that starts or extends a crack fails, with every unfailed
-/// shell spring across the segment centred on it, only if their mean of strain / f reaches eps_S.
+/// shell spring across the segment centred on it, only if their mean of strain / f reaches eps_S;
+/// with nonlocal_strain (the nonlocal rule) only if the candidate's fitted_axial_strain over the
+/// unfailed shell springs within half a segment and outside the crack neighbourhood reaches eps_S
+/// (the segment's mean where the fit is not determined).
 std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
   // A spring of strength factor f fails beyond f eps_S; candidates go by strain / f, the most
@@ -281,7 +358,7 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
                    growth.flaw_length > 0 ? std::max(growth.shadow_distance, rule.exclusion_distance)
                                           : growth.shadow_distance);
   std::optional<Vec3> center;  // the flaws' great circles are about the body's centre of mass
-  std::optional<ShellSpringGrid> shell_grid;  // the critical_distance rule's, made at its first segment
+  std::optional<ShellSpringGrid> shell_grid;  // the segment rules', made at their first segment
   const double r2 = rule.exclusion_distance * rule.exclusion_distance;
   const double growth_strain = growth.growth_strain_factor * threshold.failure_strain;
   std::size_t failed = 0;
@@ -297,18 +374,39 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     const bool excluded =
         std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
     if (excluded) continue;
-    const CrackRole role = cracks ? cracks->role(mid) : CrackRole::starts;
+    std::optional<Vec3> axis;
+    if (growth.nonlocal_strain)
+      axis = (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])) -
+              vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])))
+                 .normalized();
+    Vec3 crack_point = Vec3::Zero();
+    const CrackRole role = cracks ? cracks->role(mid, axis ? &*axis : nullptr, &crack_point) : CrackRole::starts;
     if (role == CrackRole::shadowed) continue;
     if (growth.flaw_length > 0 && role == CrackRole::extends && !(strain > growth_strain * body.failure_strain_factor(n)))
       continue;
     if (growth.segment_length > 0) {
       if (!center) center = body_center_of_mass(body, state);
       if (!shell_grid) shell_grid.emplace(body, state, growth.segment_length);
-      const GreatCircleSegment segment(body, state, n, *center, growth.segment_length);
+      GreatCircleSegment segment(body, state, n, *center, growth.segment_length);
+      // The nonlocal rule's crack advances by the half segment ahead of its tip, away from the
+      // crack: the half behind would run beside the crack, a lattice row off it where the tip
+      // steps sideways, and draw a parallel crack of L at every such step.
+      if (growth.nonlocal_strain && role == CrackRole::extends) segment.ahead_of(crack_point);
       const std::vector<std::size_t> across = shell_grid->across(body, state, segment, mid);
-      double sum = 0;  // in index order: the same bits for any thread count
-      for (const std::size_t k : across) sum += spring_strain(body, state, k) / body.failure_strain_factor(k);
-      if (!(sum >= threshold.failure_strain * static_cast<double>(across.size()))) continue;
+      std::optional<double> nonlocal;
+      if (growth.nonlocal_strain) {
+        std::vector<std::size_t> fitted;
+        for (const std::size_t k : shell_grid->within(state, mid, growth.segment_length / 2))
+          if (!cracks || !cracks->in_neighbourhood(spring_midpoint(body, state, k))) fitted.push_back(k);
+        nonlocal = fitted_axial_strain(body, state, n, *center, fitted);
+      }
+      if (nonlocal) {
+        if (!(*nonlocal >= threshold.failure_strain)) continue;
+      } else {
+        double sum = 0;  // in index order: the same bits for any thread count
+        for (const std::size_t k : across) sum += spring_strain(body, state, k) / body.failure_strain_factor(k);
+        if (!(sum >= threshold.failure_strain * static_cast<double>(across.size()))) continue;
+      }
       fail(n, strain);  // the log names the candidate first, then the segment's other springs in index order
       for (const std::size_t k : across)
         if (k != n) fail(k, spring_strain(body, state, k));
@@ -337,16 +435,18 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
     case FailureRuleKind::local:
     case FailureRuleKind::shadow:
     case FailureRuleKind::griffith:
-    case FailureRuleKind::critical_distance: {
+    case FailureRuleKind::critical_distance:
+    case FailureRuleKind::nonlocal: {
       // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
       if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
       if (!(q.L_S > 0) || !(q.V_SP > 0))
         throw InputError(fmt::format("encounter.failure_rule = \"{}\" needs a shell (no shell springs in this body)",
                                      choice_name(config.encounter.failure_rule)));
-      // The critical_distance rule's cracks grow by half a segment at a time: the crust relaxes
-      // over that length, so the crack tip runs at V_SP / relaxation_crossings at every resolution.
-      const bool by_segments = config.encounter.failure_rule == FailureRuleKind::critical_distance;
+      // The critical_distance and nonlocal rules' cracks grow by half a segment at a time: the crust
+      // relaxes over that length, so the crack tip runs at V_SP / relaxation_crossings at every resolution.
+      const bool by_segments = config.encounter.failure_rule == FailureRuleKind::critical_distance ||
+                               config.encounter.failure_rule == FailureRuleKind::nonlocal;
       const double crossing_time = (by_segments ? config.encounter.flaw_length / 2 : q.L_S) / q.V_SP;
       LocalFailureRule rule;
       rule.relaxation_steps = std::max<std::int64_t>(
@@ -362,6 +462,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
         return GriffithFailureRule{{rule, config.encounter.shadow_distance},
                                    config.encounter.flaw_length,
                                    std::max(1.0, std::sqrt(config.encounter.flaw_length / (2 * q.L_S)))};
+      if (config.encounter.failure_rule == FailureRuleKind::nonlocal)
+        return NonlocalFailureRule{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
       if (by_segments) return CriticalDistanceFailureRule{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
       return rule;
     }
@@ -371,7 +473,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
 
 std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state) {
   const FailureRuleKind kind = config.encounter.failure_rule;
-  if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith && kind != FailureRuleKind::critical_distance)
+  if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith && kind != FailureRuleKind::critical_distance &&
+      kind != FailureRuleKind::nonlocal)
     return "";
   if (body.count_species(Species::shell) == 0) return "";
   const double L_S = derive_quantities(body, state, config.interior.radius).L_S;
@@ -381,10 +484,21 @@ std::string unresolved_rule_lengths(const Config& config, const Body& body, cons
   };
   check("shadow_distance", config.encounter.shadow_distance);
   if (kind != FailureRuleKind::shadow) check("flaw_length", config.encounter.flaw_length);
-  if (short_ones.empty()) return "";
-  return fmt::format("warning: {} (L_S = {:.3g} R): the {} rule's lengths are drawn by the lattice from 3 L_S on "
-                     "(docs/failure-rule.md)",
-                     fmt::join(short_ones, ", "), L_S, choice_name(kind));
+  std::vector<std::string> parts;
+  if (!short_ones.empty())
+    parts.push_back(fmt::format("{} (L_S = {:.3g} R): the {} rule's lengths are drawn by the lattice from 3 L_S on",
+                                fmt::join(short_ones, ", "), L_S, choice_name(kind)));
+  // The nonlocal rule at a crack's tip fits the springs within L = flaw_length / 2 and beyond the
+  // crack neighbourhood r_ex: where L reaches less than L_S beyond r_ex, few springs or none.
+  const double reach = (config.encounter.exclusion_radius + 1) * L_S;
+  if (kind == FailureRuleKind::nonlocal && config.encounter.flaw_length / 2 < reach)
+    parts.push_back(fmt::format("encounter.flaw_length / 2 = {:g} R is less than the crack neighbourhood plus one "
+                                "spacing, (encounter.exclusion_radius + 1) L_S = {:.3g} R: at a crack's tip the "
+                                "nonlocal rule's fit holds few springs, and where it is not determined the rule takes "
+                                "the segment's mean",
+                                config.encounter.flaw_length / 2, reach));
+  if (parts.empty()) return "";
+  return fmt::format("warning: {} (docs/failure-rule.md)", fmt::join(parts, "; "));
 }
 
 std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& threshold, const Body& body,
@@ -398,6 +512,9 @@ std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& 
                       threshold, body, state, log);
   if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule))
     return fail_local(critical->shadow.local, {critical->shadow.shadow_distance, 0.0, 1.0, critical->segment_length},
+                      threshold, body, state, log);
+  if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule))
+    return fail_local(nonlocal->shadow.local, {nonlocal->shadow.shadow_distance, 0.0, 1.0, nonlocal->segment_length, true},
                       threshold, body, state, log);
   if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <stdexcept>
 
@@ -312,7 +313,9 @@ struct FlawScene {
   static constexpr int columns = 25, rows = 13;
   Body body;
   State state;
-  FlawScene() {
+  /// With `diagonals`, also a spring from each node to the next along x and y (length h sqrt 2),
+  /// after the others (their indices unchanged): three directions, as a triangular lattice has.
+  explicit FlawScene(bool diagonals = false) {
     body.mass = {1e6};
     body.species = {0};
     state.position = {0, 0, 0};
@@ -328,6 +331,9 @@ struct FlawScene {
         if (i + 1 < columns) body.springs.push_back({node(i, j), node(i + 1, j)});
         if (j + 1 < rows) body.springs.push_back({node(i, j), node(i, j + 1)});
       }
+    if (diagonals)
+      for (int j = 0; j + 1 < rows; ++j)
+        for (int i = 0; i + 1 < columns; ++i) body.springs.push_back({node(i, j), node(i + 1, j + 1)});
     body.spring_kind.assign(body.springs.size(), 1);
     state.springs.stiffness.assign(body.springs.size(), 1.0);
     state.springs.failed.assign(body.springs.size(), 0);
@@ -347,10 +353,23 @@ struct FlawScene {
     return (vec3_at(state.position, a) - vec3_at(state.position, b)).norm();
   }
   void strain(std::size_t n, double e) { state.springs.rest_length[n] = length(n) / (1 + e); }
+  /// Every spring (or those whose midpoint `where` accepts) at the strain of the uniform field
+  /// e_xx along x (e_yy = e_xy = 0): e_xx c^2, c the x component of its unit axis.
+  void stretch_along_x(double e_xx, const std::function<bool(const Vec3&)>& where = nullptr) {
+    for (std::size_t n = 0; n < body.springs.size(); ++n) {
+      const auto a = static_cast<std::size_t>(body.springs[n][0]), b = static_cast<std::size_t>(body.springs[n][1]);
+      const Vec3 pa = vec3_at(state.position, a), pb = vec3_at(state.position, b);
+      if (where && !where(0.5 * (pa + pb))) continue;
+      const double c = (pb - pa).x() / length(n);
+      strain(n, e_xx * c * c);
+    }
+  }
   /// Neighbourhood 0.06 (just over h), relaxation 1 step, shadow 0.3, flaw 0.22, tip strain 1.5 eps_S.
   static FailureRule griffith() { return GriffithFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22, 1.5}; }
   /// The same neighbourhood, relaxation and shadow; segments of 0.22.
   static FailureRule critical() { return CriticalDistanceFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22}; }
+  /// The nonlocal rule with the same neighbourhood (left out of its fit), relaxation, shadow and segment.
+  static FailureRule nonlocal() { return NonlocalFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22}; }
   static constexpr FailureThreshold threshold{0.01, 0.005};
 };
 
@@ -542,4 +561,138 @@ TEST(CriticalDistanceFailureRule, RelaxesOverHalfASegmentAndIsStoredAsConfigured
   config.encounter.flaw_length = 0.2;
   EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("encounter.flaw_length = 0.2 R is 2.0 L_S"),
             std::string::npos);
+}
+
+/// Whether every spring of `part` is in `log`'s failures.
+bool all_failed(const std::vector<FailureEvent>& log, const std::vector<std::int32_t>& part) {
+  const std::vector<std::int32_t> failed = sorted_failed_springs(log);
+  return std::includes(failed.begin(), failed.end(), part.begin(), part.end());
+}
+
+TEST(NonlocalFailureRule, ACrackOpensWhereTheCrustsFittedStrainReachesEpsS) {
+  // A uniform tension along x at 0.7 eps_S and the centre spring at 3 eps_S: its fitted strain over
+  // the 45 springs within 0.11 (13 along x) is about 0.88 eps_S: nothing fails.
+  FlawScene s(true);
+  s.stretch_along_x(0.007);
+  s.strain(s.x_spring(12, 6), 0.03);
+  std::vector<FailureEvent> log;
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 0u);
+  // At 1.05 eps_S the crack opens by the segment across the candidate, that spring first: the x
+  // springs of rows 4-8 and the 4 diagonals between them.
+  s.stretch_along_x(0.0105);
+  s.strain(s.x_spring(12, 6), 0.03);
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
+  EXPECT_EQ(log.front().spring, static_cast<std::int32_t>(s.x_spring(12, 6)));
+  EXPECT_TRUE(all_failed(log, x_springs(s, 12, 4, 8)));
+}
+
+TEST(NonlocalFailureRule, ACrackGrowsByTheStrainAroundItsTipWithoutTheCracksNeighbourhood) {
+  FlawScene s(true);
+  s.stretch_along_x(0.0105);
+  s.strain(s.x_spring(12, 6), 0.03);
+  std::vector<FailureEvent> log;
+  ASSERT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
+  // The field drops to 0.8 eps_S; the tip spring (row 9) at 3 eps_S and every other intact spring
+  // within the neighbourhood (0.06) of the crack at 10 eps_S: the fit leaves those out and the
+  // rule waits, where the critical_distance rule's segment mean would grow the crack.
+  s.state.step = 11;
+  s.stretch_along_x(0.008);
+  const std::size_t tip = s.x_spring(12, 9);
+  for (std::size_t n = 0; n < s.body.springs.size(); ++n) {
+    if (s.state.springs.failed[n]) continue;
+    const Vec3 mid = 0.5 * (vec3_at(s.state.position, static_cast<std::size_t>(s.body.springs[n][0])) +
+                            vec3_at(s.state.position, static_cast<std::size_t>(s.body.springs[n][1])));
+    for (const auto& e : log)
+      if ((mid - Vec3(e.position[0], e.position[1], e.position[2])).norm() < 0.06) s.strain(n, 0.1);
+  }
+  s.strain(tip, 0.03);
+  FlawScene critical = s;
+  std::vector<FailureEvent> second, by_critical;
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, second), 0u);
+  EXPECT_GT(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, critical.body, critical.state, 0, by_critical),
+            0u);
+  // 1.1 eps_S around the upper tip (|x| < 0.2, y > 0.1: in the crack's shadow), the tip at
+  // 1.5 eps_S: the crack grows by the segment ahead, the tip first: the x springs of rows 9-11 and the diagonals between them,
+  // every one within the segment (x = 0.025, 0.15 +- 0.11).
+  s.state.step = 12;
+  s.stretch_along_x(0.011, [](const Vec3& mid) { return std::abs(mid.x()) < 0.2 && mid.y() > 0.1; });
+  s.strain(tip, 0.015);
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, second), 6u);
+  EXPECT_EQ(second.front().spring, static_cast<std::int32_t>(tip));
+  EXPECT_TRUE(all_failed(second, x_springs(s, 12, 9, 11)));
+  for (const auto& e : second) {
+    EXPECT_NEAR(e.position[0], 0.025, 0.026);
+    EXPECT_NEAR(e.position[1], 0.15, 0.11);
+  }
+}
+
+TEST(NonlocalFailureRule, ASpringBesideACrackIsInItsShadowThoughAFailedDiagonalLiesAheadOfIt) {
+  // After the crack of column 12 opens (its x springs and the diagonals between them), the x
+  // springs of column 13 (0.05 beside it) at 2 eps_S in a field of 1.1 eps_S beside the crack
+  // (|x| < 0.2, |y| < 0.11; 0.8 eps_S elsewhere): each lies within the
+  // neighbourhood of a failed diagonal and more than 45 degrees off that diagonal's axis, which the
+  // critical_distance rule takes for "ahead" (its segment mean, 1.36 eps_S, opens a parallel
+  // crack), but along its own axis from the crack: the nonlocal rule keeps it in the shadow.
+  FlawScene s(true);
+  s.stretch_along_x(0.0105);
+  s.strain(s.x_spring(12, 6), 0.03);
+  std::vector<FailureEvent> log;
+  ASSERT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
+  s.state.step = 11;
+  s.stretch_along_x(0.008);  // the tips (rows 3 and 9) below eps_S
+  s.stretch_along_x(0.011, [](const Vec3& mid) { return std::abs(mid.x()) < 0.2 && std::abs(mid.y()) < 0.11; });
+  for (int j = 4; j <= 8; ++j) s.strain(s.x_spring(13, j), 0.02);
+  FlawScene critical = s;
+  std::vector<FailureEvent> second, by_critical;
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, second), 0u);
+  EXPECT_GT(apply_failure_rule(FlawScene::critical(), FlawScene::threshold, critical.body, critical.state, 0, by_critical),
+            0u);
+  EXPECT_TRUE(all_failed(by_critical, x_springs(critical, 13, 5, 7)));
+}
+
+TEST(NonlocalFailureRule, WhereTheFitIsNotDeterminedTheSegmentsMeanDecides) {
+  // The square lattice without diagonals: x and y springs alone do not determine e_xy, so the rule
+  // decides as critical_distance does (mean 0.96 eps_S waits, 1.04 eps_S opens).
+  for (const double others : {0.007, 0.008}) {
+    FlawScene a, b;
+    for (FlawScene* s : {&a, &b}) {
+      s->strain(s->x_spring(12, 6), 0.02);
+      for (const int j : {4, 5, 7, 8}) s->strain(s->x_spring(12, j), others);
+    }
+    std::vector<FailureEvent> by_nonlocal, by_critical;
+    EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, a.body, a.state, 0, by_nonlocal),
+              apply_failure_rule(FlawScene::critical(), FlawScene::threshold, b.body, b.state, 0, by_critical));
+    EXPECT_EQ(failed_springs(by_nonlocal), failed_springs(by_critical));
+    EXPECT_EQ(by_nonlocal.size(), others > 0.0075 ? 5u : 0u);
+  }
+}
+TEST(NonlocalFailureRule, IsTheCriticalDistanceScheduleStoredAsItsOwnKindAndWarnsWithoutRoomAtTheTip) {
+  Config config;
+  config.encounter.failure_rule = FailureRuleKind::nonlocal;
+  config.encounter.shadow_distance = 0.3;
+  config.encounter.flaw_length = 0.6;
+  Row r;  // L_S = 0.0985 R
+  const double dt = 1e-4;
+  const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, dt);
+  ASSERT_EQ(kind_of(rule), FailureRuleKind::nonlocal);
+  const auto& nonlocal = std::get<NonlocalFailureRule>(rule);
+  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  const auto critical = std::get<CriticalDistanceFailureRule>(make_failure_rule(config, std::nullopt, r.body, r.state, dt));
+  EXPECT_EQ(nonlocal.shadow, critical.shadow);
+  EXPECT_EQ(nonlocal.segment_length, 0.6);
+  const StoredFailureRule stored = stored_failure_rule(rule);
+  EXPECT_EQ(stored.kind, FailureRuleKind::nonlocal);
+  EXPECT_EQ(stored.flaw_length, 0.6);
+  EXPECT_EQ(failure_rule_of(stored), rule);
+  // Half a segment of 0.3 R reaches beyond r_ex + L_S = 0.2955 R: no warning. At 0.4 the warning
+  // names it; the critical_distance rule has none.
+  config.encounter.failure_rule = FailureRuleKind::nonlocal;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
+  config.encounter.flaw_length = 0.4;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state),
+            "warning: encounter.flaw_length / 2 = 0.2 R is less than the crack neighbourhood plus one spacing, "
+            "(encounter.exclusion_radius + 1) L_S = 0.296 R: at a crack's tip the nonlocal rule's fit holds few "
+            "springs, and where it is not determined the rule takes the segment's mean (docs/failure-rule.md)");
+  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
 }

@@ -559,28 +559,54 @@ TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
   EXPECT_GT(failures.front().strain, record.failure_strain);  // the candidate that opened it
 }
 
-// The critical_distance rule in a whole encounter: its record holds the segment, cracks open and
-// grow by whole segments at one step
-// (on the quick body a segment of 0.8 R crosses about 5 springs), and the run resumes bit for bit.
-// The quick crust's failures at eps_S = 3e-3 come from its pre-stress, which a segment's mean
-// averages away (no failure), so eps_S is 1.5e-3 here (23 failures when written).
-TEST(EncounterStage, CriticalDistanceRuleFailsWholeSegmentsAndResumesBitIdentically) {
+// The critical_distance and nonlocal rules in a whole encounter: the record holds the rule and its
+// segment, cracks open and grow by whole segments at one step (on the quick body a segment of 0.8 R
+// crosses about 5 springs), and the run resumes bit for bit. The quick crust's failures at
+// eps_S = 3e-3 come from its pre-stress, which a segment's mean averages away (no failure), so
+// eps_S is 1.5e-3 here (23 failures under critical_distance when written).
+// Under the nonlocal rule a crack's tip advances by the half segment ahead of it, which may hold
+// no other intact spring: a step may then fail one spring, but only at a crack's tip, within the
+// neighbourhood of an earlier failure.
+template <typename Rule>
+void expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, double exclusion_radius, const std::string& name) {
   Config config = quick_config();
-  config.encounter.failure_rule = FailureRuleKind::critical_distance;
+  config.encounter.failure_rule = kind;
+  config.encounter.exclusion_radius = exclusion_radius;
   config.encounter.shadow_distance = 0.8;
   config.encounter.flaw_length = 0.8;  // ~ 3 L_S on the quick body (level 3)
   for (auto& e : config.encounters)
     if (e.name == "strong") e.failure_strain = 1.5e-3;
-  const Checkpoint straight = run_and_check_resume(config, "encounter_critical_distance");
+  const Checkpoint straight = run_and_check_resume(config, name);
   const auto& record = straight.stage.as<EncounterRecord>();
-  const auto* rule = std::get_if<CriticalDistanceFailureRule>(&record.failure_rule);
+  const auto* rule = std::get_if<Rule>(&record.failure_rule);
   ASSERT_NE(rule, nullptr);
   EXPECT_EQ(rule->segment_length, 0.8);
   ASSERT_FALSE(straight.observables.failures.empty());
   const std::map<std::int64_t, int> per_step = failures_per_step(straight.observables.failures);
   EXPECT_GE(per_step.begin()->second, 3);  // the first segment fails at one step
-  // Every failure belongs to a segment: no step fails a single spring.
-  for (const auto& [step, count] : per_step) EXPECT_GE(count, 2) << "step " << step;
+  // Every failure belongs to a segment: no step fails a single spring, except at a tip (nonlocal).
+  const double neighbourhood = rule->shadow.local.exclusion_distance;
+  const auto& failures = straight.observables.failures;
+  for (const auto& [step, count] : per_step) {
+    if (count >= 2) continue;
+    EXPECT_EQ(kind, FailureRuleKind::nonlocal) << "step " << step;
+    const auto lone = std::find_if(failures.begin(), failures.end(), [&](const FailureEvent& e) { return e.step == step; });
+    const Vec3 at(lone->position[0], lone->position[1], lone->position[2]);
+    EXPECT_TRUE(std::any_of(failures.begin(), lone, [&](const FailureEvent& e) {
+      return (Vec3(e.position[0], e.position[1], e.position[2]) - at).norm() < neighbourhood;
+    })) << "step " << step;
+  }
+}
+
+TEST(EncounterStage, CriticalDistanceRuleFailsWholeSegmentsAndResumesBitIdentically) {
+  expect_whole_segments_and_a_bitwise_resume<CriticalDistanceFailureRule>(FailureRuleKind::critical_distance, 2.0,
+                                                                          "encounter_critical_distance");
+}
+
+// The nonlocal rule: a neighbourhood of 1 L_S leaves room for the fit at a crack's tip (half a
+// segment, 0.4 R, against L_S ~ 0.27 R).
+TEST(EncounterStage, NonlocalRuleFailsWholeSegmentsAndResumesBitIdentically) {
+  expect_whole_segments_and_a_bitwise_resume<NonlocalFailureRule>(FailureRuleKind::nonlocal, 1.0, "encounter_nonlocal");
 }
 
 // A crust that varies (docs/crust.md): the quick body's crust given a strength dichotomy (weak toward
