@@ -954,6 +954,14 @@ def resolution_welded_critical_distance(p):
                                         "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
 
 
+@full_table("resolution-welded-nonlocal")
+def resolution_welded_nonlocal(p):
+    """T5 at eps_S = 2e-3 on the welded bodies of levels 3-5 (6 where run) with the nonlocal failure
+    rule (issue 24 item 4); tree gravity at every level, no stability probe."""
+    return resolution_welded_rule_lines(p, "nonlocal", " --set encounters.T5.failure_strain=0.002 --set "
+                                        "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
+
+
 def compare_ensembles_lines(p, a, b, title, *pair):
     """The statistics of ENSEMBLE_COLUMNS from `compare --ensembles A B [--pair ...]`, as a code block."""
     args = ["compare", "--ensembles", a, b] + [x for n in pair for x in ("--pair", n)]

@@ -569,6 +569,17 @@ bool all_failed(const std::vector<FailureEvent>& log, const std::vector<std::int
   return std::includes(failed.begin(), failed.end(), part.begin(), part.end());
 }
 
+/// The diagonal scene in a tension of 1.05 eps_S along x with its centre spring at 3 eps_S, after
+/// the nonlocal rule's check at step 10: the crack across column 12 (the x springs of rows 4-8 and
+/// the 4 diagonals between them) is open and `log` holds its failures.
+FlawScene nonlocal_crack(std::vector<FailureEvent>& log) {
+  FlawScene s(true);
+  s.stretch_along_x(0.0105);
+  s.strain(s.x_spring(12, 6), 0.03);
+  apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log);
+  return s;
+}
+
 TEST(NonlocalFailureRule, ACrackOpensWhereTheCrustsFittedStrainReachesEpsS) {
   // A uniform tension along x at 0.7 eps_S and the centre spring at 3 eps_S: its fitted strain over
   // the 45 springs within 0.11 (13 along x) is about 0.88 eps_S: nothing fails.
@@ -579,19 +590,18 @@ TEST(NonlocalFailureRule, ACrackOpensWhereTheCrustsFittedStrainReachesEpsS) {
   EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 0u);
   // At 1.05 eps_S the crack opens by the segment across the candidate, that spring first: the x
   // springs of rows 4-8 and the 4 diagonals between them.
-  s.stretch_along_x(0.0105);
-  s.strain(s.x_spring(12, 6), 0.03);
-  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
-  EXPECT_EQ(log.front().spring, static_cast<std::int32_t>(s.x_spring(12, 6)));
-  EXPECT_TRUE(all_failed(log, x_springs(s, 12, 4, 8)));
+  std::vector<FailureEvent> opened;
+  const FlawScene open = nonlocal_crack(opened);
+  EXPECT_EQ(opened.size(), 9u);
+  EXPECT_EQ(opened.front().spring, static_cast<std::int32_t>(open.x_spring(12, 6)));
+  EXPECT_TRUE(all_failed(opened, x_springs(open, 12, 4, 8)));
+  for (const auto& e : opened) EXPECT_EQ(e.step, 10);
 }
 
 TEST(NonlocalFailureRule, ACrackGrowsByTheStrainAroundItsTipWithoutTheCracksNeighbourhood) {
-  FlawScene s(true);
-  s.stretch_along_x(0.0105);
-  s.strain(s.x_spring(12, 6), 0.03);
   std::vector<FailureEvent> log;
-  ASSERT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
+  FlawScene s = nonlocal_crack(log);
+  ASSERT_EQ(log.size(), 9u);
   // The field drops to 0.8 eps_S; the tip spring (row 9) at 3 eps_S and every other intact spring
   // within the neighbourhood (0.06) of the crack at 10 eps_S: the fit leaves those out and the
   // rule waits, where the critical_distance rule's segment mean would grow the crack.
@@ -633,11 +643,9 @@ TEST(NonlocalFailureRule, ASpringBesideACrackIsInItsShadowThoughAFailedDiagonalL
   // neighbourhood of a failed diagonal and more than 45 degrees off that diagonal's axis, which the
   // critical_distance rule takes for "ahead" (its segment mean, 1.36 eps_S, opens a parallel
   // crack), but along its own axis from the crack: the nonlocal rule keeps it in the shadow.
-  FlawScene s(true);
-  s.stretch_along_x(0.0105);
-  s.strain(s.x_spring(12, 6), 0.03);
   std::vector<FailureEvent> log;
-  ASSERT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, s.body, s.state, 0, log), 9u);
+  FlawScene s = nonlocal_crack(log);
+  ASSERT_EQ(log.size(), 9u);
   s.state.step = 11;
   s.stretch_along_x(0.008);  // the tips (rows 3 and 9) below eps_S
   s.stretch_along_x(0.011, [](const Vec3& mid) { return std::abs(mid.x()) < 0.2 && std::abs(mid.y()) < 0.11; });
