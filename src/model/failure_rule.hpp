@@ -133,16 +133,13 @@ inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
     stored.growth_strain_factor = griffith->growth_strain_factor;
     return stored;
   }
-  if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule)) {
-    StoredFailureRule stored = shadow_fields(critical->shadow, FailureRuleKind::critical_distance);
-    stored.flaw_length = critical->segment_length;
+  auto segment_fields = [&](const auto& segments) {  // the critical_distance and nonlocal rules
+    StoredFailureRule stored = shadow_fields(segments.shadow, kind_of(rule));
+    stored.flaw_length = segments.segment_length;
     return stored;
-  }
-  if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule)) {
-    StoredFailureRule stored = shadow_fields(nonlocal->shadow, FailureRuleKind::nonlocal);
-    stored.flaw_length = nonlocal->segment_length;
-    return stored;
-  }
+  };
+  if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule)) return segment_fields(*critical);
+  if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule)) return segment_fields(*nonlocal);
   return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0, 0.0, 0.0};
 }
 

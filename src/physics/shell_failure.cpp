@@ -392,7 +392,6 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
       // crack: the half behind would run beside the crack, a lattice row off it where the tip
       // steps sideways, and draw a parallel crack of L at every such step.
       if (growth.nonlocal_strain && role == CrackRole::extends) segment.ahead_of(crack_point);
-      const std::vector<std::size_t> across = shell_grid->across(body, state, segment, mid);
       std::optional<double> nonlocal;
       if (growth.nonlocal_strain) {
         std::vector<std::size_t> fitted;
@@ -400,9 +399,9 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
           if (!cracks || !cracks->in_neighbourhood(spring_midpoint(body, state, k))) fitted.push_back(k);
         nonlocal = fitted_axial_strain(body, state, n, *center, fitted);
       }
-      if (nonlocal) {
-        if (!(*nonlocal >= threshold.failure_strain)) continue;
-      } else {
+      if (nonlocal && !(*nonlocal >= threshold.failure_strain)) continue;  // before the segment is looked for
+      const std::vector<std::size_t> across = shell_grid->across(body, state, segment, mid);
+      if (!nonlocal) {
         double sum = 0;  // in index order: the same bits for any thread count
         for (const std::size_t k : across) sum += spring_strain(body, state, k) / body.failure_strain_factor(k);
         if (!(sum >= threshold.failure_strain * static_cast<double>(across.size()))) continue;
