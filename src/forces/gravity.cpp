@@ -1,5 +1,7 @@
 #include "forces/gravity.hpp"
 
+#include "base/portable_math.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -94,27 +96,38 @@ void pair_rows_fast(std::size_t i, std::size_t j_begin, std::size_t j_end, const
 #endif
 
 /// The portable kernel: the pairs, lanes and order of rows of pair_rows_fast(), in plain
-/// arithmetic: s = ((dx dx + dy dy) + dz dz) + eps^2, f = 1 / (s sqrt(s)), every product and
-/// sum rounded on its own (-ffp-contract=off). Only correctly rounded IEEE operations (+, -, *,
-/// /, sqrt), so any x86-64 build gives the same bits whether the compiler vectorises it with
-/// SSE2 or AVX-512 (lane l always takes j = l mod lanes).
+/// arithmetic: s = ((dx dx + dy dy) + dz dz) + eps^2, y = portable_math::inverse_sqrt(s) (an
+/// integer guess and four Newton steps), f = y (y y), every product and sum rounded on its own
+/// (-ffp-contract=off). Only integer and correctly rounded IEEE operations, so any x86-64 build
+/// gives the same bits whether the compiler vectorises it with SSE2 or AVX-512 (lane l always
+/// takes j = l mod lanes); no division or sqrt, which share the slow divider unit.
 void pair_rows_portable(std::size_t i, std::size_t j_begin, std::size_t j_end, const double* x, const double* y,
                         const double* z, const double* m, double eps2, Accumulator acc) {
   for (std::size_t row = i; row < i + 2; ++row) {
     const double xi = x[row], yi = y[row], zi = z[row], mi = m[row];
     double sx[lanes] = {}, sy[lanes] = {}, sz[lanes] = {};
     for (std::size_t j0 = j_begin; j0 < j_end; j0 += lanes) {
+      // Three lane loops (differences, inverse square roots, sums), each one vector loop (in one
+      // loop GCC 12 left the integer guess scalar; the sums need `omp simd`, as it cannot tell
+      // that acc does not alias the positions). Lane-wise operations: the same roundings scalar
+      // or vectorised.
+      double dx[lanes], dy[lanes], dz[lanes], r[lanes];
+      for (std::size_t l = 0; l < lanes; ++l) {
+        dx[l] = x[j0 + l] - xi, dy[l] = y[j0 + l] - yi, dz[l] = z[j0 + l] - zi;
+        r[l] = dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l] + eps2;
+      }
+      for (std::size_t l = 0; l < lanes; ++l) r[l] = portable_math::inverse_sqrt(r[l]);
+#pragma omp simd
       for (std::size_t l = 0; l < lanes; ++l) {
         const std::size_t j = j0 + l;
-        const double dx = x[j] - xi, dy = y[j] - yi, dz = z[j] - zi;
-        const double f = j > row ? plummer_inverse_cube(dx * dx + dy * dy + dz * dz, eps2) : 0.0;
+        const double f = j > row ? r[l] * (r[l] * r[l]) : 0.0;
         const double fj = m[j] * f, fi = mi * f;
-        sx[l] += fj * dx;
-        sy[l] += fj * dy;
-        sz[l] += fj * dz;
-        acc.x[j] -= fi * dx;
-        acc.y[j] -= fi * dy;
-        acc.z[j] -= fi * dz;
+        sx[l] += fj * dx[l];
+        sy[l] += fj * dy[l];
+        sz[l] += fj * dz[l];
+        acc.x[j] -= fi * dx[l];
+        acc.y[j] -= fi * dy[l];
+        acc.z[j] -= fi * dz[l];
       }
     }
     for (std::size_t l = 0; l < lanes; ++l) {

@@ -76,9 +76,10 @@ double self_gravity_energy(const std::vector<double>& mass, double softening, co
 /// GravityKernel::fast with AVX-512: the inverse cube comes from the hardware reciprocal square root estimate
 /// (vrsqrt14pd, exactly specified, 14 bits) refined by two Newton steps (~1 ulp) instead of a
 /// square root and a division, which share one slow divider unit (that is most of the speed).
-/// GravityKernel::portable (and fast without AVX-512) computes plummer_inverse_cube(): correct,
-/// the same bits in every build, but divider-bound (bench: `portable_ms_per_step`), and its last
-/// bits differ from the AVX-512 fast kernel's.
+/// GravityKernel::portable (and fast without AVX-512) takes the inverse square root from
+/// portable_math::inverse_sqrt (an integer guess and Newton steps in plain IEEE arithmetic): the
+/// same bits in every x86-64 build (bench: `portable_ms_per_step`), its last bits other than the
+/// AVX-512 fast kernel's.
 class DirectGravity {
  public:
   /// mass [N] in M; softening eps in R (Body::softening).

@@ -3,11 +3,9 @@
 #include "base/portable_math.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 
 #if defined(__AVX512F__)
 #include <immintrin.h>
@@ -61,21 +59,12 @@ template <class T, std::size_t N>
 [[gnu::always_inline]] inline Lanes<T, N> fma(Lanes<T, N> a, Lanes<T, N> b, Lanes<T, N> c) {
   return a * b + c;
 }
-/// 1/sqrt(s) for s > 0 from + and * alone: the exponent-halving integer guess (relative error
-/// < 3.5e-2; Lomont 2003, "Fast inverse square root") and Newton steps y <- y (3/2 - (s/2) y^2),
-/// each squaring the error: three in float (to rounding, ~1e-7), four in double (~1e-16). Cheaper
-/// than a correctly rounded sqrt and division (which cost ~20 cycles a vector and took most of the
-/// portable kernel's time), and as portable: the same operations in the same order on every CPU.
+/// 1/sqrt(s) lane by lane: portable_math::inverse_sqrt (an integer guess and Newton steps; the
+/// same bits on every CPU, and cheaper than a correctly rounded sqrt and division).
 template <class T, std::size_t N>
 [[gnu::always_inline]] inline Lanes<T, N> rsqrt(Lanes<T, N> s) {
-  using Bits = std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>;
-  constexpr Bits magic = sizeof(T) == 4 ? Bits(0x5f375a86u) : Bits(0x5fe6eb50c7b537a9ull);
-  constexpr int steps = sizeof(T) == 4 ? 3 : 4;
-  Lanes<T, N> y;
-  for (std::size_t l = 0; l < N; ++l) y.v[l] = std::bit_cast<T>(Bits(magic - (std::bit_cast<Bits>(s.v[l]) >> 1)));
-  for (int k = 0; k < steps; ++k)
-    for (std::size_t l = 0; l < N; ++l) y.v[l] = y.v[l] * (T(1.5) - (T(0.5) * s.v[l]) * (y.v[l] * y.v[l]));
-  return y;
+  for (std::size_t l = 0; l < N; ++l) s.v[l] = portable_math::inverse_sqrt(s.v[l]);
+  return s;
 }
 template <class T, std::size_t N>
 [[gnu::always_inline]] inline Lanes<T, N> keep_lanes(Lanes<T, N> a, unsigned keep) {

@@ -127,8 +127,9 @@ enum class GravityKernel {
   /// With AVX-512: vrsqrt14pd and two Newton steps, explicit fused multiply-adds (fastest);
   /// its bits differ from a build without AVX-512. Without AVX-512: the portable code.
   fast,
-  /// Correctly rounded IEEE sqrt and division, no fused multiply-adds: the same bits in every
-  /// x86-64 build, with or without AVX-512 (tests/forces/test_gravity_kernels.cpp).
+  /// Integer and IEEE +, -, * only (the inverse square root from an integer guess and Newton
+  /// steps, portable_math::inverse_sqrt), no fused multiply-adds: the same bits in every x86-64
+  /// build, with or without AVX-512 (tests/forces/test_gravity_kernels.cpp).
   portable,
 };
 template <>

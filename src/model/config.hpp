@@ -133,8 +133,8 @@ struct EncounterDefaults {
 
 /// How self-gravity is computed.
 struct GravityConfig {
-  /// fast (AVX-512 estimate and Newton steps where available) or portable (correctly rounded
-  /// sqrt and division: the same bits on every x86-64 CPU); model/choices.hpp, docs/determinism.md.
+  /// fast (AVX-512 estimate and Newton steps where available) or portable (plain IEEE
+  /// arithmetic: the same bits on every x86-64 CPU); model/choices.hpp, docs/determinism.md.
   GravityKernel kernel = GravityKernel::fast;
   /// direct (every pair: the reference) or tree (octree with softened multipoles, for large N);
   /// model/choices.hpp, docs/architecture.md, "Self-gravity methods".
