@@ -115,7 +115,8 @@ Json spin_json(const Checkpoint& checkpoint, const EncounterRecord& record, doub
 
 }  // namespace
 
-std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& checkpoint, const fs::path& out) {
+std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& checkpoint, const fs::path& out,
+                                        bool draw) {
   const EncounterRecord& record = stage_record<EncounterRecord>(checkpoint, from.string());
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -176,6 +177,8 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   std::vector<fs::path> figures;
   for (const std::string& figure : encounter_figure_names())
     for (const char* extension : {".png", ".svg"}) figures.push_back(out / (figure + extension));
+  const std::vector<fs::path> earlier_figures = figures;
+  if (!draw) figures.clear();
   // Figure 5 (fig:mush): the body's shape at every snapshot and at the end.
   std::vector<double> shape_times;
   std::vector<PrincipalAxes> shapes;
@@ -294,12 +297,12 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   write_file_atomically(out / "summary.json", json_text(summary));
   // Figures of an earlier analysis are removed first, so that a figure process that fails leaves
   // no figure of another state beside this summary.json (analysis_is_current then redoes it).
-  for (const fs::path& figure : figures) fs::remove(figure, ec);
-  draw_figures("analysis", {out.string()});
+  for (const fs::path& figure : earlier_figures) fs::remove(figure, ec);
+  if (draw) draw_figures("analysis", {out.string()});
   return figures;
 }
 
-bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
+bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint, bool figures_wanted) {
   std::ifstream in(out / "summary.json");
   if (!in) return false;
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -315,7 +318,7 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint) {
   if (!fs::exists(out / "cracks.json") || !fs::exists(out / "figure_data.json")) return false;
   // And one whose figures were not all drawn (the figure script failed or was interrupted).
   const auto figures = summary.find("figures");
-  if (figures == summary.end() || !figures->is_array()) return false;
+  if (figures == summary.end() || !figures->is_array() || (figures_wanted && figures->empty())) return false;
   for (const auto& figure : *figures)
     if (!figure.is_string() || !fs::exists(out / figure.get<std::string>())) return false;
   const auto skipped = summary.find("skipped_snapshots");

@@ -89,13 +89,13 @@ void check_same_body(const fs::path& build_file, const Config& config) {
 namespace {
 
 void analyze_if_stale(const RunContext& ctx, const fs::path& file, const Checkpoint& encounter, const fs::path& out,
-                      const std::string& name) {
-  if (analysis_is_current(out, encounter)) {
+                      const std::string& name, bool figures) {
+  if (analysis_is_current(out, encounter, figures)) {
     say(ctx, fmt::format("analyze {}: up to date ({})", name, out.string()));
     return;
   }
-  analyze_encounter(file, encounter, out);
-  say(ctx, fmt::format("analyze {}: figures and summary.json in {}", name, out.string()));
+  analyze_encounter(file, encounter, out, figures);
+  say(ctx, fmt::format("analyze {}: {}summary.json in {}", name, figures ? "figures and " : "", out.string()));
 }
 
 /// The relaxed body's state_hash against which the encounter folders of the body in `body_dir` were
@@ -340,7 +340,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
       if (kind == per_encounter.back()) {
         stage_options.derived = dir / "analysis";
         stage_options.finish = [&](const Checkpoint& done) {
-          analyze_if_stale(ctx, job.file, done, dir / "analysis", spec.name);
+          analyze_if_stale(ctx, job.file, done, dir / "analysis", spec.name, config.analysis.figures);
         };
       }
       StageResult done = run_stage(job, chain->encounter_config, std::move(stage_options));

@@ -221,7 +221,8 @@ def quick_runs(p):
               "strong", "--set", setting, "--threads", "1")
     p("run", f"{w}/quick.toml", "--out", o / "quick", *KERNEL, *one)
     p("validate", f"{w}/quick.toml", "--out", o / "quick", "--set", "gravity.kernel=portable", *one)
-    p("run", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", *KERNEL, *one)
+    # No figures per encounter (their tables read summary.json; most of the time went to them).
+    p("run", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", "--set", "analysis.figures=false", *KERNEL, *one)
     p("report", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", "--set", "gravity.kernel=portable")
 
 
@@ -464,7 +465,7 @@ def sweep_lines(p, folder):
 
 @quick_table("sweep-quick")
 def sweep_quick(p):
-    lines = ["```", "tidalcrust run workflows/sweep-quick.toml --gravity-kernel portable",
+    lines = ["```", "tidalcrust run workflows/sweep-quick.toml --gravity-kernel portable --set analysis.figures=false",
              "tidalcrust report workflows/sweep-quick.toml --set gravity.kernel=portable", "```", ""]
     return lines + sweep_lines(p, p.work / "sweep-quick")
 

@@ -199,7 +199,7 @@ int command_run(int argc, char** argv) {
                result.relaxed->probe_failure_strain, result.relaxed->probe_failures,
                result.relaxed->probe_max_shell_strain);
   for (const auto& e : result.encounters) {
-    fmt::print("  {}\n    figures: {}\n", e.summary, e.analysis.string());
+    fmt::print("  {}\n    {}: {}\n", e.summary, config.analysis.figures ? "figures" : "summary.json", e.analysis.string());
     if (!e.warning.empty()) fmt::print("  warning: {}\n", e.warning);
   }
   // What a batch job must request (the level-6 T5 run: 567 MB with its analysis figures).

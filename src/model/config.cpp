@@ -267,6 +267,10 @@ void visit_keys(C& c, V&& visit) {
       {"gravity", "force_error", changes_no_result.and_when(tree_gravity, stretch, relax, encounter), "-",
        "tree: target median relative force error per particle", 0, 0.5, true});
 
+  key(c.analysis.figures,
+      {"analysis", "figures", changes_no_result, "-",
+       "draw each encounter's figures (PNG + SVG); false: summary.json, cracks.json and figure_data.json only"});
+
   // issue 12: [material], [resolution], [core] (docs/material.md); all optional. They derive keys
   // of [interior], [shell], [cross] (resolve_material), so they reach the stages that read those.
   key(c.material.youngs_modulus,

@@ -142,6 +142,14 @@ struct GravityConfig {
   double force_error = 1e-4;  ///< tree: target median relative force error per particle
 };
 
+/// What `run` writes after each encounter besides its checkpoint (stages/analysis_stage.hpp).
+struct AnalysisConfig {
+  /// Draw the figures (PNG + SVG, ~16 files, a few seconds of the Python package per encounter);
+  /// false writes summary.json, cracks.json and figure_data.json only (a large sweep's encounters
+  /// are compared in `report`'s figures). Changes no checkpoint.
+  bool figures = true;
+};
+
 // ---- issue 12: a body described by its material, its resolution and a rocky core ----------------
 // docs/material.md. Every key is optional: a workflow without [material] keeps the printed spring
 // constants of [interior], [shell], [cross] bit for bit.
@@ -260,6 +268,7 @@ struct Config {
   RelaxConfig relax;
   EncounterDefaults encounter;
   GravityConfig gravity;
+  AnalysisConfig analysis;
   /// Every encounter: the [[encounters]] tables in file order, then the expansion of `sweep`.
   std::vector<Encounter> encounters;
   /// The [sweep] table, when the workflow has one. to_toml writes it instead of its expansion

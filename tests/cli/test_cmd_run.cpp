@@ -201,6 +201,41 @@ TEST(RunWorkflow, RerunIsNoOpAndChangedValueRerunsOnlyWhatItAffects) {
   EXPECT_TRUE(fs::exists(out / "A" / "analysis" / "fracture_map.png"));
 }
 
+TEST(RunWorkflow, WithoutFiguresTheSummaryIsWrittenAndTheFiguresAreDrawnWhenAskedFor) {
+  const ScratchFolder scratch("run_no_figures");
+  const auto workflow = small_workflow(scratch.path);
+  const auto out = scratch.path / "out", analysis = out / "A" / "analysis";
+  const auto without = run_cli("run " + quoted(workflow) + " --only A --set analysis.figures=false --out " + quoted(out));
+  ASSERT_EQ(without.exit_code, 0) << without.err;
+  EXPECT_NE(without.out.find("analyze A: summary.json in"), std::string::npos) << without.out;
+  EXPECT_NE(without.out.find("    summary.json: "), std::string::npos) << without.out;
+  for (const char* file : {"summary.json", "cracks.json", "figure_data.json"}) EXPECT_TRUE(fs::exists(analysis / file)) << file;
+  std::size_t drawn = 0;
+  for (const auto& entry : fs::directory_iterator(analysis))
+    drawn += entry.path().extension() == ".png" || entry.path().extension() == ".svg";
+  EXPECT_EQ(drawn, 0u);
+  const std::string summary = read_file(analysis / "summary.json");
+  EXPECT_NE(summary.find("\"figures\": []"), std::string::npos) << summary;
+  const std::string a_bytes = read_file(out / "A" / "encounter.h5");
+
+  // Without figures again: up to date. With them: the encounter stays, the analysis is redone.
+  const auto again = run_cli("run " + quoted(workflow) + " --only A --set analysis.figures=false --out " + quoted(out));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("analyze A: up to date"), std::string::npos) << again.out;
+  const auto with = run_cli("run " + quoted(workflow) + " --only A --out " + quoted(out));
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_NE(with.out.find("encounter A: up to date"), std::string::npos) << with.out;
+  EXPECT_NE(with.out.find("analyze A: figures and summary.json in"), std::string::npos) << with.out;
+  EXPECT_TRUE(fs::exists(analysis / "fracture_map.png"));
+  EXPECT_TRUE(fs::exists(analysis / "fracture_map.svg"));
+  EXPECT_EQ(read_file(out / "A" / "encounter.h5"), a_bytes);
+  // Figures drawn count as an analysis without them too (nothing is removed to match the setting).
+  const auto later = run_cli("run " + quoted(workflow) + " --only A --set analysis.figures=false --out " + quoted(out));
+  ASSERT_EQ(later.exit_code, 0) << later.err;
+  EXPECT_NE(later.out.find("analyze A: up to date"), std::string::npos) << later.out;
+  EXPECT_TRUE(fs::exists(analysis / "fracture_map.png"));
+}
+
 TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
   const ScratchFolder scratch("run_bad");
   const fs::path& dir = scratch.path;

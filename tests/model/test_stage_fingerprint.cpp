@@ -144,7 +144,7 @@ TEST(StageFingerprint, EveryKeyChangesExactlyTheFingerprintsOfTheStagesItDeclare
       }
     }
   }
-  EXPECT_EQ(covered.size(), 104u);  // 93 keys of Config, 11 of [[encounters]]
+  EXPECT_EQ(covered.size(), 105u);  // 94 keys of Config, 11 of [[encounters]]
   for (const auto& [key, count] : covered) EXPECT_GT(count, 0) << key << ": no valid other value in any base";
 }
 
@@ -163,11 +163,12 @@ TEST(StageFingerprint, EachValueReachesExactlyTheStagesThatReadIt) {
   EXPECT_EQ(changed_by("integrator.dt=0.001"), "relax, encounter");
   EXPECT_EQ(changed_by("core.radius=0.4"), "build, stretch");  // masses and stiffnesses; the layered pressure
   EXPECT_EQ(changed_by("interior.radius=0.9"), "build, stretch");
-  // Checkpoint intervals, the workflow name and the gravity kernel change no result.
+  // Checkpoint intervals, the workflow name, the gravity kernel and the figures change no result.
   EXPECT_EQ(changed_by("relax.checkpoint_interval=100"), "");
   EXPECT_EQ(changed_by("encounter.checkpoint_interval=100"), "");
   EXPECT_EQ(changed_by("workflow.name=\"other\""), "");
   EXPECT_EQ(changed_by("gravity.kernel=portable"), "");
+  EXPECT_EQ(changed_by("analysis.figures=false"), "");
 }
 
 TEST(StageFingerprint, TheTreeGravityMethodAndItsErrorAreOtherStages) {
