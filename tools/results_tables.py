@@ -927,11 +927,13 @@ def resolution_welded_rule_lines(p, rule, settings="", only=""):
     perturbed pericenters."""
     folders = [f"{rule}-welded-L{level}" for level in (3, 4, 5, 6) if level < 6 or (p.work / f"{rule}-welded-L6").is_dir()]
     levels = "-L4, -L5" + (", -L6" if len(folders) > 3 else "")
+    # The ensembles only of the levels that have one (level 6 may be a single run).
+    ensemble_levels = ", ".join(f"-L{f[-1]}" for f in folders[1:] if (p.work / f / "report" / "ensembles.json").is_file())
     base = f"workflows/welded-L3.toml --set encounter.failure_rule={rule}{settings}"
     lines = resolution_lines(p, folders, [
         f"tidalcrust run {base}{only} --out {rule}-welded-L3   (and {levels})",
-        f"tidalcrust run {base} --set ensemble.members=5 --only T5 --out {rule}-welded-L3   (and {levels})",
-        f"tidalcrust report {base} --set ensemble.members=5 --out {rule}-welded-L3   (and {levels})",
+        f"tidalcrust run {base} --set ensemble.members=5 --only T5 --out {rule}-welded-L3   (and {ensemble_levels})",
+        f"tidalcrust report {base} --set ensemble.members=5 --out {rule}-welded-L3   (and {ensemble_levels})",
         f"tidalcrust compare --resolution {rule}-welded-L{{{','.join(f[-1] for f in folders)}}}/T5/encounter.h5 --json"])
     runs = [(f, f"level {f[-1]}") for f in folders if (p.work / f / "report" / "ensembles.json").is_file()]
     if runs:
