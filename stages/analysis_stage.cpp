@@ -116,7 +116,7 @@ Json spin_json(const Checkpoint& checkpoint, const EncounterRecord& record, doub
 }  // namespace
 
 std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& checkpoint, const fs::path& out,
-                                        bool draw) {
+                                        bool with_figures) {
   const EncounterRecord& record = stage_record<EncounterRecord>(checkpoint, from.string());
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -178,7 +178,7 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   for (const std::string& figure : encounter_figure_names())
     for (const char* extension : {".png", ".svg"}) figures.push_back(out / (figure + extension));
   const std::vector<fs::path> earlier_figures = figures;
-  if (!draw) figures.clear();
+  if (!with_figures) figures.clear();
   // Figure 5 (fig:mush): the body's shape at every snapshot and at the end.
   std::vector<double> shape_times;
   std::vector<PrincipalAxes> shapes;
@@ -298,11 +298,11 @@ std::vector<fs::path> analyze_encounter(const fs::path& from, const Checkpoint& 
   // Figures of an earlier analysis are removed first, so that a figure process that fails leaves
   // no figure of another state beside this summary.json (analysis_is_current then redoes it).
   for (const fs::path& figure : earlier_figures) fs::remove(figure, ec);
-  if (draw) draw_figures("analysis", {out.string()});
+  if (with_figures) draw_figures("analysis", {out.string()});
   return figures;
 }
 
-bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint, bool figures_wanted) {
+bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint, bool with_figures) {
   std::ifstream in(out / "summary.json");
   if (!in) return false;
   const Json summary = Json::parse(in, nullptr, /*allow_exceptions=*/false);
@@ -318,7 +318,7 @@ bool analysis_is_current(const fs::path& out, const Checkpoint& checkpoint, bool
   if (!fs::exists(out / "cracks.json") || !fs::exists(out / "figure_data.json")) return false;
   // And one whose figures were not all drawn (the figure script failed or was interrupted).
   const auto figures = summary.find("figures");
-  if (figures == summary.end() || !figures->is_array() || (figures_wanted && figures->empty())) return false;
+  if (figures == summary.end() || !figures->is_array() || (with_figures && figures->empty())) return false;
   for (const auto& figure : *figures)
     if (!figure.is_string() || !fs::exists(out / figure.get<std::string>())) return false;
   const auto skipped = summary.find("skipped_snapshots");
