@@ -204,6 +204,9 @@ def full_table(name):
 
 
 KERNEL = ["--gravity-kernel", "portable"]  # the same bits on every x86-64 CPU with FMA
+# sweep-quick without each encounter's figures (its tables read summary.json; the figures took
+# most of the time): the run and the command the table prints.
+SWEEP_QUICK_SETTINGS = ["--set", "analysis.figures=false"]
 
 
 def quick_runs(p):
@@ -221,8 +224,7 @@ def quick_runs(p):
               "strong", "--set", setting, "--threads", "1")
     p("run", f"{w}/quick.toml", "--out", o / "quick", *KERNEL, *one)
     p("validate", f"{w}/quick.toml", "--out", o / "quick", "--set", "gravity.kernel=portable", *one)
-    # No figures per encounter (their tables read summary.json; most of the time went to them).
-    p("run", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", "--set", "analysis.figures=false", *KERNEL, *one)
+    p("run", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", *KERNEL, *SWEEP_QUICK_SETTINGS, *one)
     p("report", f"{w}/sweep-quick.toml", "--out", o / "sweep-quick", "--set", "gravity.kernel=portable")
 
 
@@ -465,7 +467,7 @@ def sweep_lines(p, folder):
 
 @quick_table("sweep-quick")
 def sweep_quick(p):
-    lines = ["```", "tidalcrust run workflows/sweep-quick.toml --gravity-kernel portable --set analysis.figures=false",
+    lines = ["```", " ".join(["tidalcrust run workflows/sweep-quick.toml", *KERNEL, *SWEEP_QUICK_SETTINGS]),
              "tidalcrust report workflows/sweep-quick.toml --set gravity.kernel=portable", "```", ""]
     return lines + sweep_lines(p, p.work / "sweep-quick")
 
@@ -928,12 +930,13 @@ def resolution_welded_rule_lines(p, rule, settings="", only=""):
     folders = [f"{rule}-welded-L{level}" for level in (3, 4, 5, 6) if level < 6 or (p.work / f"{rule}-welded-L6").is_dir()]
     levels = "-L4, -L5" + (", -L6" if len(folders) > 3 else "")
     # The ensembles only of the levels that have one (level 6 may be a single run).
-    ensemble_levels = ", ".join(f"-L{f[-1]}" for f in folders[1:] if (p.work / f / "report" / "ensembles.json").is_file())
+    ensembles = [f"-L{f[-1]}" for f in folders[1:] if (p.work / f / "report" / "ensembles.json").is_file()]
+    ensemble_levels = f"   (and {', '.join(ensembles)})" if ensembles else ""
     base = f"workflows/welded-L3.toml --set encounter.failure_rule={rule}{settings}"
     lines = resolution_lines(p, folders, [
         f"tidalcrust run {base}{only} --out {rule}-welded-L3   (and {levels})",
-        f"tidalcrust run {base} --set ensemble.members=5 --only T5 --out {rule}-welded-L3   (and {ensemble_levels})",
-        f"tidalcrust report {base} --set ensemble.members=5 --out {rule}-welded-L3   (and {ensemble_levels})",
+        f"tidalcrust run {base} --set ensemble.members=5 --only T5 --out {rule}-welded-L3{ensemble_levels}",
+        f"tidalcrust report {base} --set ensemble.members=5 --out {rule}-welded-L3{ensemble_levels}",
         f"tidalcrust compare --resolution {rule}-welded-L{{{','.join(f[-1] for f in folders)}}}/T5/encounter.h5 --json"])
     runs = [(f, f"level {f[-1]}") for f in folders if (p.work / f / "report" / "ensembles.json").is_file()]
     if runs:
