@@ -968,6 +968,43 @@ def resolution_welded_nonlocal(p):
                                         "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
 
 
+# The crack neighbourhood of the nonlocal resolution study with r_ex a length: level 5's 3 L_S
+# (0.0377804 R), which level 6's 6 L_S (0.0188869 R) matches to 2e-4; levels 3 and 4 take it as
+# encounter.exclusion_distance.
+NONLOCAL_REX = 0.11334
+
+
+@full_table("resolution-welded-nonlocal-rex")
+def resolution_welded_nonlocal_rex(p):
+    """T5 at eps_S = 2e-3 on the welded bodies of levels 3-6 with the nonlocal failure rule and the
+    crack neighbourhood r_ex = NONLOCAL_REX R at every level, each level an ensemble of members at
+    perturbed pericenters (5 at levels 3-5, 3 at level 6); then levels 5 and 6 compared by
+    `compare --ensembles` (issue 24 item 4)."""
+    settings = ("--set encounter.failure_rule=nonlocal --set encounters.T5.failure_strain=0.002 "
+                "--set gravity.method=tree --set relax.stability_probe=false")
+    folders = [f"nonlocal-rex-welded-L{level}" for level in (3, 4, 5, 6)
+               if (p.work / f"nonlocal-rex-welded-L{level}" / "report" / "ensembles.json").is_file()]
+    lines = commands(
+        f"tidalcrust run workflows/welded-L3.toml {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
+        "--set ensemble.members=5 --only T5 --out nonlocal-rex-welded-L3   (and -L4)",
+        "(level 5: the same with --set encounter.exclusion_radius=3.0 in place of exclusion_distance: r_ex = 3 L_S)",
+        "(level 6, 3 members on the relaxed body of nonlocal-welded-L6, copied to nonlocal-rex-welded-L6/body, for K = 0, 1, 2:",
+        " tidalcrust encounter --from nonlocal-rex-welded-L6/body/relax.h5 --set ensemble.members=3 --encounter T5_mK "
+        "--failure-strain 0.002 --set encounter.failure_rule=nonlocal --set encounter.exclusion_radius=6.0 "
+        "--out nonlocal-rex-welded-L6/T5_mK/encounter.h5   r_ex = 6 L_S)",
+        f"tidalcrust report workflows/welded-L3.toml {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
+        "--set ensemble.members=5 --out nonlocal-rex-welded-L3   (and each level with its run's settings)",
+        "tidalcrust compare --ensembles nonlocal-rex-welded-L5/report/ensembles.json nonlocal-rex-welded-L6/report/ensembles.json")
+    lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f in folders])
+    lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
+                   ensemble_rows(p, [(f, f"level {f[-1]}") for f in folders], "T5"))
+    if all(f"nonlocal-rex-welded-L{level}" in folders for level in (5, 6)):
+        lines += compare_ensembles_lines(p, p.work / "nonlocal-rex-welded-L5" / "report" / "ensembles.json",
+                                         p.work / "nonlocal-rex-welded-L6" / "report" / "ensembles.json",
+                                         "Level 5 (A) against level 6 (B), Welch's t test of the members' means:")
+    return lines
+
+
 def compare_ensembles_lines(p, a, b, title, *pair):
     """The statistics of ENSEMBLE_COLUMNS from `compare --ensembles A B [--pair ...]`, as a code block."""
     args = ["compare", "--ensembles", a, b] + [x for n in pair for x in ("--pair", n)]

@@ -246,6 +246,11 @@ void visit_keys(C& c, V&& visit) {
   key(c.encounter.exclusion_radius,
       {"encounter", "exclusion_radius", reads(relax, encounter), "L_S",
        "local rule: crack neighbourhood radius in mean shell spacings (nonlocal rule: left out of the fit)", 0, 1e3, true});
+  key(c.encounter.exclusion_distance,
+      {"encounter", "exclusion_distance", reads(relax, encounter), "R",
+       "the crack neighbourhood radius as a length, the same at every shell level; replaces exclusion_radius "
+       "(unset: exclusion_radius L_S)",
+       0, 2, true});
   key(c.encounter.relaxation_crossings,
       {"encounter", "relaxation_crossings", reads(relax, encounter), "L_S/V_SP",
        "local rule: relaxation interval in shell elastic crossing times", 0, 1e6, true});
@@ -1258,6 +1263,11 @@ void validate(const Config& config, const std::string& origin) {
       throw InputError(fmt::format("{}: resolution.{}: [resolution] applies only to a [material] body", origin,
                                    resolution_given));
   }
+  // r_ex has one value: as a length (exclusion_distance) or in L_S (exclusion_radius), not both.
+  if (config.encounter.exclusion_distance && config.encounter.exclusion_radius != EncounterDefaults{}.exclusion_radius)
+    throw InputError(fmt::format("{}: encounter.exclusion_distance = {} R and encounter.exclusion_radius = {} L_S both "
+                                 "give the crack neighbourhood's radius; give one of them",
+                                 origin, *config.encounter.exclusion_distance, config.encounter.exclusion_radius));
   if (config.core.present() && *config.core.radius >= config.interior.radius)
     throw InputError(fmt::format("{}: core.radius = {} must be smaller than the interior radius {}", origin,
                                  *config.core.radius, config.interior.radius));

@@ -126,6 +126,10 @@ struct EncounterDefaults {
   /// Default local (its statistics converge with dt); the paper's workflows name "paper".
   FailureRuleKind failure_rule = FailureRuleKind::local;
   double exclusion_radius = 2.0;           ///< local: neighbourhood radius, in mean shell spacings L_S
+  /// The crack neighbourhood radius r_ex as a length, R; unset: exclusion_radius L_S. A length keeps
+  /// r_ex the same at every shell level (a resolution study of the nonlocal rule); given, it replaces
+  /// exclusion_radius, which must then keep its default (docs/failure-rule.md).
+  std::optional<double> exclusion_distance;
   double relaxation_crossings = 2.0;       ///< local: relaxation interval, in shell crossing times L_S/V_SP
   double shadow_distance = 0.2;            ///< shadow: stress-shadow radius of a crack, R (physical, not in L_S)
   double flaw_length = 0.3;                ///< griffith: a_0, a new crack's flaw length; critical_distance, nonlocal: the segment, R

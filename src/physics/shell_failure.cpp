@@ -426,6 +426,10 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
 
 }  // namespace
 
+double crack_neighbourhood_radius(const Config& config, double L_S) {
+  return config.encounter.exclusion_distance.value_or(config.encounter.exclusion_radius * L_S);
+}
+
 FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
                               const State& state, double dt) {
   switch (config.encounter.failure_rule) {
@@ -450,7 +454,7 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
       LocalFailureRule rule;
       rule.relaxation_steps = std::max<std::int64_t>(
           1, std::llround(relaxation_crossings.value_or(config.encounter.relaxation_crossings) * crossing_time / dt));
-      rule.exclusion_distance = config.encounter.exclusion_radius * q.L_S;
+      rule.exclusion_distance = crack_neighbourhood_radius(config, q.L_S);
       rule.configured_fail_interval = config.encounter.fail_interval;
       if (config.encounter.failure_rule == FailureRuleKind::shadow)
         return ShadowFailureRule{rule, config.encounter.shadow_distance};
@@ -489,13 +493,15 @@ std::string unresolved_rule_lengths(const Config& config, const Body& body, cons
                                 fmt::join(short_ones, ", "), L_S, choice_name(kind)));
   // The nonlocal rule at a crack's tip fits the springs within L = flaw_length / 2 and beyond the
   // crack neighbourhood r_ex: where L reaches less than L_S beyond r_ex, few springs or none.
-  const double reach = (config.encounter.exclusion_radius + 1) * L_S;
+  const double reach = crack_neighbourhood_radius(config, L_S) + L_S;
   if (kind == FailureRuleKind::nonlocal && config.encounter.flaw_length / 2 < reach)
     parts.push_back(fmt::format("encounter.flaw_length / 2 = {:g} R is less than the crack neighbourhood plus one "
-                                "spacing, (encounter.exclusion_radius + 1) L_S = {:.3g} R: at a crack's tip the "
+                                "spacing, r_ex + L_S = {:.3g} R (r_ex: {}): at a crack's tip the "
                                 "nonlocal rule's fit holds few springs, and where it is not determined the rule takes "
                                 "the segment's mean",
-                                config.encounter.flaw_length / 2, reach));
+                                config.encounter.flaw_length / 2, reach,
+                                config.encounter.exclusion_distance ? "encounter.exclusion_distance"
+                                                                    : "encounter.exclusion_radius L_S"));
   if (parts.empty()) return "";
   return fmt::format("warning: {} (docs/failure-rule.md)", fmt::join(parts, "; "));
 }

@@ -51,11 +51,15 @@ struct FailureThreshold {
 /// The rule config.encounter.failure_rule names, for a body: paper: fail_interval =
 /// encounter.fail_interval. local: relaxation_steps = max(1, round(relaxation_crossings * L_S /
 /// V_SP / dt)) (relaxation_crossings: the encounter's override, else
-/// encounter.relaxation_crossings) and exclusion_distance = exclusion_radius * L_S, with L_S the
+/// encounter.relaxation_crossings) and exclusion_distance = crack_neighbourhood_radius, with L_S the
 /// mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S) the shell P-wave speed (eq. 19) of this
 /// body; shadow and griffith the same; critical_distance and nonlocal with flaw_length / 2 in place of L_S in
 /// the relaxation interval. The one place where these times become steps. InputError for the local rule on a body
 /// without a shell.
+/// r_ex, the crack neighbourhood's radius (R): encounter.exclusion_distance when given, else
+/// encounter.exclusion_radius * L_S, L_S the mean shell rest length (R) of the body (docs/failure-rule.md).
+double crack_neighbourhood_radius(const Config& config, double L_S);
+
 FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
                               const State& state, double dt);
 

@@ -163,7 +163,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
   const auto keys = describe_keys(config);
-  EXPECT_EQ(keys.size(), 94u);  // every key of Config, [workflow] to [spin] and [ocean], and [analysis]
+  EXPECT_EQ(keys.size(), 95u);  // every key of Config, [workflow] to [spin] and [ocean], and [analysis]
   for (const KeyInfo& key : keys) {
     if (!key.value) {  // an unset optional key: to_toml leaves it out
       EXPECT_TRUE(key.optional) << key.section << "." << key.name;
@@ -392,6 +392,22 @@ TEST(Config, EveryNameThatBecomesAPathIsOnePortableFileName) {
   // The control character is shown escaped: the message stays one line.
   const std::string nul = one_line_error("[workflow]\nname = \"a\\u0000b\"\n");
   EXPECT_NE(nul.find("a\\x00b"), std::string::npos) << nul;
+}
+
+TEST(Config, TheCrackNeighbourhoodIsGivenOnceAsALengthOrInSpacings) {
+  // As a length (R), in (0, 2]; with exclusion_radius at its default; both given: one clear line.
+  EXPECT_EQ(*parse_config("[encounter]\nexclusion_distance = 0.113\n", "w.toml").encounter.exclusion_distance, 0.113);
+  EXPECT_FALSE(parse_config("[encounter]\nexclusion_radius = 3\n", "w.toml").encounter.exclusion_distance);
+  const std::string both = one_line_error("[encounter]\nexclusion_radius = 3\nexclusion_distance = 0.113\n");
+  EXPECT_NE(both.find("give one of them"), std::string::npos) << both;
+  for (const char* out_of_range : {"0", "-0.1", "2.5", "\"0.1 km\""})
+    EXPECT_NE(one_line_error(fmt::format("[encounter]\nexclusion_distance = {}\n", out_of_range)).find("exclusion_distance"),
+              std::string::npos)
+        << out_of_range;
+  Config config;
+  apply_override(config, "encounter.exclusion_distance=0.2");
+  apply_override(config, "encounter.exclusion_radius=6");
+  EXPECT_THROW(validate(config, "--set"), InputError);
 }
 
 TEST(Config, NestingIsBoundedBeforeParsing) {

@@ -201,6 +201,13 @@ TEST(FailureRuleSchedule, LocalIntervalIsCrossingTimesInStepsConvertedOnce) {
   EXPECT_EQ(rule.relaxation_steps, std::llround(2.0 * mean / V_SP / 0.001));
   EXPECT_NEAR(rule.exclusion_distance, 1.5 * mean, 1e-15);
   EXPECT_EQ(rule.configured_fail_interval, config.encounter.fail_interval);
+  // r_ex given as a length is that length on any lattice (the default exclusion_radius with it).
+  Config in_R = config;
+  in_R.encounter.exclusion_radius = EncounterDefaults{}.exclusion_radius;
+  in_R.encounter.exclusion_distance = 0.113;
+  EXPECT_EQ(std::get<LocalFailureRule>(make_failure_rule(in_R, std::nullopt, r.body, r.state, 0.001)).exclusion_distance,
+            0.113);
+  EXPECT_EQ(crack_neighbourhood_radius(config, mean), 1.5 * mean);
   // An encounter's own relaxation interval wins over the workflow's.
   EXPECT_EQ(local(0.5, 0.001).relaxation_steps, std::llround(0.5 * mean / V_SP / 0.001));
   // Half the time step: twice the steps, the same physical interval (to rounding).
@@ -699,8 +706,13 @@ TEST(NonlocalFailureRule, IsTheCriticalDistanceScheduleStoredAsItsOwnKindAndWarn
   config.encounter.flaw_length = 0.4;
   EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state),
             "warning: encounter.flaw_length / 2 = 0.2 R is less than the crack neighbourhood plus one spacing, "
-            "(encounter.exclusion_radius + 1) L_S = 0.296 R: at a crack's tip the nonlocal rule's fit holds few "
-            "springs, and where it is not determined the rule takes the segment's mean (docs/failure-rule.md)");
+            "r_ex + L_S = 0.296 R (r_ex: encounter.exclusion_radius L_S): at a crack's tip the nonlocal rule's fit "
+            "holds few springs, and where it is not determined the rule takes the segment's mean (docs/failure-rule.md)");
+  // r_ex given as a length: the reach is that length plus one spacing (0.203 + 0.0987 R).
+  config.encounter.exclusion_distance = 0.203;
+  EXPECT_NE(unresolved_rule_lengths(config, r.body, r.state).find("r_ex + L_S = 0.302 R (r_ex: encounter.exclusion_distance)"),
+            std::string::npos);
+  config.encounter.exclusion_distance.reset();
   config.encounter.failure_rule = FailureRuleKind::critical_distance;
   EXPECT_EQ(unresolved_rule_lengths(config, r.body, r.state), "");
 }

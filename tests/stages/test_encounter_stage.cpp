@@ -567,21 +567,27 @@ TEST(EncounterStage, GriffithRuleOpensFlawsAndResumesBitIdentically) {
 // Under the nonlocal rule a crack's tip advances by the half segment ahead of it, which may hold
 // no other intact spring: a step may then fail one spring, but only at a crack's tip, within the
 // neighbourhood of an earlier failure.
+// Returns the encounter run straight through; `exclusion_distance`, when given, sets r_ex as a
+// length (with exclusion_radius at its default).
 template <typename Rule>
-void expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, double exclusion_radius, const std::string& name) {
+Checkpoint expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, double exclusion_radius, const std::string& name,
+                                                      std::optional<double> exclusion_distance = std::nullopt) {
   Config config = quick_config();
   config.encounter.failure_rule = kind;
   config.encounter.exclusion_radius = exclusion_radius;
+  config.encounter.exclusion_distance = exclusion_distance;
   config.encounter.shadow_distance = 0.8;
   config.encounter.flaw_length = 0.8;  // ~ 3 L_S on the quick body (level 3)
   for (auto& e : config.encounters)
     if (e.name == "strong") e.failure_strain = 1.5e-3;
-  const Checkpoint straight = run_and_check_resume(config, name);
+  Checkpoint straight = run_and_check_resume(config, name);
   const auto& record = straight.stage.as<EncounterRecord>();
   const auto* rule = std::get_if<Rule>(&record.failure_rule);
-  ASSERT_NE(rule, nullptr);
+  EXPECT_NE(rule, nullptr);
+  if (!rule) return straight;
   EXPECT_EQ(rule->segment_length, 0.8);
-  ASSERT_FALSE(straight.observables.failures.empty());
+  EXPECT_FALSE(straight.observables.failures.empty());
+  if (straight.observables.failures.empty()) return straight;
   const std::map<std::int64_t, int> per_step = failures_per_step(straight.observables.failures);
   EXPECT_GE(per_step.begin()->second, 3);  // the first segment fails at one step
   // Every failure belongs to a segment: no step fails a single spring, except at a tip (nonlocal).
@@ -596,6 +602,7 @@ void expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, double exc
       return (Vec3(e.position[0], e.position[1], e.position[2]) - at).norm() < neighbourhood;
     })) << "step " << step;
   }
+  return straight;
 }
 
 TEST(EncounterStage, CriticalDistanceRuleFailsWholeSegmentsAndResumesBitIdentically) {
@@ -604,9 +611,21 @@ TEST(EncounterStage, CriticalDistanceRuleFailsWholeSegmentsAndResumesBitIdentica
 }
 
 // The nonlocal rule: a neighbourhood of 1 L_S leaves room for the fit at a crack's tip (half a
-// segment, 0.4 R, against L_S ~ 0.27 R).
+// segment, 0.4 R, against r_ex + L_S = 0.30 R).
+// Then the same neighbourhood given as a length (encounter.exclusion_distance, R): the record stores
+// that length and the encounter is the same bit for bit.
 TEST(EncounterStage, NonlocalRuleFailsWholeSegmentsAndResumesBitIdentically) {
-  expect_whole_segments_and_a_bitwise_resume<NonlocalFailureRule>(FailureRuleKind::nonlocal, 1.0, "encounter_nonlocal");
+  const Checkpoint in_spacings =
+      expect_whole_segments_and_a_bitwise_resume<NonlocalFailureRule>(FailureRuleKind::nonlocal, 1.0, "encounter_nonlocal");
+  const double r_ex =
+      std::get<NonlocalFailureRule>(in_spacings.stage.as<EncounterRecord>().failure_rule).shadow.local.exclusion_distance;
+  EXPECT_NEAR(r_ex, 0.150, 0.005);  // 1 L_S of the quick body (level 3)
+  const Checkpoint as_length = expect_whole_segments_and_a_bitwise_resume<NonlocalFailureRule>(
+      FailureRuleKind::nonlocal, EncounterDefaults{}.exclusion_radius, "encounter_nonlocal_length", r_ex);
+  EXPECT_EQ(std::get<NonlocalFailureRule>(as_length.stage.as<EncounterRecord>().failure_rule).shadow.local.exclusion_distance,
+            r_ex);
+  EXPECT_EQ(state_hash(as_length.state), state_hash(in_spacings.state));
+  expect_same_failures(as_length.observables.failures, in_spacings.observables.failures);
 }
 
 // A crust that varies (docs/crust.md): the quick body's crust given a strength dichotomy (weak toward
