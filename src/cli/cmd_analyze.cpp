@@ -23,6 +23,8 @@ int command_analyze(int argc, char** argv) {
   options.add_options()
       ("from", "encounter checkpoint (ENC.h5)", cxxopts::value<std::string>())
       ("out", "output folder for figures and summary.json", cxxopts::value<std::string>())
+      ("no-figures", "write summary.json, cracks.json and figure_data.json without drawing the figures (as "
+                     "[analysis] figures = false does for run)")
       ("h,help", "show this help");
   const auto parsed = parse_arguments(options, argc, argv);
   if (parsed.count("help")) {
@@ -35,14 +37,18 @@ int command_analyze(int argc, char** argv) {
   const fs::path out = parsed["out"].as<std::string>();
 
   const Checkpoint checkpoint = read_checkpoint(from);
-  const auto figures = analyze_encounter(from, checkpoint, out);
+  const bool with_figures = parsed.count("no-figures") == 0;
+  const auto figures = analyze_encounter(from, checkpoint, out, with_figures);
   const std::string& name = stage_record<EncounterRecord>(checkpoint, from.string()).encounter.name;
   fmt::print("{}\n", fracture_summary_line(name.empty() ? from.stem().string() : name,
                                            analyze_fractures(checkpoint)));
   if (const std::string warning = failure_trend_line(name.empty() ? from.stem().string() : name, checkpoint);
       !warning.empty())
     fmt::print("warning: {}\n", warning);
-  fmt::print("wrote {} figures and summary.json to {}\n", figures.size(), out.string());
+  if (with_figures)
+    fmt::print("wrote {} figures and summary.json to {}\n", figures.size(), out.string());
+  else
+    fmt::print("wrote summary.json to {} (no figures: --no-figures)\n", out.string());
   return exit_ok;
 }
 

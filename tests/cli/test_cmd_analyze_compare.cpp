@@ -125,6 +125,26 @@ TEST_F(AnalyzeCompareCli, AnalyzeWritesFiguresAndSummary) {
   EXPECT_EQ(shapes[0]["c_over_a"], shapes[1]["c_over_a"]);
 }
 
+// --no-figures writes the numbers without the figure process (here: no interpreter at all) and
+// removes the figures of an earlier analysis, as `[analysis] figures = false` does for run.
+TEST_F(AnalyzeCompareCli, AnalyzeWithoutFiguresWritesTheNumbersAndNoFigure) {
+  const fs::path out = dir / "analysis";
+  const std::string args = "analyze --from " + quoted(encounter) + " --out " + quoted(out);
+  const std::string no_python = "TIDALCRUST_PYTHON=" + (dir / "no-python").string();
+  ASSERT_EQ(run_cli(args).exit_code, 0);
+  ASSERT_TRUE(fs::exists(out / "fracture_map.png"));
+  const auto r = run_cli(args + " --no-figures", no_python);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("no figures"), std::string::npos) << r.out;
+  const Json json = Json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(json["figures"], Json::array());
+  EXPECT_EQ(json["failures"]["count"], 5);
+  EXPECT_TRUE(fs::exists(out / "cracks.json"));
+  EXPECT_TRUE(fs::exists(out / "figure_data.json"));
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_NE(entry.path().extension(), ".png") << entry.path();
+}
+
 // The figures are drawn by a child process (figures/figure_script.hpp); without its interpreter,
 // or when it fails, analyze says so in one line (exit 2) after the numbers are written, and the
 // analysis is not current, so `run` draws the figures again.
