@@ -48,24 +48,25 @@ struct FailureThreshold {
   double failed_stiffness_factor = 0;  ///< F_Sk
 };
 
-/// The rule config.encounter.failure_rule names, for a body: paper: fail_interval =
-/// encounter.fail_interval. local: relaxation_steps = max(1, round(relaxation_crossings * L_S /
-/// V_SP / dt)) (relaxation_crossings: the encounter's override, else
-/// encounter.relaxation_crossings) and exclusion_distance = crack_neighbourhood_radius, with L_S the
-/// mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S) the shell P-wave speed (eq. 19) of this
-/// body; shadow and griffith the same; critical_distance and nonlocal with flaw_length / 2 in place of L_S in
-/// the relaxation interval. The one place where these times become steps. InputError for the local rule on a body
-/// without a shell.
 /// r_ex, the crack neighbourhood's radius (R): encounter.exclusion_distance when given, else
 /// encounter.exclusion_radius * L_S, L_S the mean shell rest length (R) of the body (docs/failure-rule.md).
 double crack_neighbourhood_radius(const Config& config, double L_S);
 
+/// The rule config.encounter.failure_rule names, for a body: paper: fail_interval =
+/// encounter.fail_interval. local: relaxation_steps = max(1, round(relaxation_crossings * L_S /
+/// V_SP / dt)) (relaxation_crossings: the encounter's override, else
+/// encounter.relaxation_crossings) and exclusion_distance = crack_neighbourhood_radius (r_ex), with L_S the
+/// mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S) the shell P-wave speed (eq. 19) of this
+/// body; shadow and griffith the same; critical_distance and nonlocal with flaw_length / 2 in place of L_S in
+/// the relaxation interval. The one place where these times become steps. InputError for the local rule on a body
+/// without a shell.
 FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
                               const State& state, double dt);
 
 /// "warning: ..." naming each length of the configured rule (shadow_distance, flaw_length) shorter
-/// than 3 L_S on this body, where the lattice cannot draw it (docs/failure-rule.md); "" when all
-/// are resolved, for the other rules, or without a shell.
+/// than 3 L_S on this body, where the lattice cannot draw it, and for the nonlocal rule a half
+/// segment shorter than r_ex + L_S (docs/failure-rule.md); "" when all are resolved, for the other
+/// rules, or without a shell.
 std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state);
 
 /// Applies `rule` after a step: whether this step checks (paper: (step - start_step) %
