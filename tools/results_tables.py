@@ -946,6 +946,12 @@ def resolution_welded_rule_lines(p, rule, settings="", only=""):
     return lines
 
 
+# The welded resolution studies at eps_S = 2e-3 (the critical_distance and nonlocal rules): T5's
+# failure strain, tree gravity at every level, no stability probe.
+T5_AT_2E3_TREE = ("--set encounters.T5.failure_strain=0.002 --set gravity.method=tree "
+                  "--set relax.stability_probe=false")
+
+
 @full_table("resolution-welded-griffith")
 def resolution_welded_griffith(p):
     """T5 on the welded bodies of levels 3-5 with the griffith failure rule (issue 24 item 4)."""
@@ -956,16 +962,14 @@ def resolution_welded_griffith(p):
 def resolution_welded_critical_distance(p):
     """T5 at eps_S = 2e-3 on the welded bodies of levels 3-5 (6 where run) with the critical_distance
     failure rule (issue 24 item 4); tree gravity at every level, no stability probe."""
-    return resolution_welded_rule_lines(p, "critical_distance", " --set encounters.T5.failure_strain=0.002 --set "
-                                        "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
+    return resolution_welded_rule_lines(p, "critical_distance", " " + T5_AT_2E3_TREE, only=" --only T5")
 
 
 @full_table("resolution-welded-nonlocal")
 def resolution_welded_nonlocal(p):
     """T5 at eps_S = 2e-3 on the welded bodies of levels 3-5 (6 where run) with the nonlocal failure
     rule (issue 24 item 4); tree gravity at every level, no stability probe."""
-    return resolution_welded_rule_lines(p, "nonlocal", " --set encounters.T5.failure_strain=0.002 --set "
-                                        "gravity.method=tree --set relax.stability_probe=false", only=" --only T5")
+    return resolution_welded_rule_lines(p, "nonlocal", " " + T5_AT_2E3_TREE, only=" --only T5")
 
 
 # The crack neighbourhood of the nonlocal resolution study with r_ex a length: level 5's 3 L_S
@@ -980,8 +984,7 @@ def resolution_welded_nonlocal_rex(p):
     crack neighbourhood r_ex = NONLOCAL_REX R at every level, each level an ensemble of members at
     perturbed pericenters (5 at levels 3-5, 3 at level 6); then levels 5 and 6 compared by
     `compare --ensembles` (issue 24 item 4)."""
-    settings = ("--set encounter.failure_rule=nonlocal --set encounters.T5.failure_strain=0.002 "
-                "--set gravity.method=tree --set relax.stability_probe=false")
+    settings = "--set encounter.failure_rule=nonlocal " + T5_AT_2E3_TREE
     folders = [f"nonlocal-rex-welded-L{level}" for level in (3, 4, 5, 6)
                if (p.work / f"nonlocal-rex-welded-L{level}" / "report" / "ensembles.json").is_file()]
     lines = commands(
