@@ -122,12 +122,19 @@ class CrackMap {
         add(body, state, n);
   }
   /// With `candidate_axis` (the nonlocal rule: the candidate's unit axis), "ahead" is judged
-  /// against it instead of the failed spring's: a candidate extends a crack that lies across its
-  /// own axis, where its segment continues the crack; one pulled along the direction in which the
-  /// crack lies beside it would open a parallel crack. A crack drawn on the lattice zig-zags over
-  /// springs of all three directions, so the failed spring's own axis is not the crack's normal.
-  /// `crack_point`, when given, receives the midpoint of the failed spring a candidate extends.
+  /// against it instead of the failed spring's, and for the crack as a whole: a candidate extends
+  /// when the mean offset to the failed springs within the neighbourhood lies at least 45 degrees
+  /// off its own axis (the crack lies across it, behind its tip, where its segment continues the
+  /// crack), and is in the crack's shadow otherwise. Judged spring by spring, a candidate on a
+  /// crack's flank, pulled across it, finds failed springs further along the crack more than 45
+  /// degrees off its axis whenever the neighbourhood is wider than its distance from the crack, and
+  /// opened a parallel crack there, as many lattice rows beside it as the neighbourhood holds; a
+  /// crack drawn on the lattice zig-zags over springs of all three directions, so neither a failed
+  /// spring's own axis nor the nearest one's offset is the crack's normal. `crack_point`, when
+  /// given, receives the midpoint of the failed spring a candidate extends (with `candidate_axis`:
+  /// the nearest within the neighbourhood, the tip).
   CrackRole role(const Vec3& mid, const Vec3* candidate_axis = nullptr, Vec3* crack_point = nullptr) const {
+    if (candidate_axis) return role_across(mid, *candidate_axis, crack_point);
     bool in_shadow = false;
     for (const std::int32_t id : grid_.closer_than(mid, search_radius_)) {
       const Vec3 offset = mid - grid_.point(id);
@@ -152,6 +159,31 @@ class CrackMap {
   bool in_neighbourhood(const Vec3& mid) const { return grid_.any_closer_than(mid, neighbourhood_); }
 
  private:
+  CrackRole role_across(const Vec3& mid, const Vec3& axis, Vec3* crack_point) const {
+    bool in_shadow = false;
+    Vec3 offset_sum = Vec3::Zero();  // summed in the grid's order: the same bits for any thread count
+    std::int32_t nearest = -1;
+    double nearest_distance = 0;
+    for (const std::int32_t id : grid_.closer_than(mid, search_radius_)) {
+      const Vec3 offset = mid - grid_.point(id);
+      const double distance = offset.norm();
+      in_shadow = in_shadow || distance < shadow_distance_;
+      if (!(distance < neighbourhood_)) continue;
+      offset_sum += offset;
+      if (nearest < 0 || distance < nearest_distance || (distance == nearest_distance && id < nearest)) {
+        nearest = id;
+        nearest_distance = distance;
+      }
+    }
+    if (nearest < 0) return in_shadow ? CrackRole::shadowed : CrackRole::starts;
+    // cos 45 deg = 1/sqrt(2): |m . axis| <= |m| / sqrt(2) for the mean offset m, squared (the
+    // count cancels; a sum of zero, a candidate midway between two cracks' ends in line, extends).
+    const double along = offset_sum.dot(axis);
+    if (!(2 * along * along <= offset_sum.squaredNorm())) return CrackRole::shadowed;
+    if (crack_point) *crack_point = grid_.point(nearest);
+    return CrackRole::extends;
+  }
+
   double shadow_distance_;
   double neighbourhood_;
   double search_radius_;

@@ -665,6 +665,37 @@ TEST(NonlocalFailureRule, ASpringBesideACrackIsInItsShadowThoughAFailedDiagonalL
   EXPECT_TRUE(all_failed(by_critical, x_springs(critical, 13, 5, 7)));
 }
 
+TEST(NonlocalFailureRule, ASpringOnACracksFlankIsInItsShadowHoweverWideTheNeighbourhood) {
+  // The crack of column 12 (rows 4-8), then a neighbourhood of 0.12 (2.4 h), segments of 0.44 and
+  // a shadow of 0.6; a field of 1.1 eps_S over |x| < 0.35 except along column 12 beyond the crack,
+  // and the x springs of columns 11 and 13 (0.05 to either side) at 2 eps_S beside it. Each of
+  // those has failed springs of the crack within the neighbourhood more than 45 degrees off its own
+  // axis (those two rows up or down, at (0.05, 0.1)), which judged spring by spring would make it
+  // "ahead" and open a parallel crack a lattice row off; the mean offset of the crack's springs
+  // lies along its axis (0 to 27 degrees), so it stays in the crack's shadow. Its fit (springs
+  // beyond 0.12 from the crack, all in the 1.1 eps_S field) reaches eps_S: only the role holds it.
+  std::vector<FailureEvent> log;
+  FlawScene s = nonlocal_crack(log);
+  ASSERT_EQ(log.size(), 9u);
+  s.state.step = 11;
+  s.stretch_along_x(0.008);
+  s.stretch_along_x(0.011, [](const Vec3& mid) {
+    const bool column_12_beyond = mid.x() > 0 && mid.x() < 0.05 && std::abs(mid.y()) > 0.11;
+    return std::abs(mid.x()) < 0.35 && !column_12_beyond;
+  });
+  for (const int column : {11, 13})
+    for (int j = 4; j <= 8; ++j) s.strain(s.x_spring(column, j), 0.02);
+  const FailureRule wide = NonlocalFailureRule{{LocalFailureRule{1, 0.12, 1}, 0.6}, 0.44};
+  std::vector<FailureEvent> second;
+  apply_failure_rule(wide, FlawScene::threshold, s.body, s.state, 0, second);
+  const std::vector<std::int32_t> failed = sorted_failed_springs(second);
+  for (const int column : {11, 13})
+    for (const std::int32_t n : x_springs(s, column, 4, 8))
+      EXPECT_FALSE(std::binary_search(failed.begin(), failed.end(), n)) << "column " << column << " spring " << n;
+  // What fails grows from a tip: beyond the crack's ends (|y| > 0.1), away from its flanks.
+  for (const auto& e : second) EXPECT_GT(std::abs(e.position[1]), 0.1) << e.spring;
+}
+
 TEST(NonlocalFailureRule, WhereTheFitIsNotDeterminedTheSegmentsMeanDecides) {
   // The square lattice without diagonals: x and y springs alone do not determine e_xy, so the rule
   // decides as critical_distance does (mean 0.96 eps_S waits, 1.04 eps_S opens).
