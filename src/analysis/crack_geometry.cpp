@@ -178,16 +178,21 @@ double crack_azimuth_deg(const Vec3& position, const Vec3& spring, const Vec3& s
 CrackOrientations crack_orientations(const std::vector<double>& azimuths_deg) {
   CrackOrientations o;
   double sum = 0;
+  std::array<std::int64_t, CrackOrientations::sectors> in_sector{};
   for (const double a : azimuths_deg) {
     if (!std::isfinite(a)) continue;
     ++o.elements;
     sum += std::abs(std::sin(a / degrees));
-    // Bins centred on 0, 10, ..., 170 deg; [175, 180) joins bin 0 (the same axis as [0, 5)).
+    // Bins centred on 0, 10, ..., 170 deg; [175, 180) joins bin 0 (the same axis as [0, 5)); so
+    // for the sectors centred on 0, 45, 90, 135 deg.
     const auto bin = static_cast<std::size_t>(std::floor((a + 0.5 * o.bin_width_deg) / o.bin_width_deg)) % o.bins;
     ++o.rose[bin];
+    ++in_sector[static_cast<std::size_t>(std::floor((a + 0.5 * o.sector_width_deg) / o.sector_width_deg)) % o.sectors];
   }
   if (o.elements > 0) {
     o.concentricity = sum / static_cast<double>(o.elements);
+    for (std::size_t k = 0; k < o.sectors; ++k)
+      o.sector_share[k] = static_cast<double>(in_sector[k]) / static_cast<double>(o.elements);
     const auto peak = std::max_element(o.rose.begin(), o.rose.end());  // the first of equal maxima
     o.rose_peak_deg = static_cast<double>(peak - o.rose.begin()) * o.bin_width_deg;
   }
@@ -240,6 +245,11 @@ Json crack_geometry_json(const CrackGeometry& g) {
     centres.push_back(static_cast<double>(k) * CrackOrientations::bin_width_deg);
   const CrackOrientations& o = g.orientations;
   const auto number = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+  Json sector_centres = Json::array(), sector_share = Json::array();
+  for (std::size_t k = 0; k < CrackOrientations::sectors; ++k) {
+    sector_centres.push_back(static_cast<double>(k) * CrackOrientations::sector_width_deg);
+    sector_share.push_back(number(o.sector_share[k]));
+  }
   return {{"units", "angles in degrees, lengths in R; orbital frame: subsatellite point at longitude 90, latitude 0; "
                     "crack azimuths from the local direction toward the subsatellite point (docs/crack-geometry.md)"},
           {"arc_selection",
@@ -257,7 +267,10 @@ Json crack_geometry_json(const CrackGeometry& g) {
             {"bin_centres_deg", centres},
             {"histogram", o.rose},
             {"peak_deg", number(o.rose_peak_deg)},
-            {"elements", o.elements}}},
+            {"elements", o.elements},
+            {"sector_width_deg", CrackOrientations::sector_width_deg},
+            {"sector_centres_deg", sector_centres},
+            {"sector_share", sector_share}}},
           {"concentricity", number(o.concentricity)},
           {"concentricity_random", random_concentricity}};
 }

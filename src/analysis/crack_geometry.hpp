@@ -86,6 +86,16 @@ struct CrackOrientations {
   /// point, 0 for all radial, 2/pi = 0.6366 for azimuths uniform on [0, 180). NaN without elements.
   double concentricity = std::numeric_limits<double>::quiet_NaN();
   double rose_peak_deg = std::numeric_limits<double>::quiet_NaN();  ///< centre of the fullest bin (ties: lowest); NaN without elements
+  /// The rose in four sectors of 45 deg, a rose coarse enough to compare between ensembles of a
+  /// few members: sector k holds azimuths within 22.5 deg of 45 k (sector 0, radial: [157.5, 180)
+  /// and [0, 22.5); sector 2, concentric: [67.5, 112.5)); sectors 1 and 3 are the two obliques.
+  static constexpr double sector_width_deg = 45;
+  static constexpr std::size_t sectors = 4;
+  /// Share of the elements in each sector, summing to 1; NaN without elements.
+  std::array<double, sectors> sector_share{std::numeric_limits<double>::quiet_NaN(),
+                                           std::numeric_limits<double>::quiet_NaN(),
+                                           std::numeric_limits<double>::quiet_NaN(),
+                                           std::numeric_limits<double>::quiet_NaN()};
 };
 
 /// Expected concentricity of azimuths uniform on [0, 180): E|sin a| = 2/pi.

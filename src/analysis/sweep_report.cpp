@@ -44,6 +44,7 @@ void fill_results(SweepRow& row, const Checkpoint& c) {
   row.energy_dissipated = budget.dissipated;
   row.state_hash = state_hash(c.state);
   row.concentricity = fractures.geometry.orientations.concentricity;
+  row.rose_sector_share = fractures.geometry.orientations.sector_share;
   row.fitted_arcs = fractures.geometry.arcs.size();
   row.median_arc_radius_deg = fractures.geometry.median_arc_radius_deg;
   row.median_arc_pole_axis_deg = fractures.geometry.median_pole_axis_from_subsatellite_deg;
@@ -63,6 +64,7 @@ SweepRow encounter_row(const Config& encounter_config, const Encounter& spec, co
   row.strain_estimate = eq5_strain(spec, youngs);
   row.failed_fraction = row.hemisphere_fraction = row.median_angle_deg = row.largest_network_length = row.energy_deposited =
       row.energy_dissipated = row.concentricity = row.median_arc_radius_deg = row.median_arc_pole_axis_deg = row.total_crack_length = nan;
+  row.rose_sector_share.fill(nan);
   const fs::path file = dir / "encounter.h5";
   const fs::path mid = sibling_checkpoint(file, "mid");
   try {
@@ -201,6 +203,11 @@ std::span<const EnsembleStatistic> ensemble_statistics() {
       {"hemisphere_fraction", "1", [](const SweepRow& r) { return r.hemisphere_fraction; }},
       {"median_angle", "deg", [](const SweepRow& r) { return r.median_angle_deg; }},
       {"concentricity", "1", [](const SweepRow& r) { return r.concentricity; }},
+      // The rose in sectors of 45 deg: radial, oblique (counter-clockwise from radial), concentric, oblique.
+      {"rose_0", "1", [](const SweepRow& r) { return r.rose_sector_share[0]; }},
+      {"rose_45", "1", [](const SweepRow& r) { return r.rose_sector_share[1]; }},
+      {"rose_90", "1", [](const SweepRow& r) { return r.rose_sector_share[2]; }},
+      {"rose_135", "1", [](const SweepRow& r) { return r.rose_sector_share[3]; }},
       {"median_arc_radius", "deg", [](const SweepRow& r) { return r.median_arc_radius_deg; }},
       {"median_arc_pole_axis", "deg", [](const SweepRow& r) { return r.median_arc_pole_axis_deg; }},
       {"energy_deposited", "GM^2/R", [](const SweepRow& r) { return r.energy_deposited; }},

@@ -5,6 +5,7 @@
 // into the body (energy_budget.hpp) and its state_hash; plus where each (M2, eps_S, V_q) line of
 // the grid switches from crack to no crack, next to where eq. 5 puts the switch. Units:
 // G = M = R = 1 (masses in M, distances in R, speeds in sqrt(GM/R), energies in G M^2/R).
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/crack_geometry.hpp"
 #include "analysis/ensemble_statistics.hpp"
 #include "io/json.hpp"
 #include "model/config.hpp"
@@ -50,6 +52,9 @@ struct SweepRow {
   std::size_t fitted_arcs = 0;                  ///< long cracks with a fitted small circle
   double median_arc_radius_deg = 0;             ///< median angular radius of those circles; NaN if none
   double median_arc_pole_axis_deg = 0;          ///< median angle of their poles' axes from the subsatellite axis; NaN if none
+  /// Share of the crack azimuths in the rose's sectors about 0, 45, 90, 135 deg (CrackOrientations);
+  /// NaN if none failed.
+  std::array<double, CrackOrientations::sectors> rose_sector_share{};
   double total_crack_length = 0;                ///< dual-lattice length of every crack, R
   std::size_t cracks = 0;                       ///< connected crack networks (clusters)
   bool cracked() const { return status == SweepStatus::finished && failures > 0; }

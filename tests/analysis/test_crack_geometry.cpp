@@ -197,6 +197,18 @@ TEST(CrackOrientations, UniformAzimuthsGiveTwoOverPi) {
   for (const auto n : o.rose) EXPECT_EQ(n, 1000);
 }
 
+TEST(CrackOrientations, TheRosesSectorsOf45DegreesHoldTheirShares) {
+  // Uniform azimuths: a quarter in each sector. Sector edges at 22.5 + 45 k deg; [157.5, 180) is radial.
+  std::vector<double> uniform;
+  for (int i = 0; i < 18000; ++i) uniform.push_back((i + 0.5) * 0.01);
+  for (const double share : crack_orientations(uniform).sector_share) EXPECT_DOUBLE_EQ(share, 0.25);
+  const CrackOrientations o = crack_orientations({0, 22.4, 22.6, 67.6, 90, 112.4, 112.6, 157.4, 157.6, 179.9, std::nan("")});
+  EXPECT_EQ(o.elements, 10u);
+  EXPECT_EQ(o.sector_share, (std::array<double, 4>{0.4, 0.1, 0.3, 0.2}));  // radial 0, 22.4, 157.6, 179.9
+  const CrackOrientations none = crack_orientations({});
+  for (const double share : none.sector_share) EXPECT_TRUE(std::isnan(share));
+}
+
 TEST(CrackOrientations, UndefinedAzimuthsAreSkipped) {
   EXPECT_TRUE(std::isnan(crack_azimuth_deg(subsatellite_direction, Vec3(1, 0, 0))));    // at the subsatellite point
   EXPECT_TRUE(std::isnan(crack_azimuth_deg(-2 * subsatellite_direction, Vec3(0, 0, 1))));  // at its antipode

@@ -114,6 +114,16 @@ TEST(Ensemble, MembersRunResumeBitwiseAndAreSummarisedWithIntervals) {
   EXPECT_DOUBLE_EQ(row["statistics"]["failures"]["low"].get<double>(), expected.low);
   EXPECT_DOUBLE_EQ(row["statistics"]["total_crack_length"]["mean"].get<double>(), summarize_about_trend(lengths, offsets).mean);
   EXPECT_EQ(row["cracked"]["members"], cracked);
+  // The rose's four sectors are statistics of every cracked member; their shares sum to 1 in each
+  // member, so their means (each a least-squares line at offset 0) sum to 1.
+  ASSERT_EQ(cracked, 3u) << "every member must crack the crust to test the rose";
+  double rose_sum = 0;
+  for (const char* sector : {"rose_0", "rose_45", "rose_90", "rose_135"}) {
+    const Json& stat = row["statistics"][sector];
+    EXPECT_EQ(stat["count"].get<std::size_t>(), 3u) << sector;
+    rose_sum += stat["mean"].get<double>();
+  }
+  EXPECT_NEAR(rose_sum, 1, 1e-12);
   EXPECT_NE(ensembles["method"].get<std::string>().find("Student t with n - 2"), std::string::npos);
   const std::string csv = read_file(straight / "report" / "ensembles.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2) << csv;
