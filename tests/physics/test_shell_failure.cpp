@@ -587,6 +587,15 @@ FlawScene nonlocal_crack(std::vector<FailureEvent>& log) {
   return s;
 }
 
+/// nonlocal_crack at step 11 with the field dropped to 0.8 eps_S (the tips, rows 3 and 9, below eps_S).
+FlawScene nonlocal_crack_at_rest(std::vector<FailureEvent>& log) {
+  FlawScene s = nonlocal_crack(log);
+  EXPECT_EQ(log.size(), 9u);
+  s.state.step = 11;
+  s.stretch_along_x(0.008);
+  return s;
+}
+
 TEST(NonlocalFailureRule, ACrackOpensWhereTheCrustsFittedStrainReachesEpsS) {
   // A uniform tension along x at 0.7 eps_S and the centre spring at 3 eps_S: its fitted strain over
   // the 45 springs within 0.11 (13 along x) is about 0.88 eps_S: nothing fails.
@@ -606,14 +615,11 @@ TEST(NonlocalFailureRule, ACrackOpensWhereTheCrustsFittedStrainReachesEpsS) {
 }
 
 TEST(NonlocalFailureRule, ACrackGrowsByTheStrainAroundItsTipWithoutTheCracksNeighbourhood) {
-  std::vector<FailureEvent> log;
-  FlawScene s = nonlocal_crack(log);
-  ASSERT_EQ(log.size(), 9u);
   // The field drops to 0.8 eps_S; the tip spring (row 9) at 3 eps_S and every other intact spring
   // within the neighbourhood (0.06) of the crack at 10 eps_S: the fit leaves those out and the
   // rule waits, where the critical_distance rule's segment mean would grow the crack.
-  s.state.step = 11;
-  s.stretch_along_x(0.008);
+  std::vector<FailureEvent> log;
+  FlawScene s = nonlocal_crack_at_rest(log);
   const std::size_t tip = s.x_spring(12, 9);
   for (std::size_t n = 0; n < s.body.springs.size(); ++n) {
     if (s.state.springs.failed[n]) continue;
@@ -651,10 +657,7 @@ TEST(NonlocalFailureRule, ASpringBesideACrackIsInItsShadowThoughAFailedDiagonalL
   // critical_distance rule takes for "ahead" (its segment mean, 1.36 eps_S, opens a parallel
   // crack), but along its own axis from the crack: the nonlocal rule keeps it in the shadow.
   std::vector<FailureEvent> log;
-  FlawScene s = nonlocal_crack(log);
-  ASSERT_EQ(log.size(), 9u);
-  s.state.step = 11;
-  s.stretch_along_x(0.008);  // the tips (rows 3 and 9) below eps_S
+  FlawScene s = nonlocal_crack_at_rest(log);
   s.stretch_along_x(0.011, [](const Vec3& mid) { return std::abs(mid.x()) < 0.2 && std::abs(mid.y()) < 0.11; });
   for (int j = 4; j <= 8; ++j) s.strain(s.x_spring(13, j), 0.02);
   FlawScene critical = s;
@@ -675,10 +678,7 @@ TEST(NonlocalFailureRule, ASpringOnACracksFlankIsInItsShadowHoweverWideTheNeighb
   // lies along its axis (0 to 27 degrees), so it stays in the crack's shadow. Its fit (springs
   // beyond 0.12 from the crack, all in the 1.1 eps_S field) reaches eps_S: only the role holds it.
   std::vector<FailureEvent> log;
-  FlawScene s = nonlocal_crack(log);
-  ASSERT_EQ(log.size(), 9u);
-  s.state.step = 11;
-  s.stretch_along_x(0.008);
+  FlawScene s = nonlocal_crack_at_rest(log);
   s.stretch_along_x(0.011, [](const Vec3& mid) {
     const bool column_12_beyond = mid.x() > 0 && mid.x() < 0.05 && std::abs(mid.y()) > 0.11;
     return std::abs(mid.x()) < 0.35 && !column_12_beyond;
