@@ -965,13 +965,6 @@ def resolution_welded_critical_distance(p):
     return resolution_welded_rule_lines(p, "critical_distance", " " + T5_AT_2E3_TREE, only=" --only T5")
 
 
-@full_table("resolution-welded-nonlocal")
-def resolution_welded_nonlocal(p):
-    """T5 at eps_S = 2e-3 on the welded bodies of levels 3-5 (6 where run) with the nonlocal failure
-    rule (issue 24 item 4); tree gravity at every level, no stability probe."""
-    return resolution_welded_rule_lines(p, "nonlocal", " " + T5_AT_2E3_TREE, only=" --only T5")
-
-
 # The crack neighbourhood of the nonlocal resolution study with r_ex a length: level 5's 3 L_S
 # (0.0377804 R), which level 6's 6 L_S (0.0188869 R) matches to 2e-4; levels 3 and 4 take it as
 # encounter.exclusion_distance.
@@ -1001,18 +994,50 @@ def resolution_welded_nonlocal_rex(p):
     lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f in folders])
     lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
                    ensemble_rows(p, [(f, f"level {f[-1]}") for f in folders], "T5"))
+    # 0.04 R is a lattice spacing at level 5 and two at level 6; below the spacing of levels 3 and 4.
+    lines += parallel_crack_lines(p, [f for f in folders if f[-1] in "56"], "T5")
     if all(f"nonlocal-rex-welded-L{level}" in folders for level in (5, 6)):
         lines += compare_ensembles_lines(p, p.work / "nonlocal-rex-welded-L5" / "report" / "ensembles.json",
                                          p.work / "nonlocal-rex-welded-L6" / "report" / "ensembles.json",
-                                         "Level 5 (A) against level 6 (B), Welch's t test of the members' means:")
+                                         "Level 5 (A) against level 6 (B), Welch's t test of the members' means "
+                                         "(rose_*: the shares of the crack azimuths within 22.5 deg of 0, 45, 90, 135 deg):",
+                                         more=ROSE_SECTORS)
     return lines
 
 
-def compare_ensembles_lines(p, a, b, title, *pair):
-    """The statistics of ENSEMBLE_COLUMNS from `compare --ensembles A B [--pair ...]`, as a code block."""
+# The rose of crack azimuths in its four sectors of 45 deg (radial, oblique, concentric, oblique).
+ROSE_SECTORS = ("rose_0", "rose_45", "rose_90", "rose_135")
+
+
+def parallel_crack_lines(p, folders, encounter, distance=0.04):
+    """Per folder, over its members' cracks.json: the crack length within `distance` R of another
+    crack (tools/parallel_cracks.py), mean +- sd, and its share of the total."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import parallel_cracks
+    rows = []
+    for folder in folders:
+        near, share = [], []
+        for path in sorted((p.work / folder).glob(f"{encounter}_m*/analysis/cracks.json")):
+            lengths = parallel_cracks.beside_another(p.load(path)["cracks"], distance)
+            total = sum(t for t, _ in lengths)
+            near.append(sum(n for _, n in lengths))
+            share.append(near[-1] / total)
+        if len(near) >= 2:
+            rows.append([folder, str(len(near)), f"{statistics.mean(near):.2f} +- {statistics.stdev(near):.2f}",
+                         f"{100 * statistics.mean(share):.1f}%"])
+    if not rows:
+        return []
+    return (["", f"Crack length within {distance:g} R of another crack (`tools/parallel_cracks.py "
+                 f"--distance {distance:g}` on each member's cracks.json), mean +- sd over the members:", ""] +
+            table(["run", "members", "length beside another crack [R]", "share of the total"], rows))
+
+
+def compare_ensembles_lines(p, a, b, title, *pair, more=()):
+    """The statistics of ENSEMBLE_COLUMNS (and `more`) from `compare --ensembles A B [--pair ...]`,
+    as a code block."""
     args = ["compare", "--ensembles", a, b] + [x for n in pair for x in ("--pair", n)]
     text = p(*args)
-    keys = [k for k, _, _ in ENSEMBLE_COLUMNS]
+    keys = [k for k, _, _ in ENSEMBLE_COLUMNS] + list(more)
     wanted = [l for l in text.splitlines() if l.startswith("ensemble ") or (l.split() and l.split()[0] in keys)]
     return ["", title, "", "```"] + wanted + ["```"]
 
