@@ -90,6 +90,7 @@ enum class FailureRuleKind {
   griffith, ///< shadow, a new crack opens as a flaw of flaw_length and grows at the Griffith tip strain
   critical_distance, ///< shadow, a crack opens or grows by a segment of flaw_length whose mean strain reaches eps_S
   nonlocal, ///< critical_distance, judged by the strain tensor fitted to the springs within half a segment
+  nonlocal_principal, ///< nonlocal, judged by that tensor's largest principal strain and opening across its direction
 };
 template <>
 struct ChoiceTable<FailureRuleKind> {
@@ -103,6 +104,8 @@ struct ChoiceTable<FailureRuleKind> {
                                  "shadow, cracks open and grow by segments of flaw_length whose mean strain is eps_S"},
       ChoiceRow<FailureRuleKind>{FailureRuleKind::nonlocal, "nonlocal",
                                  "critical_distance, judged by the crust's strain averaged over half a segment around it"},
+      ChoiceRow<FailureRuleKind>{FailureRuleKind::nonlocal_principal, "nonlocal_principal",
+                                 "nonlocal, opening across the averaged strain's largest principal direction"},
   };
 };
 

@@ -65,22 +65,24 @@ constexpr Condition welded_crust{"cross.coupling = \"welded\"",
 /// Snapshots at a chosen interval: an encounter without them keeps the fingerprint it had before the key.
 constexpr Condition snapshot_series{"encounter.snapshot_interval > 0",
                                     [](const Config& c) { return c.encounter.snapshot_interval > 0; }};
+/// The griffith, critical_distance and both nonlocal rules (their flaw or segment length).
+constexpr bool has_flaw_rule(FailureRuleKind kind) {
+  return kind == FailureRuleKind::griffith || kind == FailureRuleKind::critical_distance ||
+         kind == FailureRuleKind::nonlocal || kind == FailureRuleKind::nonlocal_principal;
+}
 /// The shadow rule's length (the griffith, critical_distance and nonlocal rules' too): the local rule's
 /// fingerprints stay what they were before the key.
-constexpr Condition shadow_rule{
-    "encounter.failure_rule = \"shadow\", \"griffith\", \"critical_distance\" or \"nonlocal\"", [](const Config& c) {
-      return c.encounter.failure_rule == FailureRuleKind::shadow || c.encounter.failure_rule == FailureRuleKind::griffith ||
-             c.encounter.failure_rule == FailureRuleKind::critical_distance ||
-             c.encounter.failure_rule == FailureRuleKind::nonlocal;
-    }};
+constexpr Condition shadow_rule{"encounter.failure_rule = \"shadow\", \"griffith\", \"critical_distance\", "
+                                "\"nonlocal\" or \"nonlocal_principal\"",
+                                [](const Config& c) {
+                                  return c.encounter.failure_rule == FailureRuleKind::shadow ||
+                                         has_flaw_rule(c.encounter.failure_rule);
+                                }};
 /// The griffith, critical_distance and nonlocal rules' length: the other rules' fingerprints stay
 /// what they were before the key.
 constexpr Condition flaw_rule{
-    "encounter.failure_rule = \"griffith\", \"critical_distance\" or \"nonlocal\"", [](const Config& c) {
-      return c.encounter.failure_rule == FailureRuleKind::griffith ||
-             c.encounter.failure_rule == FailureRuleKind::critical_distance ||
-             c.encounter.failure_rule == FailureRuleKind::nonlocal;
-    }};
+    "encounter.failure_rule = \"griffith\", \"critical_distance\", \"nonlocal\" or \"nonlocal_principal\"",
+    [](const Config& c) { return has_flaw_rule(c.encounter.failure_rule); }};
 /// Without a crust the stretch balances the interior nodes within d_I/2 of the outermost one.
 constexpr Condition no_shell{"shell.enabled = false", [](const Config& c) { return !c.shell.enabled; }};
 

@@ -122,8 +122,9 @@ struct EncounterDefaults {
   /// shadow where a crack opens or grows by a segment of flaw_length once the mean strain of the
   /// springs across it reaches eps_S (the line method of the theory of critical distances); nonlocal,
   /// critical_distance where the candidate's strain is the crust's strain tensor fitted over half a
-  /// segment around it, without the crack neighbourhood (a nonlocal strain over a material length).
-  /// Default local (its statistics converge with dt); the paper's workflows name "paper".
+  /// segment around it, without the crack neighbourhood (a nonlocal strain over a material length);
+  /// nonlocal_principal, nonlocal judged by that tensor's largest principal strain, the segment
+  /// opening across its direction. Default local (its statistics converge with dt); the paper's workflows name "paper".
   FailureRuleKind failure_rule = FailureRuleKind::local;
   double exclusion_radius = 2.0;           ///< local: neighbourhood radius, in mean shell spacings L_S
   /// The crack neighbourhood radius r_ex as a length, R; unset: exclusion_radius L_S. A length keeps
@@ -132,7 +133,7 @@ struct EncounterDefaults {
   std::optional<double> exclusion_distance;
   double relaxation_crossings = 2.0;       ///< local: relaxation interval, in shell crossing times L_S/V_SP
   double shadow_distance = 0.2;            ///< shadow: stress-shadow radius of a crack, R (physical, not in L_S)
-  double flaw_length = 0.3;                ///< griffith: a_0, a new crack's flaw length; critical_distance, nonlocal: the segment, R
+  double flaw_length = 0.3;                ///< griffith: a_0, a new crack's flaw length; critical_distance, nonlocal*: the segment, R
 };
 
 /// How self-gravity is computed.

@@ -83,11 +83,23 @@ struct NonlocalFailureRule {
   bool operator==(const NonlocalFailureRule&) const = default;
 };
 
+/// "nonlocal_principal" (docs/failure-rule.md, "Opening across the principal strain"): the nonlocal
+/// rule (same fit, neighbourhood, shadow, segments and relaxation interval), where the fitted
+/// tensor's largest principal strain, not its component along the candidate's axis, must reach
+/// eps_S, and the segment opens across that principal direction instead of across the candidate's
+/// axis: a tension crack runs perpendicular to the largest principal stress (Erdogan & Sih 1963),
+/// so its path follows the crust's stress trajectories, not the lattice's three directions. Where
+/// the fit is not determined, or is isotropic, the candidate's axis stands in.
+struct PrincipalNonlocalFailureRule {
+  NonlocalFailureRule nonlocal;  ///< fit, neighbourhood, shadow, segment and relaxation interval
+  bool operator==(const PrincipalNonlocalFailureRule&) const = default;
+};
+
 /// The rule; its alternatives in FailureRuleKind order (a new kind: its struct here, its row in
 /// the choice table, and its code in physics/shell_failure.cpp).
 using FailureRule =
     std::variant<PaperFailureRule, LocalFailureRule, ShadowFailureRule, GriffithFailureRule, CriticalDistanceFailureRule,
-                 NonlocalFailureRule>;
+                 NonlocalFailureRule, PrincipalNonlocalFailureRule>;
 static_assert(std::variant_size_v<FailureRule> == ChoiceTable<FailureRuleKind>::rows.size());
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::local), FailureRule>,
                              LocalFailureRule>);
@@ -100,6 +112,9 @@ static_assert(
                    CriticalDistanceFailureRule>);
 static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::nonlocal), FailureRule>,
                              NonlocalFailureRule>);
+static_assert(
+    std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(FailureRuleKind::nonlocal_principal), FailureRule>,
+                   PrincipalNonlocalFailureRule>);
 
 /// Which kind `rule` is.
 inline FailureRuleKind kind_of(const FailureRule& rule) { return static_cast<FailureRuleKind>(rule.index()); }
@@ -133,13 +148,14 @@ inline StoredFailureRule stored_failure_rule(const FailureRule& rule) {
     stored.growth_strain_factor = griffith->growth_strain_factor;
     return stored;
   }
-  auto segment_fields = [&](const auto& segments) {  // the critical_distance and nonlocal rules
+  auto segment_fields = [&](const auto& segments) {  // the critical_distance and both nonlocal rules
     StoredFailureRule stored = shadow_fields(segments.shadow, kind_of(rule));
     stored.flaw_length = segments.segment_length;
     return stored;
   };
   if (const auto* critical = std::get_if<CriticalDistanceFailureRule>(&rule)) return segment_fields(*critical);
   if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule)) return segment_fields(*nonlocal);
+  if (const auto* principal = std::get_if<PrincipalNonlocalFailureRule>(&rule)) return segment_fields(principal->nonlocal);
   return {std::get<PaperFailureRule>(rule).fail_interval, FailureRuleKind::paper, 0, 0.0, 0.0, 0.0, 0.0};
 }
 
@@ -156,6 +172,8 @@ inline FailureRule failure_rule_of(const StoredFailureRule& stored) {
       return CriticalDistanceFailureRule{{local, stored.shadow_distance}, stored.flaw_length};
     case FailureRuleKind::nonlocal:
       return NonlocalFailureRule{{local, stored.shadow_distance}, stored.flaw_length};
+    case FailureRuleKind::nonlocal_principal:
+      return PrincipalNonlocalFailureRule{{{local, stored.shadow_distance}, stored.flaw_length}};
     case FailureRuleKind::paper:
       break;
   }

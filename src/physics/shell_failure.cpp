@@ -200,13 +200,17 @@ class CrackMap {
 class GreatCircleSegment {
  public:
   GreatCircleSegment(const Body& body, const State& state, std::size_t n, const Vec3& center, double length)
+      : GreatCircleSegment(center, spring_midpoint(body, state, n),
+                           vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])) -
+                               vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])),
+                           length) {}
+  /// The arc through `mid` perpendicular to `axis` (any length; its tangential part is used).
+  GreatCircleSegment(const Vec3& center, const Vec3& mid, const Vec3& axis, double length)
       : center_(center), length_(length) {
-    const Vec3 a = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0]));
-    const Vec3 b = vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1]));
-    const Vec3 m = 0.5 * (a + b) - center;
+    const Vec3 m = mid - center;
     rho_ = m.norm();
     up_ = m / rho_;
-    normal_ = (b - a) - (b - a).dot(up_) * up_;  // the circle's plane normal: the axis, tangential part
+    normal_ = axis - axis.dot(up_) * up_;  // the circle's plane normal: the axis, tangential part
     normal_.normalize();
     along_ = normal_.cross(up_);
   }
@@ -295,15 +299,37 @@ class ShellSpringGrid {
   double reach_ = 0;
 };
 
-/// The nonlocal rule's strain at spring n (docs/failure-rule.md, "A strain averaged over a length"):
+/// The nonlocal rules' strain at spring n (docs/failure-rule.md, "A strain averaged over a length"):
 /// in the tangent plane at n's midpoint (normal: from `center` through it), with e1 along n's axis
 /// and e2 = normal x e1, the strain tensor (E11, E12, E22) whose strain along each spring k of
 /// `springs`, E11 c^2 + 2 E12 c s + E22 s^2 (c, s: the components of k's unit axis along e1, e2,
 /// renormalised in the plane), fits k's strain / f by least squares (sums in the order given).
-/// Returns E11 (dimensionless), or nothing when fewer than 6 springs or their directions do not
+/// Components dimensionless; nothing when fewer than 6 springs or their directions do not
 /// determine the tensor (the normal matrix's determinant below 1e-3 of (trace / 3)^3; 0.87 for the
 /// three directions of a triangular lattice).
-std::optional<double> fitted_axial_strain(const Body& body, const State& state, std::size_t n, const Vec3& center,
+struct FittedStrain {
+  double e11 = 0, e12 = 0, e22 = 0;
+  Vec3 e1, e2;  ///< the frame: unit tangent vectors, e1 along n's axis
+  /// The largest principal strain, (E11 + E22) / 2 + ((E11 - E22)^2 / 4 + E12^2)^(1/2).
+  double largest_principal() const { return 0.5 * (e11 + e22) + principal_radius(); }
+  /// The unit tangent direction of the largest principal strain; e1 where the tensor is isotropic.
+  /// Of the two forms of the eigenvector the one away from 0 (no transcendental function: the
+  /// same bits on every CPU).
+  Vec3 principal_direction() const {
+    const double half = 0.5 * (e11 - e22), radius = principal_radius();
+    if (!(radius > 0)) return e1;
+    const Vec3 v = half >= 0 ? ((half + radius) * e1 + e12 * e2) : (e12 * e1 + (radius - half) * e2);
+    return v.normalized();
+  }
+
+ private:
+  double principal_radius() const {
+    const double half = 0.5 * (e11 - e22);
+    return std::sqrt(half * half + e12 * e12);
+  }
+};
+
+std::optional<FittedStrain> fitted_strain(const Body& body, const State& state, std::size_t n, const Vec3& center,
                                           const std::vector<std::size_t>& springs) {
   if (springs.size() < 6) return std::nullopt;
   auto ends = [&](std::size_t k) {
@@ -312,12 +338,13 @@ std::optional<double> fitted_axial_strain(const Body& body, const State& state, 
   };
   const auto [a, b] = ends(n);
   const Vec3 normal = (0.5 * (a + b) - center).normalized();
-  const Vec3 e1 = ((b - a) - (b - a).dot(normal) * normal).normalized();
-  const Vec3 e2 = normal.cross(e1);
+  FittedStrain fit;
+  fit.e1 = ((b - a) - (b - a).dot(normal) * normal).normalized();
+  fit.e2 = normal.cross(fit.e1);
   double m[3][3] = {}, y[3] = {};
   for (const std::size_t k : springs) {
     const auto [p, q] = ends(k);
-    const double c = (q - p).dot(e1), s = (q - p).dot(e2), in_plane = c * c + s * s;
+    const double c = (q - p).dot(fit.e1), s = (q - p).dot(fit.e2), in_plane = c * c + s * s;
     if (!(in_plane > 0)) continue;
     const double row[3] = {c * c / in_plane, 2 * c * s / in_plane, s * s / in_plane};
     const double strain = spring_strain(body, state, k) / body.failure_strain_factor(k);
@@ -332,20 +359,31 @@ std::optional<double> fitted_axial_strain(const Body& body, const State& state, 
   };
   const double whole = det(m), scale = (m[0][0] + m[1][1] + m[2][2]) / 3;
   if (!(whole > 1e-3 * scale * scale * scale)) return std::nullopt;
-  double first[3][3];  // Cramer's rule for E11: the first column replaced by the right-hand side
-  for (int r = 0; r < 3; ++r) first[r][0] = y[r], first[r][1] = m[r][1], first[r][2] = m[r][2];
-  return det(first) / whole;
+  // Cramer's rule: component c is det(m with column c replaced by the right-hand side) / det(m).
+  double component[3];
+  for (int c = 0; c < 3; ++c) {
+    double replaced[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col) replaced[r][col] = col == c ? y[r] : m[r][col];
+    component[c] = det(replaced) / whole;
+  }
+  fit.e11 = component[0];
+  fit.e12 = component[1];
+  fit.e22 = component[2];
+  return fit;
 }
 
 /// The crack rules' parameters beyond the local rule's: 0 shadow distance for the local rule;
 /// flaw_length > 0 only for the griffith rule, segment_length > 0 only for the critical_distance and
-/// nonlocal rules; nonlocal_strain only for the nonlocal rule.
+/// nonlocal rules; nonlocal_strain only for the nonlocal rules, principal_opening only for
+/// nonlocal_principal.
 struct CrackGrowth {
   double shadow_distance = 0;
   double flaw_length = 0;
   double growth_strain_factor = 1;
   double segment_length = 0;
   bool nonlocal_strain = false;
+  bool principal_opening = false;
 };
 
 /// The local rule's check: candidates beyond eps_S by decreasing strain (index on ties); one
@@ -357,9 +395,11 @@ struct CrackGrowth {
 /// a crack fails with every spring across its flaw (springs_across_flaw). With a segment length (the
 /// critical_distance rule) a candidate that starts or extends a crack fails, with every unfailed
 /// shell spring across the segment centred on it, only if their mean of strain / f reaches eps_S;
-/// with nonlocal_strain (the nonlocal rule) only if the candidate's fitted_axial_strain over the
-/// unfailed shell springs within half a segment and outside the crack neighbourhood reaches eps_S
-/// (the segment's mean where the fit is not determined).
+/// with nonlocal_strain (the nonlocal rule) only if the fitted_strain over the unfailed shell
+/// springs within half a segment and outside the crack neighbourhood, along the candidate's axis,
+/// reaches eps_S (the segment's mean where the fit is not determined); with principal_opening
+/// (nonlocal_principal) its largest principal strain must, and the segment lies across that
+/// principal direction instead of across the candidate's axis, which also judges its role.
 std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, const FailureThreshold& threshold,
                        const Body& body, State& state, std::vector<FailureEvent>& log) {
   // A spring of strength factor f fails beyond f eps_S; candidates go by strain / f, the most
@@ -406,11 +446,30 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     const bool excluded =
         std::any_of(relaxing.begin(), relaxing.end(), [&](const Vec3& p) { return (p - mid).squaredNorm() < r2; });
     if (excluded) continue;
-    std::optional<Vec3> axis;
-    if (growth.nonlocal_strain)
+    // The nonlocal rules' strain tensor over half a segment around the candidate, without the crack
+    // neighbourhood.
+    auto fit_around = [&]() {
+      if (!center) center = body_center_of_mass(body, state);
+      if (!shell_grid) shell_grid.emplace(body, state, growth.segment_length);
+      std::vector<std::size_t> fitted;
+      for (const std::size_t k : shell_grid->within(state, mid, growth.segment_length / 2))
+        if (!cracks || !cracks->in_neighbourhood(spring_midpoint(body, state, k))) fitted.push_back(k);
+      return fitted_strain(body, state, n, *center, fitted);
+    };
+    std::optional<Vec3> axis;  // the nonlocal rules': the direction the candidate's segment opens across
+    std::optional<FittedStrain> fit;
+    if (growth.nonlocal_strain) {
       axis = (vec3_at(state.position, static_cast<std::size_t>(body.springs[n][1])) -
               vec3_at(state.position, static_cast<std::size_t>(body.springs[n][0])))
                  .normalized();
+      if (growth.principal_opening) {
+        // Beyond the crack neighbourhood the role does not depend on the axis: a shadowed
+        // candidate needs no fit.
+        if (cracks && !cracks->in_neighbourhood(mid) && cracks->role(mid, &*axis) == CrackRole::shadowed) continue;
+        fit = fit_around();
+        if (fit) axis = fit->principal_direction();
+      }
+    }
     Vec3 crack_point = Vec3::Zero();
     const CrackRole role = cracks ? cracks->role(mid, axis ? &*axis : nullptr, &crack_point) : CrackRole::starts;
     if (role == CrackRole::shadowed) continue;
@@ -419,18 +478,16 @@ std::size_t fail_local(const LocalFailureRule& rule, const CrackGrowth& growth, 
     if (growth.segment_length > 0) {
       if (!center) center = body_center_of_mass(body, state);
       if (!shell_grid) shell_grid.emplace(body, state, growth.segment_length);
-      GreatCircleSegment segment(body, state, n, *center, growth.segment_length);
+      GreatCircleSegment segment = growth.principal_opening
+                                       ? GreatCircleSegment(*center, mid, *axis, growth.segment_length)
+                                       : GreatCircleSegment(body, state, n, *center, growth.segment_length);
       // The nonlocal rule's crack advances by the half segment ahead of its tip, away from the
       // crack: the half behind would run beside the crack, a lattice row off it where the tip
       // steps sideways, and draw a parallel crack of L at every such step.
       if (growth.nonlocal_strain && role == CrackRole::extends) segment.ahead_of(crack_point);
       std::optional<double> nonlocal;
-      if (growth.nonlocal_strain) {
-        std::vector<std::size_t> fitted;
-        for (const std::size_t k : shell_grid->within(state, mid, growth.segment_length / 2))
-          if (!cracks || !cracks->in_neighbourhood(spring_midpoint(body, state, k))) fitted.push_back(k);
-        nonlocal = fitted_axial_strain(body, state, n, *center, fitted);
-      }
+      if (growth.nonlocal_strain && !growth.principal_opening) fit = fit_around();
+      if (fit) nonlocal = growth.principal_opening ? fit->largest_principal() : fit->e11;
       if (nonlocal && !(*nonlocal >= threshold.failure_strain)) continue;  // before the segment is looked for
       const std::vector<std::size_t> across = shell_grid->across(body, state, segment, mid);
       if (!nonlocal) {
@@ -471,7 +528,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
     case FailureRuleKind::shadow:
     case FailureRuleKind::griffith:
     case FailureRuleKind::critical_distance:
-    case FailureRuleKind::nonlocal: {
+    case FailureRuleKind::nonlocal:
+    case FailureRuleKind::nonlocal_principal: {
       // A body without a crust has nothing to fail: the (default) local rule needs no shell there.
       if (body.count_species(Species::shell) == 0) break;
       const DerivedQuantities q = derive_quantities(body, state, config.interior.radius);
@@ -481,7 +539,8 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
       // The critical_distance and nonlocal rules' cracks grow by half a segment at a time: the crust
       // relaxes over that length, so the crack tip runs at V_SP / relaxation_crossings at every resolution.
       const bool by_segments = config.encounter.failure_rule == FailureRuleKind::critical_distance ||
-                               config.encounter.failure_rule == FailureRuleKind::nonlocal;
+                               config.encounter.failure_rule == FailureRuleKind::nonlocal ||
+                               config.encounter.failure_rule == FailureRuleKind::nonlocal_principal;
       const double crossing_time = (by_segments ? config.encounter.flaw_length / 2 : q.L_S) / q.V_SP;
       LocalFailureRule rule;
       rule.relaxation_steps = std::max<std::int64_t>(
@@ -497,8 +556,9 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
         return GriffithFailureRule{{rule, config.encounter.shadow_distance},
                                    config.encounter.flaw_length,
                                    std::max(1.0, std::sqrt(config.encounter.flaw_length / (2 * q.L_S)))};
-      if (config.encounter.failure_rule == FailureRuleKind::nonlocal)
-        return NonlocalFailureRule{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
+      const NonlocalFailureRule nonlocal{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
+      if (config.encounter.failure_rule == FailureRuleKind::nonlocal) return nonlocal;
+      if (config.encounter.failure_rule == FailureRuleKind::nonlocal_principal) return PrincipalNonlocalFailureRule{nonlocal};
       if (by_segments) return CriticalDistanceFailureRule{{rule, config.encounter.shadow_distance}, config.encounter.flaw_length};
       return rule;
     }
@@ -508,8 +568,9 @@ FailureRule make_failure_rule(const Config& config, std::optional<double> relaxa
 
 std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state) {
   const FailureRuleKind kind = config.encounter.failure_rule;
+  const bool nonlocal = kind == FailureRuleKind::nonlocal || kind == FailureRuleKind::nonlocal_principal;
   if (kind != FailureRuleKind::shadow && kind != FailureRuleKind::griffith && kind != FailureRuleKind::critical_distance &&
-      kind != FailureRuleKind::nonlocal)
+      !nonlocal)
     return "";
   if (body.count_species(Species::shell) == 0) return "";
   const double L_S = derive_quantities(body, state, config.interior.radius).L_S;
@@ -526,7 +587,7 @@ std::string unresolved_rule_lengths(const Config& config, const Body& body, cons
   // The nonlocal rule at a crack's tip fits the springs within L = flaw_length / 2 and beyond the
   // crack neighbourhood r_ex: where L reaches less than L_S beyond r_ex, few springs or none.
   const double reach = crack_neighbourhood_radius(config, L_S) + L_S;
-  if (kind == FailureRuleKind::nonlocal && config.encounter.flaw_length / 2 < reach)
+  if (nonlocal && config.encounter.flaw_length / 2 < reach)
     parts.push_back(fmt::format("encounter.flaw_length / 2 = {:g} R is less than the crack neighbourhood plus one "
                                 "spacing, r_ex + L_S = {:.3g} R (r_ex: {}): at a crack's tip the "
                                 "nonlocal rule's fit holds few springs, and where it is not determined the rule takes "
@@ -553,6 +614,12 @@ std::size_t apply_failure_rule(const FailureRule& rule, const FailureThreshold& 
   if (const auto* nonlocal = std::get_if<NonlocalFailureRule>(&rule))
     return fail_local(nonlocal->shadow.local, {nonlocal->shadow.shadow_distance, 0.0, 1.0, nonlocal->segment_length, true},
                       threshold, body, state, log);
+  if (const auto* principal = std::get_if<PrincipalNonlocalFailureRule>(&rule)) {
+    const NonlocalFailureRule& nonlocal = principal->nonlocal;
+    return fail_local(nonlocal.shadow.local,
+                      {nonlocal.shadow.shadow_distance, 0.0, 1.0, nonlocal.segment_length, true, true}, threshold, body,
+                      state, log);
+  }
   if ((state.step - start_step) % std::get<PaperFailureRule>(rule).fail_interval != 0) return 0;
   auto event = fail_most_strained_shell_spring(body, state, threshold.failure_strain, threshold.failed_stiffness_factor);
   if (!event) return 0;

@@ -4,7 +4,7 @@
 // strained one fails, one check every t_fail steps. "local" (docs/failure-rule.md): every
 // over-strained spring may fail, most strained first, but at most one per crack neighbourhood
 // (radius r_ex) per relaxation interval (set in time from the shell's elastic crossing time).
-// "shadow", "griffith", "critical_distance" and "nonlocal" add a crack spacing, flaws and averaging segments
+// "shadow", "griffith", "critical_distance", "nonlocal" and "nonlocal_principal" add a crack spacing, flaws and averaging segments
 // in R (model/failure_rule.hpp). Used by the encounter stage and the stability probe. A crust that varies (docs/crust.md): every
 // rule compares a shell spring's strain with f eps_S (f = Body::failure_strain_factor) and orders
 // candidates by strain / f; for f = 1 exactly as before.
@@ -57,14 +57,14 @@ double crack_neighbourhood_radius(const Config& config, double L_S);
 /// V_SP / dt)) (relaxation_crossings: the encounter's override, else
 /// encounter.relaxation_crossings) and exclusion_distance = crack_neighbourhood_radius (r_ex), with L_S the
 /// mean shell rest length and V_SP = sqrt(k_S 4 pi / M_S) the shell P-wave speed (eq. 19) of this
-/// body; shadow and griffith the same; critical_distance and nonlocal with flaw_length / 2 in place of L_S in
+/// body; shadow and griffith the same; critical_distance and both nonlocal rules with flaw_length / 2 in place of L_S in
 /// the relaxation interval. The one place where these times become steps. InputError for the local rule on a body
 /// without a shell.
 FailureRule make_failure_rule(const Config& config, std::optional<double> relaxation_crossings, const Body& body,
                               const State& state, double dt);
 
 /// "warning: ..." naming each length of the configured rule (shadow_distance, flaw_length) shorter
-/// than 3 L_S on this body, where the lattice cannot draw it, and for the nonlocal rule a half
+/// than 3 L_S on this body, where the lattice cannot draw it, and for the nonlocal rules a half
 /// segment shorter than r_ex + L_S (docs/failure-rule.md); "" when all are resolved, for the other
 /// rules, or without a shell.
 std::string unresolved_rule_lengths(const Config& config, const Body& body, const State& state);

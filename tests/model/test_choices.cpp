@@ -122,7 +122,7 @@ TEST(Choices, AValueOutsideTheTableNamesTheKeyAndListsTheChoices) {
             "bad.toml: stretch.hydrostatic_support = \"stiffen\" is not one of: strengthen, compress");
   EXPECT_EQ(parse_error("[encounter]\nfailure_rule = \"fast\"\n"),
             "bad.toml: encounter.failure_rule = \"fast\" is not one of: paper, local, shadow, griffith, "
-            "critical_distance, nonlocal");
+            "critical_distance, nonlocal, nonlocal_principal");
   EXPECT_EQ(parse_error("[gravity]\nmethod = \"fmm\"\n"), "bad.toml: gravity.method = \"fmm\" is not one of: direct, tree");
   EXPECT_EQ(parse_error("[gravity]\nkernel = \"exact\"\n"),
             "bad.toml: gravity.kernel = \"exact\" is not one of: fast, portable");

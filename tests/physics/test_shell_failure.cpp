@@ -363,12 +363,16 @@ struct FlawScene {
   /// Every spring (or those whose midpoint `where` accepts) at the strain of the uniform field
   /// e_xx along x (e_yy = e_xy = 0): e_xx c^2, c the x component of its unit axis.
   void stretch_along_x(double e_xx, const std::function<bool(const Vec3&)>& where = nullptr) {
+    stretch_along(e_xx, Vec3::UnitX(), where);
+  }
+  /// The same for the uniform field of strain e along the unit vector u.
+  void stretch_along(double e, const Vec3& u, const std::function<bool(const Vec3&)>& where = nullptr) {
     for (std::size_t n = 0; n < body.springs.size(); ++n) {
       const auto a = static_cast<std::size_t>(body.springs[n][0]), b = static_cast<std::size_t>(body.springs[n][1]);
       const Vec3 pa = vec3_at(state.position, a), pb = vec3_at(state.position, b);
       if (where && !where(0.5 * (pa + pb))) continue;
-      const double c = (pb - pa).x() / length(n);
-      strain(n, e_xx * c * c);
+      const double c = (pb - pa).dot(u) / length(n);
+      strain(n, e * c * c);
     }
   }
   /// Neighbourhood 0.06 (just over h), relaxation 1 step, shadow 0.3, flaw 0.22, tip strain 1.5 eps_S.
@@ -377,6 +381,10 @@ struct FlawScene {
   static FailureRule critical() { return CriticalDistanceFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22}; }
   /// The nonlocal rule with the same neighbourhood (left out of its fit), relaxation, shadow and segment.
   static FailureRule nonlocal() { return NonlocalFailureRule{{LocalFailureRule{1, 0.06, 1}, 0.3}, 0.22}; }
+  /// nonlocal_principal with the same parameters.
+  static FailureRule principal() {
+    return PrincipalNonlocalFailureRule{std::get<NonlocalFailureRule>(nonlocal())};
+  }
   static constexpr FailureThreshold threshold{0.01, 0.005};
 };
 
@@ -705,12 +713,74 @@ TEST(NonlocalFailureRule, WhereTheFitIsNotDeterminedTheSegmentsMeanDecides) {
       s->strain(s->x_spring(12, 6), 0.02);
       for (const int j : {4, 5, 7, 8}) s->strain(s->x_spring(12, j), others);
     }
-    std::vector<FailureEvent> by_nonlocal, by_critical;
+    FlawScene c = b;
+    std::vector<FailureEvent> by_nonlocal, by_critical, by_principal;
     EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, a.body, a.state, 0, by_nonlocal),
               apply_failure_rule(FlawScene::critical(), FlawScene::threshold, b.body, b.state, 0, by_critical));
     EXPECT_EQ(failed_springs(by_nonlocal), failed_springs(by_critical));
     EXPECT_EQ(by_nonlocal.size(), others > 0.0075 ? 5u : 0u);
+    // nonlocal_principal: its segment then lies across the candidate's axis, as the others'.
+    apply_failure_rule(FlawScene::principal(), FlawScene::threshold, c.body, c.state, 0, by_principal);
+    EXPECT_EQ(failed_springs(by_principal), failed_springs(by_critical));
   }
+}
+
+TEST(NonlocalPrincipalFailureRule, ACrackOpensAcrossTheLargestPrincipalStrainNotAcrossTheCandidatesAxis) {
+  // The diagonal scene under a tension e along u = (1, -1) / sqrt 2, the one direction without
+  // springs, over |x|, |y| < 0.25: the x and y springs carry e / 2, the diagonals (1, 1) nothing;
+  // the centre x spring (row 6, column 12) at 3 eps_S is the first candidate. At e = 1.6 eps_S
+  // the nonlocal rule, judging the fit's strain along the candidate's axis (0.8 eps_S), opens
+  // nothing; nonlocal_principal judges the largest principal strain, e, and opens its segment
+  // across u: along (1, 1) through the candidate's midpoint (0.025, 0), 0.22 long, crossed by x and
+  // y springs only.
+  const Vec3 u = Vec3(1, -1, 0).normalized();
+  auto scene = [&](double e) {
+    FlawScene s(true);
+    s.stretch_along(e, u, [](const Vec3& mid) { return std::abs(mid.x()) < 0.25 && std::abs(mid.y()) < 0.25; });
+    s.strain(s.x_spring(12, 6), 0.03);
+    return s;
+  };
+  FlawScene weak = scene(0.016), by_principal = scene(0.016);
+  std::vector<FailureEvent> nonlocal_log, principal_log;
+  EXPECT_EQ(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, weak.body, weak.state, 0, nonlocal_log), 0u);
+  ASSERT_GE(apply_failure_rule(FlawScene::principal(), FlawScene::threshold, by_principal.body, by_principal.state, 0,
+                               principal_log),
+            5u);
+  EXPECT_EQ(principal_log.front().spring, static_cast<std::int32_t>(by_principal.x_spring(12, 6)));
+  const std::size_t diagonals = 2 * FlawScene::columns * FlawScene::rows - FlawScene::columns - FlawScene::rows;
+  for (const auto& e : principal_log) {
+    EXPECT_LT(static_cast<std::size_t>(e.spring), diagonals) << "a diagonal, parallel to the segment, failed";
+    // Within a spring's half length of the line x - y = 0.025, and within 0.11 + h of (0.025, 0).
+    EXPECT_LT(std::abs(e.position[0] - e.position[1] - 0.025) / std::sqrt(2.0), 0.5 * FlawScene::h) << e.spring;
+    EXPECT_LT(std::hypot(e.position[0] - 0.025, e.position[1]), 0.11 + FlawScene::h) << e.spring;
+  }
+  // At e = 2.2 eps_S (1.1 eps_S along x) the nonlocal rule opens its segment across x instead: the
+  // x springs of column 12 and the diagonals between them, along x = 0.025.
+  FlawScene strong = scene(0.022);
+  std::vector<FailureEvent> across_x;
+  ASSERT_GT(apply_failure_rule(FlawScene::nonlocal(), FlawScene::threshold, strong.body, strong.state, 0, across_x), 0u);
+  EXPECT_EQ(across_x.front().spring, static_cast<std::int32_t>(strong.x_spring(12, 6)));
+  EXPECT_TRUE(all_failed(across_x, x_springs(strong, 12, 4, 8)));
+}
+
+TEST(NonlocalPrincipalFailureRule, IsTheNonlocalScheduleStoredAsItsOwnKind) {
+  Config config;
+  config.encounter.failure_rule = FailureRuleKind::nonlocal_principal;
+  config.encounter.shadow_distance = 0.3;
+  config.encounter.flaw_length = 0.4;
+  Row r;
+  const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, 1e-4);
+  ASSERT_EQ(kind_of(rule), FailureRuleKind::nonlocal_principal);
+  const std::string warning = unresolved_rule_lengths(config, r.body, r.state);  // as the nonlocal rule's
+  config.encounter.failure_rule = FailureRuleKind::nonlocal;
+  EXPECT_EQ(std::get<PrincipalNonlocalFailureRule>(rule).nonlocal,
+            std::get<NonlocalFailureRule>(make_failure_rule(config, std::nullopt, r.body, r.state, 1e-4)));
+  EXPECT_EQ(warning, unresolved_rule_lengths(config, r.body, r.state));
+  EXPECT_NE(warning.find("encounter.flaw_length / 2 = 0.2 R"), std::string::npos);
+  const StoredFailureRule stored = stored_failure_rule(rule);
+  EXPECT_EQ(stored.kind, FailureRuleKind::nonlocal_principal);
+  EXPECT_EQ(stored.flaw_length, 0.4);
+  EXPECT_EQ(failure_rule_of(stored), rule);
 }
 TEST(NonlocalFailureRule, IsTheCriticalDistanceScheduleStoredAsItsOwnKindAndWarnsWithoutRoomAtTheTip) {
   Config config;

@@ -582,9 +582,14 @@ Checkpoint expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, doub
     if (e.name == "strong") e.failure_strain = 1.5e-3;
   Checkpoint straight = run_and_check_resume(config, name);
   const auto& record = straight.stage.as<EncounterRecord>();
-  const auto* rule = std::get_if<Rule>(&record.failure_rule);
-  EXPECT_NE(rule, nullptr);
-  if (!rule) return straight;
+  const auto* stored = std::get_if<Rule>(&record.failure_rule);
+  EXPECT_NE(stored, nullptr);
+  if (!stored) return straight;
+  // nonlocal_principal: its nonlocal rule's segment and neighbourhood.
+  const auto* rule = [&] {
+    if constexpr (std::is_same_v<Rule, PrincipalNonlocalFailureRule>) return &stored->nonlocal;
+    else return stored;
+  }();
   EXPECT_EQ(rule->segment_length, 0.8);
   EXPECT_FALSE(straight.observables.failures.empty());
   if (straight.observables.failures.empty()) return straight;
@@ -595,7 +600,7 @@ Checkpoint expect_whole_segments_and_a_bitwise_resume(FailureRuleKind kind, doub
   const auto& failures = straight.observables.failures;
   for (const auto& [step, count] : per_step) {
     if (count >= 2) continue;
-    EXPECT_EQ(kind, FailureRuleKind::nonlocal) << "step " << step;
+    EXPECT_TRUE(kind == FailureRuleKind::nonlocal || kind == FailureRuleKind::nonlocal_principal) << "step " << step;
     const auto lone = std::find_if(failures.begin(), failures.end(), [&](const FailureEvent& e) { return e.step == step; });
     const Vec3 at(lone->position[0], lone->position[1], lone->position[2]);
     EXPECT_TRUE(std::any_of(failures.begin(), lone, [&](const FailureEvent& e) {
@@ -626,6 +631,21 @@ TEST(EncounterStage, NonlocalRuleFailsWholeSegmentsAndResumesBitIdentically) {
             r_ex);
   EXPECT_EQ(state_hash(as_length.state), state_hash(in_spacings.state));
   expect_same_failures(as_length.observables.failures, in_spacings.observables.failures);
+}
+
+// nonlocal_principal on the same body and neighbourhood: whole segments, a bitwise resume, and
+// segments that open across the crust's principal direction, not the lattice's: other springs fail.
+TEST(EncounterStage, NonlocalPrincipalRuleFailsWholeSegmentsAndResumesBitIdentically) {
+  const Checkpoint principal = expect_whole_segments_and_a_bitwise_resume<PrincipalNonlocalFailureRule>(
+      FailureRuleKind::nonlocal_principal, 1.0, "encounter_nonlocal_principal");
+  const Checkpoint nonlocal = expect_whole_segments_and_a_bitwise_resume<NonlocalFailureRule>(
+      FailureRuleKind::nonlocal, 1.0, "encounter_nonlocal_for_principal");
+  std::vector<std::int32_t> a, b;
+  for (const auto& e : principal.observables.failures) a.push_back(e.spring);
+  for (const auto& e : nonlocal.observables.failures) b.push_back(e.spring);
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_NE(a, b);
 }
 
 // A crust that varies (docs/crust.md): the quick body's crust given a strength dichotomy (weak toward
