@@ -1,8 +1,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <stdexcept>
 
 #include "base/errors.hpp"
@@ -34,6 +35,16 @@ struct Line {
     state.springs.failed = {0, 0, 0, 1};
   }
 };
+
+/// A configuration of the crack rule `kind` with a shadow of 0.3 R and, given, flaws or segments of
+/// `flaw_length` R.
+Config crack_rule_config(FailureRuleKind kind, std::optional<double> flaw_length = std::nullopt) {
+  Config config;
+  config.encounter.failure_rule = kind;
+  config.encounter.shadow_distance = 0.3;
+  if (flaw_length) config.encounter.flaw_length = *flaw_length;
+  return config;
+}
 
 }  // namespace
 
@@ -295,9 +306,7 @@ TEST(ShadowFailureRule, ACrackGrowsAheadButNoNewCrackStartsInItsShadow) {
 }
 
 TEST(ShadowFailureRule, ScheduleIsTheLocalRulesWithTheShadowInR) {
-  Config config;
-  config.encounter.failure_rule = FailureRuleKind::shadow;
-  config.encounter.shadow_distance = 0.3;
+  Config config = crack_rule_config(FailureRuleKind::shadow);
   Row r;
   const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, 0.001);
   ASSERT_EQ(kind_of(rule), FailureRuleKind::shadow);
@@ -451,9 +460,7 @@ TEST(GriffithFailureRule, ACrackGrowsOnlyBeyondTheTipStrainWhileANewOneOpensAtEp
 }
 
 TEST(GriffithFailureRule, TipStrainFactorIsTheCriticalFlawsInTheMeanSpacing) {
-  Config config;
-  config.encounter.failure_rule = FailureRuleKind::griffith;
-  config.encounter.shadow_distance = 0.3;
+  Config config = crack_rule_config(FailureRuleKind::griffith);
   Row r;
   double L_S = 0;
   for (double l : r.state.springs.rest_length) L_S += l / 4;
@@ -552,10 +559,7 @@ TEST(CriticalDistanceFailureRule, ACrackGrowsByTheSegmentAheadOfItsTipWhenItsMea
 }
 
 TEST(CriticalDistanceFailureRule, RelaxesOverHalfASegmentAndIsStoredAsConfigured) {
-  Config config;
-  config.encounter.failure_rule = FailureRuleKind::critical_distance;
-  config.encounter.shadow_distance = 0.3;
-  config.encounter.flaw_length = 0.4;
+  Config config = crack_rule_config(FailureRuleKind::critical_distance, 0.4);
   Row r;
   const double dt = 1e-4;
   const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, dt);
@@ -764,10 +768,7 @@ TEST(NonlocalPrincipalFailureRule, ACrackOpensAcrossTheLargestPrincipalStrainNot
 }
 
 TEST(NonlocalPrincipalFailureRule, IsTheNonlocalScheduleStoredAsItsOwnKind) {
-  Config config;
-  config.encounter.failure_rule = FailureRuleKind::nonlocal_principal;
-  config.encounter.shadow_distance = 0.3;
-  config.encounter.flaw_length = 0.4;
+  Config config = crack_rule_config(FailureRuleKind::nonlocal_principal, 0.4);
   Row r;
   const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, 1e-4);
   ASSERT_EQ(kind_of(rule), FailureRuleKind::nonlocal_principal);
@@ -783,10 +784,7 @@ TEST(NonlocalPrincipalFailureRule, IsTheNonlocalScheduleStoredAsItsOwnKind) {
   EXPECT_EQ(failure_rule_of(stored), rule);
 }
 TEST(NonlocalFailureRule, IsTheCriticalDistanceScheduleStoredAsItsOwnKindAndWarnsWithoutRoomAtTheTip) {
-  Config config;
-  config.encounter.failure_rule = FailureRuleKind::nonlocal;
-  config.encounter.shadow_distance = 0.3;
-  config.encounter.flaw_length = 0.6;
+  Config config = crack_rule_config(FailureRuleKind::nonlocal, 0.6);
   Row r;  // L_S = 0.0985 R
   const double dt = 1e-4;
   const FailureRule rule = make_failure_rule(config, std::nullopt, r.body, r.state, dt);
