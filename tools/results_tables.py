@@ -978,9 +978,7 @@ def resolution_welded_nonlocal_rex(p):
     perturbed pericenters (5 at levels 3-5, 3 at level 6); then levels 5 and 6 compared by
     `compare --ensembles` (issue 24 item 4)."""
     settings = "--set encounter.failure_rule=nonlocal " + T5_AT_2E3_TREE
-    folders = [f"nonlocal-rex-welded-L{level}" for level in (3, 4, 5, 6)
-               if (p.work / f"nonlocal-rex-welded-L{level}" / "report" / "ensembles.json").is_file()]
-    lines = commands(
+    return nonlocal_study_lines(p, "nonlocal-rex-welded", commands(
         f"tidalcrust run workflows/welded-L3.toml {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
         "--set ensemble.members=5 --only T5 --out nonlocal-rex-welded-L3   (and -L4)",
         "(level 5: the same with --set encounter.exclusion_radius=3.0 in place of exclusion_distance: r_ex = 3 L_S)",
@@ -990,15 +988,43 @@ def resolution_welded_nonlocal_rex(p):
         "--out nonlocal-rex-welded-L6/T5_mK/encounter.h5   r_ex = 6 L_S)",
         f"tidalcrust report workflows/welded-L3.toml {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
         "--set ensemble.members=5 --out nonlocal-rex-welded-L3   (and each level with its run's settings)",
-        "tidalcrust compare --ensembles nonlocal-rex-welded-L5/report/ensembles.json nonlocal-rex-welded-L6/report/ensembles.json")
+        "tidalcrust compare --ensembles nonlocal-rex-welded-L5/report/ensembles.json nonlocal-rex-welded-L6/report/ensembles.json"))
+
+
+@full_table("resolution-welded-nonlocal-principal")
+def resolution_welded_nonlocal_principal(p):
+    """The same study with the nonlocal_principal rule, each member branching from the relaxed
+    body of the nonlocal study's level (issue 24 item 4)."""
+    settings = "--set encounter.failure_rule=nonlocal_principal"
+    return nonlocal_study_lines(p, "principal-welded", commands(
+        "(for each level L = 3..6 with the relaxed body of nonlocal-rex-welded-LL linked into principal-welded-LL/body,",
+        " N = 5 members at levels 3-5 and 3 at level 6, and K = 0 .. N - 1:)",
+        "tidalcrust encounter --from principal-welded-LL/body/relax.h5 --set ensemble.members=N --encounter T5_mK "
+        f"--failure-strain 0.002 {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
+        "--out principal-welded-LL/T5_mK/encounter.h5 --threads 1",
+        "(level 5, here and in report: --set encounter.exclusion_radius=3.0 in place of exclusion_distance, as its body "
+        "was relaxed: r_ex = 3 L_S)",
+        "tidalcrust analyze --from principal-welded-LL/T5_mK/encounter.h5 --out principal-welded-LL/T5_mK/analysis",
+        f"tidalcrust report workflows/welded-LL.toml {settings} --set encounter.exclusion_distance={NONLOCAL_REX} "
+        f"{T5_AT_2E3_TREE} --set ensemble.members=N --out principal-welded-LL",
+        "tidalcrust compare --ensembles principal-welded-L5/report/ensembles.json principal-welded-L6/report/ensembles.json"))
+
+
+def nonlocal_study_lines(p, prefix, command_lines):
+    """A welded resolution study at levels 3-6 in folders PREFIX-L3 .. -L6, each an ensemble of
+    T5: the ensembles' table, the crack length beside another crack at levels 5 and 6, and level 5
+    against level 6 (`compare --ensembles`, with the rose's sectors)."""
+    folders = [f"{prefix}-L{level}" for level in (3, 4, 5, 6)
+               if (p.work / f"{prefix}-L{level}" / "report" / "ensembles.json").is_file()]
+    lines = list(command_lines)
     lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f in folders])
     lines += table(["ensemble (members finished, what varies)"] + [c for _, c, _ in ENSEMBLE_COLUMNS],
                    ensemble_rows(p, [(f, f"level {f[-1]}") for f in folders], "T5"))
     # 0.04 R is a lattice spacing at level 5 and two at level 6; below the spacing of levels 3 and 4.
     lines += parallel_crack_lines(p, [f for f in folders if f[-1] in "56"], "T5")
-    if all(f"nonlocal-rex-welded-L{level}" in folders for level in (5, 6)):
-        lines += compare_ensembles_lines(p, p.work / "nonlocal-rex-welded-L5" / "report" / "ensembles.json",
-                                         p.work / "nonlocal-rex-welded-L6" / "report" / "ensembles.json",
+    if all(f"{prefix}-L{level}" in folders for level in (5, 6)):
+        lines += compare_ensembles_lines(p, p.work / f"{prefix}-L5" / "report" / "ensembles.json",
+                                         p.work / f"{prefix}-L6" / "report" / "ensembles.json",
                                          "Level 5 (A) against level 6 (B), Welch's t test of the members' means "
                                          "(rose_*: the shares of the crack azimuths within 22.5 deg of 0, 45, 90, 135 deg):",
                                          more=ROSE_SECTORS)
