@@ -1,7 +1,9 @@
 // `tidalcrust build|stretch|relax|encounter`: one stage of the table (stages/stage_kinds.hpp) run by
 // hand, from a checkpoint (or, for a stage without parents, from --config) into --out, computed by
 // run_stage (stages/run_stage.hpp) as `run` computes it, but never waiting for or reusing another
-// process's work: the output's lock is refused while anyone holds it, and --out is replaced.
+// process's work: the output's lock is refused while anyone holds it, and --out is replaced. The
+// same command run again after an interruption resumes from --out's matching mid-stage checkpoint
+// (a killed run's progress is never thrown away by repeating the command that started it).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -169,6 +171,8 @@ int command_stage(const StageKind& kind, int argc, char** argv) {
     if (run.checkpoint_interval && *run.checkpoint_interval < 0) throw InputError("--checkpoint-every must be >= 0");
     run.stop_after_step = parsed["stop-after-step"].as<std::int64_t>();
     run.quiet = parsed.count("quiet") > 0;
+    run.find_resume = true;  // --out's matching mid-stage checkpoint (none needed when --from is one)
+    run.say = [](const std::string& text) { fmt::print(stderr, "tidalcrust: {}\n", text); };  // "resuming from"
   }
   if (resuming) {
     run.resume = std::move(input);
@@ -176,8 +180,8 @@ int command_stage(const StageKind& kind, int argc, char** argv) {
   }
   const StageResult done = run_stage(job, config, std::move(run));
   if (done.outcome == LoopOutcome::interrupted) {
-    fmt::print(stderr, "stopped at step {}; resume with --from {}\n", done.checkpoint.state.step,
-               done.mid_checkpoint.string());
+    fmt::print(stderr, "stopped at step {}; resume with --from {} (or the same command again)\n",
+               done.checkpoint.state.step, done.mid_checkpoint.string());
     return exit_interrupted;
   }
   fmt::print("{}: {} written ({})\n", out.string(), kind.name(),

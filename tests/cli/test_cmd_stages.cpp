@@ -56,6 +56,14 @@ TEST(StageCli, WrongStageOrderExitsTwoAndInterruptedRelaxResumesBitIdentical) {
   ASSERT_TRUE(fs::exists(c.dir / "resumed.mid.h5"));
   EXPECT_FALSE(fs::exists(c.dir / "resumed.h5"));
   EXPECT_EQ(read_checkpoint(c.dir / "resumed.mid.h5").state.step, 37);
+  // The same command again continues from the mid-stage checkpoint (here to step 60), never from
+  // the beginning: a killed run's progress survives repeating the command that started it.
+  auto repeated = run_cli("relax --quiet --stop-after-step 60 --from " + c.at("stretched.h5") + " --out " +
+                          c.at("resumed.h5"));
+  EXPECT_EQ(repeated.exit_code, 130) << repeated.err;
+  EXPECT_NE(repeated.err.find("resuming from " + (c.dir / "resumed.mid.h5").string() + " (step 37)"), std::string::npos)
+      << repeated.err;
+  EXPECT_EQ(read_checkpoint(c.dir / "resumed.mid.h5").state.step, 60);
   auto changed = run_cli("relax --quiet --from " + c.at("resumed.mid.h5") + " --set relax.damping=10 --out " +
                          c.at("resumed.h5"));
   EXPECT_EQ(changed.exit_code, 2) << changed.err;  // a resume keeps its own configuration
