@@ -84,7 +84,15 @@ std::vector<std::int64_t> plan_snapshots(std::int64_t start_step, std::int64_t p
 
 }  // namespace
 
-void check_encounter(const Config& config, const Encounter& spec) {
+void check_encounter(const Config& config, const Encounter& spec, const std::string& source) {
+  if (!source.empty()) {
+    try {
+      check_encounter(config, spec);
+    } catch (const InputError& err) {
+      throw InputError(fmt::format("{}: {}", source, err.what()));
+    }
+    return;
+  }
   // validate_encounter checks the spec (finite M2 > 0, q > 1 outside the body, V_q > 0, eps_S > 0);
   // the configuration was validated as a whole before (no copy of it here: O(1) per encounter).
   validate_encounter(spec, "encounter parameters");

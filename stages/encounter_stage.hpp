@@ -22,9 +22,10 @@ inline constexpr double min_steps_per_pericenter_passage = 20;
 /// InputError unless `spec` is valid (model/config validate) and resolved by
 /// config.integrator.dt: q/V_q and the whole encounter (start_distance in to pericenter, out to
 /// end_distance) span at least min_steps_per_pericenter_passage steps. The message names the
-/// encounter and dt. begin_encounter calls it; `run` calls it for every encounter before
-/// writing anything.
-void check_encounter(const Config& config, const Encounter& spec);
+/// encounter and dt, after "<source>: " when `source` (the file that gives the encounter or the
+/// time step: the workflow, the input checkpoint) is not empty. begin_encounter calls it; `run`,
+/// `submit` and the `encounter` command call it for every encounter before writing anything.
+void check_encounter(const Config& config, const Encounter& spec, const std::string& source = "");
 
 /// A fresh "encounter" checkpoint from a complete "relax" or "encounter" checkpoint: places
 /// the perturber and records the encounter, its failure rule and schedules in an EncounterRecord.

@@ -169,7 +169,7 @@ int command_run(int argc, char** argv) {
   // here too so that an unresolvable one is refused before the body is built.
   Config encounter_config = config;
   if (dt_factor != 1.0) scale_time_step(encounter_config, dt_factor);
-  for (const auto& spec : encounters) check_encounter(encounter_config, spec);
+  for (const auto& spec : encounters) check_encounter(encounter_config, spec, w.file.string());
   WorkflowOptions workflow_options;
   workflow_options.root = w.root;
   workflow_options.quiet = parsed.count("quiet") > 0;

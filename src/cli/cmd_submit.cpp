@@ -272,7 +272,7 @@ int command_submit(int argc, char** argv) {
   const Config config = load_config(workflow);
   if (config.encounters.empty()) throw InputError(fmt::format("{}: the workflow has no encounter", workflow.string()));
   for (const auto& spec : config.encounters) {
-    check_encounter(config, spec);
+    check_encounter(config, spec, workflow.string());
     if (spec.name.find_first_of(" \t\n") != std::string::npos)
       throw InputError(fmt::format("{}: encounter name '{}' has white space", workflow.string(), spec.name));
     s.encounters.push_back(spec.name);

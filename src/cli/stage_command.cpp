@@ -14,6 +14,7 @@
 #include "cli/cli_options.hpp"
 #include "cli/commands.hpp"
 #include "io/checkpoint_file.hpp"
+#include "stages/encounter_stage.hpp"
 #include "stages/run_stage.hpp"
 #include "stages/stage_kinds.hpp"
 
@@ -153,7 +154,10 @@ int command_stage(const StageKind& kind, int argc, char** argv) {
                                          parsed.count("vq")))
     throw InputError(fmt::format("{}: is a mid-stage {}; it resumes its own encounter "
                                  "(drop --encounter/--m2/--q/--vq)", from.string(), kind.name()));
-  if (kind.per_encounter && !resuming) spec = encounter_of(parsed, config);
+  if (kind.per_encounter && !resuming) {
+    spec = encounter_of(parsed, config);
+    check_encounter(config, *spec, from.string());  // its time step is the input checkpoint's
+  }
   if (!resuming && kind.prepare) {
     const std::string note = kind.prepare(config, *input, from.string());
     if (!note.empty()) fmt::print(stderr, "tidalcrust: {}\n", note);

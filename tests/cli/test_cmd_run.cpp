@@ -262,6 +262,8 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
       {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
            " --out " + quoted(dir / "fresh"), "encounter 'B'"},
       {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
+           " --out " + quoted(dir / "fresh"), workflow.string() + ": encounter 'B' (M2 = 1e+09"},
+      {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
            " --out " + quoted(dir / "fresh"), "is not resolved by dt = "},
       // The gravity method (issue 13): unknown method, force_error outside (0, 0.5].
       {"run " + quoted(workflow) + " --set gravity.method=fmm --out " + quoted(out), "gravity.method = \"fmm\""},
