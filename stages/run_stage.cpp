@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <string_view>
 #include <thread>
 
 #include "base/errors.hpp"
@@ -89,6 +90,16 @@ std::optional<Checkpoint> resumable(const fs::path& mid, const std::string& labe
   return existing;
 }
 
+/// kind.begin, its InputError with `source` first (StageRunOptions::config_source).
+Checkpoint begin_stage(const StageJob& job, const Config& config, const std::string& source) {
+  try {
+    return job.kind->begin(job.parent, config, job.encounter);
+  } catch (const InputError& err) {
+    if (source.empty() || std::string_view(err.what()).starts_with(source)) throw;
+    throw InputError(fmt::format("{}: {}", source, err.what()));
+  }
+}
+
 }  // namespace
 
 std::string job_fingerprint(const StageJob& job, const Config& config) {
@@ -123,7 +134,7 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
     say(options, fmt::format("{}: {}", job.label, kind.doing(config)));
     remove_stage_outputs(job.file, false, options.keep);
     if (!options.derived.empty()) fs::remove_all(options.derived);
-    result.checkpoint = kind.begin(job.parent, config, job.encounter);
+    result.checkpoint = begin_stage(job, config, options.config_source);
     result.checkpoint.stage.fingerprint = fingerprint;
     write_checkpoint(job.file, result.checkpoint);
     if (options.finish) options.finish(result.checkpoint);
@@ -148,7 +159,7 @@ StageResult run_stage(const StageJob& job, const Config& config, StageRunOptions
     stored = parse_config(checkpoint->config_toml, resume_file.string() + ":/parameters/config");
     stored->gravity.kernel = config.gravity.kernel;
   } else {
-    checkpoint = kind.begin(job.parent, config, job.encounter);
+    checkpoint = begin_stage(job, config, options.config_source);
     checkpoint->stage.fingerprint = fingerprint;
   }
   const Config& run_config = stored ? *stored : config;

@@ -52,6 +52,11 @@ struct StageRunOptions {
   std::optional<std::int64_t> checkpoint_interval;  ///< default: StageKind::checkpoint_interval
   std::int64_t stop_after_step = -1;                ///< testing aid (StepLoopOptions)
   bool quiet = false;                               ///< no progress lines
+  /// Where the stage's configuration comes from (`run`: the workflow file; a stage command: its
+  /// --config file or input checkpoint): an InputError of the stage's begin (a value the stage
+  /// finds unusable only once it sees the body, e.g. ocean.bulk_modulus) is given with it first,
+  /// unless the message starts with it already. Empty: as thrown.
+  std::string config_source;
   std::optional<std::filesystem::path> status_file;
   std::function<void(const std::string&)> say;   ///< stage lines ("relax: up to date (...)"); null: none
   std::function<void(const Checkpoint&)> finish; ///< on the result, still under the lock; null: none

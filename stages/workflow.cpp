@@ -32,6 +32,7 @@ struct RunContext {
   fs::path status_file;
   bool quiet = false;
   bool allow_kernel_change = false;
+  std::string config_file;
 };
 
 void say(const RunContext& ctx, const std::string& text) {
@@ -48,6 +49,7 @@ StageRunOptions workflow_stage_options(const RunContext& ctx) {
   options.allow_kernel_change = ctx.allow_kernel_change;
   options.quiet = ctx.quiet;
   options.status_file = ctx.status_file;
+  options.config_source = ctx.config_file;
   options.say = [&ctx](const std::string& text) { say(ctx, text); };
   return options;
 }
@@ -262,6 +264,7 @@ WorkflowResult run_workflow(const Config& config, const WorkflowOptions& options
   RunContext ctx;
   ctx.quiet = options.quiet;
   ctx.allow_kernel_change = options.allow_kernel_change;
+  ctx.config_file = options.config_file.string();
   fs::create_directories(options.root);
   ctx.status_file = options.root / "status.json";
   WorkflowResult result;

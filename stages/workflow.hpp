@@ -23,6 +23,8 @@ struct WorkflowOptions {
   /// Step on from checkpoints computed by another gravity kernel (recorded in the checkpoint);
   /// without it that is refused (stages/gravity_kernel_check.hpp).
   bool allow_kernel_change = false;
+  /// The workflow file, named first in the errors of a stage's configuration (StageRunOptions::config_source).
+  std::filesystem::path config_file;
 };
 
 /// One finished encounter of a workflow.

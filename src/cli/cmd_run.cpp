@@ -175,6 +175,7 @@ int command_run(int argc, char** argv) {
   workflow_options.quiet = parsed.count("quiet") > 0;
   workflow_options.dt_factor = dt_factor;
   workflow_options.allow_kernel_change = kernel.allow_change;
+  workflow_options.config_file = w.file;
   workflow_options.encounters = std::move(encounters);
   apply_thread_count(threads);
   if (jobs > 1) {

@@ -180,6 +180,7 @@ int command_validate(int argc, char** argv) {
   workflow_options.root = parsed.count("out") ? fs::path(parsed["out"].as<std::string>())
                                               : fs::path("checkpoints") / config.workflow.name;
   workflow_options.quiet = parsed.count("quiet") > 0;  // no encounters: the body chain alone
+  workflow_options.config_file = parsed["workflow"].as<std::string>();
   apply_thread_count(threads);
   // SIGINT/SIGTERM end a measurement too (exit 130), also when the body chain is up to date.
   install_stop_handlers();

@@ -170,6 +170,7 @@ int command_stage(const StageKind& kind, int argc, char** argv) {
   StageRunOptions run;
   run.keep = {out, from};  // `out` is replaced when the stage is done
   run.allow_kernel_change = common.kernel.allow_change;
+  run.config_source = common.config_file ? common.config_file->string() : from.string();
   if (kind.stepping()) {
     if (parsed.count("checkpoint-every")) run.checkpoint_interval = parsed["checkpoint-every"].as<std::int64_t>();
     if (run.checkpoint_interval && *run.checkpoint_interval < 0) throw InputError("--checkpoint-every must be >= 0");
