@@ -258,9 +258,7 @@ TEST(RunWorkflow, BadInputExitsTwoAndTouchesNothing) {
       {"run " + quoted(workflow) + " --set workflow.seed=4 --out " + quoted(out), "different body"},
       {"run " + quoted(dir / "missing.toml") + " --out " + quoted(out), "missing.toml"},
       // An encounter the time step cannot resolve (issue 10, item 6), refused before the body
-      // is built (in a fresh folder: nothing created), naming the encounter and dt.
-      {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
-           " --out " + quoted(dir / "fresh"), "encounter 'B'"},
+      // is built (in a fresh folder: nothing created), naming the workflow, the encounter and dt.
       {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
            " --out " + quoted(dir / "fresh"), workflow.string() + ": encounter 'B' (M2 = 1e+09"},
       {"run " + quoted(workflow) + " --set encounters.B.perturber_mass=1e9 --set encounters.B.pericenter_speed=33100"
