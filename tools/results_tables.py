@@ -1022,6 +1022,7 @@ def nonlocal_study_lines(p, prefix, command_lines):
                    ensemble_rows(p, [(f, f"level {f[-1]}") for f in folders], "T5"))
     # 0.04 R is a lattice spacing at level 5 and two at level 6; below the spacing of levels 3 and 4.
     lines += parallel_crack_lines(p, [f for f in folders if f[-1] in "56"], "T5")
+    lines += angle_band_lines(p, [f for f in folders if f[-1] in "56"], "T5")
     if all(f"{prefix}-L{level}" in folders for level in (5, 6)):
         lines += compare_ensembles_lines(p, p.work / f"{prefix}-L5" / "report" / "ensembles.json",
                                          p.work / f"{prefix}-L6" / "report" / "ensembles.json",
@@ -1056,6 +1057,39 @@ def parallel_crack_lines(p, folders, encounter, distance=0.04):
     return (["", f"Crack length within {distance:g} R of another crack (`tools/parallel_cracks.py "
                  f"--distance {distance:g}` on each member's cracks.json), mean +- sd over the members:", ""] +
             table(["run", "members", "length beside another crack [R]", "share of the total"], rows))
+
+
+def angle_band_lines(p, folders, encounter):
+    """Per band of angle from the subsatellite point (tools/rose_by_angle.py), over each folder's
+    members' cracks.json: the crack length and its radial and concentric shares, mean +- sd."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    import rose_by_angle
+    per_folder = {}
+    for folder in folders:
+        members = [rose_by_angle.bands(c["cracks"], c["subsatellite"])
+                   for c in (p.load(path) for path in
+                             sorted((p.work / folder).glob(f"{encounter}_m*/analysis/cracks.json")))]
+        if len(members) >= 2:
+            per_folder[folder] = members
+    if len(per_folder) < 2:
+        return []
+
+    def spread(values, digits):
+        return f"{statistics.mean(values):.{digits}f} +- {statistics.stdev(values):.{digits}f}"
+
+    rows = []
+    for b, (lo, hi) in enumerate(zip(rose_by_angle.BANDS_DEG, rose_by_angle.BANDS_DEG[1:])):
+        row = [f"{lo}-{hi}"]
+        for column, digits in ((0, 2), (1, 3), (2, 3)):
+            for members in per_folder.values():
+                row.append(spread([m[b][column] if column == 0 else m[b][column] / m[b][0] for m in members], digits))
+        rows.append(row)
+    names = list(per_folder)
+    header = (["angle from the subsatellite point [deg]"] + [f"crack length [R], {n}" for n in names] +
+              [f"radial share, {n}" for n in names] + [f"concentric share, {n}" for n in names])
+    return (["", "By the angle from the subsatellite point (`tools/rose_by_angle.py` on each member's cracks.json; "
+                 "the shares of each band's length within 22.5 deg of radial and of concentric), mean +- sd over the "
+                 "members:", ""] + table(header, rows))
 
 
 def compare_ensembles_lines(p, a, b, title, *pair, more=()):
