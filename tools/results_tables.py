@@ -1036,11 +1036,18 @@ def nonlocal_study_lines(p, prefix, command_lines):
 ROSE_SECTORS = ("rose_0", "rose_45", "rose_90", "rose_135")
 
 
+def sibling_tool(name):
+    """The module of tools/NAME.py (a tool whose functions a table uses)."""
+    import importlib
+    if str(Path(__file__).resolve().parent) not in sys.path:
+        sys.path.insert(0, str(Path(__file__).resolve().parent))
+    return importlib.import_module(name)
+
+
 def parallel_crack_lines(p, folders, encounter, distance=0.04):
     """Per folder, over its members' cracks.json: the crack length within `distance` R of another
     crack (tools/parallel_cracks.py), mean +- sd, and its share of the total."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    import parallel_cracks
+    parallel_cracks = sibling_tool("parallel_cracks")
     rows = []
     for folder in folders:
         near, share = [], []
@@ -1062,8 +1069,7 @@ def parallel_crack_lines(p, folders, encounter, distance=0.04):
 def angle_band_lines(p, folders, encounter):
     """Per band of angle from the subsatellite point (tools/rose_by_angle.py), over each folder's
     members' cracks.json: the crack length and its radial and concentric shares, mean +- sd."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    import rose_by_angle
+    rose_by_angle = sibling_tool("rose_by_angle")
     per_folder = {}
     for folder in folders:
         members = [rose_by_angle.bands(c["cracks"], c["subsatellite"])
