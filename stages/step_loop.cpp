@@ -32,7 +32,7 @@ LoopOutcome run_step_loop(Checkpoint& checkpoint, const std::function<void(State
   State& state = checkpoint.state;
   const std::int64_t end = checkpoint.stage.end_step;
   std::optional<ProgressReporter> progress;
-  if (!options.quiet) progress.emplace(options.label, state.step, end, options.status_file);
+  if (!options.quiet) progress.emplace(options.label, checkpoint.stage.clock.start_step, state.step, end, options.status_file);
   install_stop_handlers();
 
   auto write_mid = [&] {

@@ -159,7 +159,7 @@ TideResult measure_tide(const Checkpoint& relaxed, const Config& config, const B
   const StepClock clock{rest.time, rest.step, dt};
   // Progress over the four runs (+eps and -eps, to 2/3 and on to the end): 2 * steps in all.
   std::optional<ProgressReporter> line;
-  if (progress) line.emplace("validate: tide", 0, 2 * steps, std::nullopt);
+  if (progress) line.emplace("validate: tide", 0, 0, 2 * steps, std::nullopt);
   std::int64_t before = 0;
   const auto run = [&](State& state, double strength, std::int64_t count) {
     relax_in_tidal_field(forces, state, center, strength, r.drag, clock, count,
@@ -276,7 +276,7 @@ RingdownResult measure_ringdown(const Checkpoint& relaxed, const Config& config,
   Leapfrog plus_step(plus_forces, clock), minus_step(minus_forces, clock);
   const std::int64_t steps = step_count(duration, clock.dt);
   std::optional<ProgressReporter> line;
-  if (progress) line.emplace("validate: ring-down", 0, steps, std::nullopt);
+  if (progress) line.emplace("validate: ring-down", 0, 0, steps, std::nullopt);
   for (std::int64_t s = 0; s <= steps; ++s) {
     throw_if_stopped("the ring-down measurement");
     if (s > 0) plus_step.step(plus), minus_step.step(minus);

@@ -10,10 +10,11 @@
 
 namespace tidalcrust {
 
-ProgressReporter::ProgressReporter(std::string label, std::int64_t first_step, std::int64_t last_step,
-                                   std::optional<std::filesystem::path> status_file)
+ProgressReporter::ProgressReporter(std::string label, std::int64_t first_step, std::int64_t start_step,
+                                   std::int64_t last_step, std::optional<std::filesystem::path> status_file)
     : label_(std::move(label)),
       first_step_(first_step),
+      start_step_(start_step),
       last_step_(last_step),
       status_file_(std::move(status_file)),
       start_(std::chrono::steady_clock::now()),
@@ -25,7 +26,7 @@ void ProgressReporter::update(std::int64_t step, bool force) {
   if (!force && now - last_print_ < std::chrono::seconds(1)) return;
   last_print_ = now;
   double seconds = std::chrono::duration<double>(now - start_).count();
-  double rate = seconds > 0 ? static_cast<double>(step - first_step_) / seconds : 0.0;
+  double rate = seconds > 0 ? static_cast<double>(step - start_step_) / seconds : 0.0;
   double eta = rate > 0 ? static_cast<double>(last_step_ - step) / rate : 0.0;
   double percent = last_step_ > first_step_
                        ? 100.0 * static_cast<double>(step - first_step_) / static_cast<double>(last_step_ - first_step_)
@@ -39,7 +40,7 @@ void ProgressReporter::update(std::int64_t step, bool force) {
 
 void ProgressReporter::finish(std::int64_t step, const std::string& state) {
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  double rate = seconds > 0 ? static_cast<double>(step - first_step_) / seconds : 0.0;
+  double rate = seconds > 0 ? static_cast<double>(step - start_step_) / seconds : 0.0;
   fmt::print(stderr, "{}{}: {} at step {} ({:.1f} s, {:.0f} steps/s)\n", terminal_ ? "\r" : "", label_, state,
              step, seconds, rate);
   write_status(step, rate, 0.0, state);
@@ -51,6 +52,7 @@ void ProgressReporter::write_status(std::int64_t step, double rate, double eta, 
                        {"state", state},
                        {"step", step},
                        {"first_step", first_step_},
+                       {"start_step", start_step_},
                        {"last_step", last_step_},
                        {"steps_per_second", rate},
                        {"eta_seconds", eta},

@@ -17,8 +17,10 @@ void write_status_file(const std::filesystem::path& file, const Json& status);
 
 class ProgressReporter {
  public:
-  /// `status_file` empty: no status file. `label` e.g. "relax" or "encounter T5".
-  ProgressReporter(std::string label, std::int64_t first_step, std::int64_t last_step,
+  /// `status_file` empty: no status file. `label` e.g. "relax" or "encounter T5". The stage runs
+  /// from `first_step` to `last_step`; this process starts at `start_step` (> first_step when it
+  /// resumed), so the percentage is of the stage and the rate and ETA are of this process's steps.
+  ProgressReporter(std::string label, std::int64_t first_step, std::int64_t start_step, std::int64_t last_step,
                    std::optional<std::filesystem::path> status_file);
   /// Called after every step; prints/writes only when a second has passed (or force).
   void update(std::int64_t step, bool force = false);
@@ -29,7 +31,7 @@ class ProgressReporter {
   void write_status(std::int64_t step, double rate, double eta, const std::string& state) const;
 
   std::string label_;
-  std::int64_t first_step_, last_step_;
+  std::int64_t first_step_, start_step_, last_step_;
   std::optional<std::filesystem::path> status_file_;
   std::chrono::steady_clock::time_point start_, last_print_;
   bool terminal_;
