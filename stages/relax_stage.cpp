@@ -12,6 +12,7 @@
 #include "physics/crust_relaxation.hpp"
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
+#include "forces/maxwell_liquid.hpp"
 #include "integrate/leapfrog.hpp"
 #include "physics/shell_failure.hpp"
 #include "physics/spin_frame.hpp"
@@ -116,7 +117,9 @@ LoopOutcome relax_loop(Checkpoint& checkpoint, const Config& config, const StepL
 
 /// Records the relaxed body's state (a spinning body's kinetic energy in its co-rotating frame),
 /// then turns a spinning body into the inertial frame (rotating_to_inertial): the relaxed state
-/// spins, and its body frame at time t is Rz(Omega t) of the inertial one.
+/// spins, and its body frame at time t is Rz(Omega t) of the inertial one. A Maxwell liquid's
+/// springs hand their resting forces to its support here (set_liquid_support), so that the
+/// probe and every later stage start from this equilibrium while the liquid's shear relaxes.
 void finish_relaxation(Checkpoint& checkpoint, const Config& config) {
   auto& record = checkpoint.stage.as<RelaxRecord>();
   const Body& body = checkpoint.body;
@@ -126,6 +129,7 @@ void finish_relaxation(Checkpoint& checkpoint, const Config& config) {
   record.internal_kinetic_energy = internal_kinetic_energy(body, state);
   record.mean_shell_radius = mean_shell_radius(body, state);
   rotating_to_inertial(body, state, config.spin.rate(), portable_mode(config));
+  if (body.liquid.present() && body.liquid.maxwell_time > 0) set_liquid_support(body, state);
   record.relaxed = true;
 }
 

@@ -20,7 +20,7 @@ UNITS_NOTE = ("model units G = M = R = 1: lengths in R (the body's radius), mass
               "unit strings say what R, t_grav and M are (a [moon]'s own, else nm, ps, 14983000 kg) and are "
               "not converted")
 
-READABLE_FORMATS = (4, 5, 6, 7, 8)
+READABLE_FORMATS = (4, 5, 6, 7, 8, 9)
 
 # Units of the timeseries columns (docs/checkpoint-layout.md).
 _TIMESERIES_UNITS = {

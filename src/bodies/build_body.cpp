@@ -261,6 +261,7 @@ BuiltBody build_body(const Config& config) {
     add_ocean(out, *config.ocean.thickness,
               config.ocean.bulk_modulus ? *config.ocean.bulk_modulus : *config.material.youngs_modulus / 1.5,
               config.ocean.shear_fraction.value_or(OceanConfig::default_shear_fraction));
+  if (config.ocean.present()) out.body.liquid.maxwell_time = config.ocean.maxwell_time.value_or(0.0);
 
   std::vector<Vec3> positions(interior.nodes);
   positions.insert(positions.end(), shell.nodes.begin(), shell.nodes.end());

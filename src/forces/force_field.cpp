@@ -231,13 +231,14 @@ void ForceField::check_sizes(const SpringState& springs, const HingeState& hinge
 
 ForceAlarms ForceField::compute(const double* position, const double* velocity, const SpringState& springs,
                                 const HingeState& hinges, const Perturber& perturber,
-                                const std::vector<double>& liquid_rest_volume, Accelerations& out) {
+                                const std::vector<double>& liquid_rest_volume,
+                                const std::vector<double>& liquid_support, Accelerations& out) {
   check_sizes(springs, hinges);
   const std::size_t n = body_.particle_count(), ns = body_.spring_count(), nh = body_.hinge_count();
   out.body.resize(3 * n);
   // The liquid's passes (volumes, pressures, corner forces, gather) come first.
   if (liquid_)
-    liquid_->compute(position, liquid_rest_volume, n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
+    liquid_->compute(position, liquid_rest_volume, liquid_support, n * n / 128 + ns + 4 * nh >= options_.min_parallel_items);
   refresh_half_rest_angles(hinges);
   const bool self_gravity = options_.self_gravity;
   TreeGravity* tree = self_gravity && tree_ ? &*tree_ : nullptr;
@@ -308,11 +309,12 @@ ForceAlarms ForceField::compute(const double* position, const double* velocity, 
 
 Energies ForceField::energies(const double* position, const double* velocity, const SpringState& springs,
                               const HingeState& hinges, const Perturber& perturber,
-                              const std::vector<double>& liquid_rest_volume) {
+                              const std::vector<double>& liquid_rest_volume,
+                              const std::vector<double>& liquid_support) {
   check_sizes(springs, hinges);
   refresh_half_rest_angles(hinges);
   Energies e;
-  if (liquid_) e.liquid = liquid_->energy(position, liquid_rest_volume);
+  if (liquid_) e.liquid = liquid_->energy(position, liquid_rest_volume, liquid_support);
   for_each_spring(0, body_.spring_count(), position, velocity, springs,
                   [&e](std::size_t, const double*, const SpringForceEnergy& spring) {
                     e.spring += spring.energy;

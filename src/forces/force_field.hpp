@@ -75,7 +75,7 @@ struct Energies {
   double hinge = 0;         ///< bending energy of the hinges (HingeEvaluator)
   double self_gravity = 0;  ///< sum over pairs of -m_i m_j / sqrt(r^2 + eps^2); 0 with self-gravity off
   double perturber = 0;     ///< sum over particles of -M2 m_i / sqrt(r^2 + eps^2); 0 without a perturber
-  double liquid = 0;        ///< volumetric energy of a liquid layer (LiquidPressure); 0 without one
+  double liquid = 0;        ///< volumetric energy of a liquid layer and its support's (LiquidPressure); 0 without one
   double damping_power = 0; ///< sum over springs of gamma mu (d.dv)^2/L^2 >= 0, G M^2/R per t_grav
   double potential() const { return spring + hinge + self_gravity + perturber + liquid; }
 };
@@ -100,13 +100,15 @@ class ForceField {
 
   /// Accelerations at positions [N*3] (R) and velocities [N*3] (sqrt(GM/R); they enter
   /// only through damping). `liquid_rest_volume` [N] (State::liquid_rest_volume; empty without a
-  /// liquid layer). Returns the blow-up alarms of this pass.
+  /// liquid layer), `liquid_support` [N*3] (State::liquid_support; empty: none). Returns the
+  /// blow-up alarms of this pass.
   ForceAlarms compute(const double* position, const double* velocity, const SpringState& springs,
                       const HingeState& hinges, const Perturber& perturber,
-                      const std::vector<double>& liquid_rest_volume, Accelerations& out);
+                      const std::vector<double>& liquid_rest_volume, const std::vector<double>& liquid_support,
+                      Accelerations& out);
   ForceAlarms compute(const State& state, Accelerations& out) {
     return compute(state.position.data(), state.velocity.data(), state.springs, state.hinges,
-                   state.perturber, state.liquid_rest_volume, out);
+                   state.perturber, state.liquid_rest_volume, state.liquid_support, out);
   }
 
   /// Potential energies at positions [N*3] (R) and the damping power at velocities [N*3]
@@ -114,10 +116,10 @@ class ForceField {
   /// O(N^2): for diagnostics, not every step). Checks the sizes like compute().
   Energies energies(const double* position, const double* velocity, const SpringState& springs,
                     const HingeState& hinges, const Perturber& perturber,
-                    const std::vector<double>& liquid_rest_volume);
+                    const std::vector<double>& liquid_rest_volume, const std::vector<double>& liquid_support);
   Energies energies(const State& state) {
     return energies(state.position.data(), state.velocity.data(), state.springs, state.hinges, state.perturber,
-                    state.liquid_rest_volume);
+                    state.liquid_rest_volume, state.liquid_support);
   }
 
   /// The work of the non-conservative forces in the step from positions `start` to `end` [N*3]

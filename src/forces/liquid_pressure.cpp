@@ -1,6 +1,7 @@
 #include "forces/liquid_pressure.hpp"
 
 #include "base/invariant.hpp"
+#include "forces/maxwell_liquid.hpp"
 
 namespace tidalcrust {
 
@@ -72,8 +73,11 @@ std::vector<double> LiquidPressure::pressure(const double* position, const std::
   return p;
 }
 
-void LiquidPressure::compute(const double* position, const std::vector<double>& rest_volume, bool parallel) {
+void LiquidPressure::compute(const double* position, const std::vector<double>& rest_volume,
+                             const std::vector<double>& support, bool parallel) {
   TIDALCRUST_ASSERT(rest_volume.size() == body_.particle_count(), "one rest volume per particle");
+  TIDALCRUST_ASSERT(support.empty() || support.size() == 3 * body_.particle_count(), "one support force per particle");
+  const double* fixed = support.empty() ? nullptr : support.data();
   tetrahedron_volumes(position, parallel);
   const auto& tets = body_.liquid.tetrahedra;
   const std::size_t nt = tets.size(), n = body_.particle_count(), nl = node_.size();
@@ -119,12 +123,15 @@ void LiquidPressure::compute(const double* position, const std::vector<double>& 
         const double* fc = corner_force_.data() + 3 * static_cast<std::size_t>(corner_[static_cast<std::size_t>(e)]);
         for (int k = 0; k < 3; ++k) f[k] += fc[k];
       }
+      if (fixed)
+        for (int k = 0; k < 3; ++k) f[k] += fixed[3 * q + k];
       for (int k = 0; k < 3; ++k) force_[3 * q + k] = f[k];
     }
   }
 }
 
-double LiquidPressure::energy(const double* position, const std::vector<double>& rest_volume) const {
+double LiquidPressure::energy(const double* position, const std::vector<double>& rest_volume,
+                              const std::vector<double>& support) const {
   tetrahedron_volumes(position, false);
   double e = 0;
   for (const std::int32_t ai : node_) {
@@ -132,7 +139,7 @@ double LiquidPressure::energy(const double* position, const std::vector<double>&
     const double dv = volume_of(a) - rest_volume[a];
     e += 0.5 * body_.liquid.bulk_modulus * dv * dv / rest_volume[a];
   }
-  return e;
+  return e + liquid_support_energy(support, position);
 }
 
 }  // namespace tidalcrust

@@ -40,12 +40,15 @@ class LiquidPressure {
   std::vector<double> volumes(const double* position) const;
 
   /// Forces [N*3] (G M^2/R^2) at positions [N*3] with rest volumes V0 [N]
-  /// (State::liquid_rest_volume), into forces(); 0 for a particle of no tetrahedron.
-  void compute(const double* position, const std::vector<double>& rest_volume, bool parallel);
+  /// (State::liquid_rest_volume), plus a Maxwell liquid's support [N*3] (State::liquid_support,
+  /// forces/maxwell_liquid.hpp; empty: none), into forces(); 0 for a particle of neither.
+  void compute(const double* position, const std::vector<double>& rest_volume, const std::vector<double>& support,
+               bool parallel);
   const std::vector<double>& forces() const { return force_; }
 
-  /// sum_a (K/2) (V_a - V0_a)^2 / V0_a (G M^2/R), in index order.
-  double energy(const double* position, const std::vector<double>& rest_volume) const;
+  /// sum_a (K/2) (V_a - V0_a)^2 / V0_a, plus the support's -sum_i F_i . x_i (G M^2/R), in index order.
+  double energy(const double* position, const std::vector<double>& rest_volume,
+                const std::vector<double>& support) const;
 
   /// P_a = -K (V_a - V0_a) / V0_a (e_g) of every pressure node, 0 for the others.
   std::vector<double> pressure(const double* position, const std::vector<double>& rest_volume) const;

@@ -10,6 +10,7 @@
 #include "base/invariant.hpp"
 #include "model/center_of_mass.hpp"
 #include "integrate/blow_up.hpp"
+#include "forces/maxwell_liquid.hpp"
 
 namespace tidalcrust {
 
@@ -17,6 +18,13 @@ Leapfrog::Leapfrog(ForceField& forces, StepClock clock) : forces_(forces), clock
   // The configuration's range and the checkpoint reader have checked it.
   TIDALCRUST_ASSERT(clock.dt > 0 && std::isfinite(clock.dt),
                     fmt::format("time step dt must be a finite number > 0, got {}", clock.dt));
+  if (const double tau = forces.body().liquid.maxwell_time; forces.body().liquid.present() && tau > 0) {
+    if (tau < clock.dt)
+      throw InputError(fmt::format("ocean.maxwell_time = {} t_grav is shorter than the time step dt = {} t_grav: the "
+                                   "liquid's creep needs tau_M >= dt",
+                                   tau, clock.dt));
+    creep_rate_ = clock.dt / tau;
+  }
 }
 
 void Leapfrog::step(State& state) {
@@ -40,7 +48,8 @@ void Leapfrog::step(State& state) {
     for (std::size_t k = 0; k < 3; ++k) perturber.position[k] += half * perturber.velocity[k];
 
   // Kick with forces at the half-step positions and start-of-step velocities.
-  const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, state.liquid_rest_volume, acc_);
+  const ForceAlarms alarms = forces_.compute(xw, v, state.springs, state.hinges, perturber, state.liquid_rest_volume,
+                                                 state.liquid_support, acc_);
   if (alarms.any())
     throw SimulationError(fmt::format("blow-up at step {} (t = {:.6g}): {}; {}", state.step + 1,
                                       clock_.time_at(state.step + 1), forces_.describe(alarms, xw),
@@ -67,6 +76,10 @@ void Leapfrog::step(State& state) {
   state.perturber = perturber;
   state.step += 1;
   state.time = clock_.time_at(state.step);
+  if (!state.liquid_support.empty()) {
+    const double creep = creep_liquid_springs(forces_.body(), state, creep_rate_);
+    if (measure_work_) work_.damping_removed += creep;
+  }
 }
 
 void Leapfrog::advance(State& state, std::int64_t count) {

@@ -19,13 +19,16 @@ class Leapfrog {
  public:
   /// Keeps a reference to `forces` (and through it to the Body). A stage makes its clock once, when
   /// it begins, stores it in its checkpoint, and hands the same clock back when it resumes.
-  /// clock.dt must be finite and > 0 (TIDALCRUST_ASSERT).
+  /// clock.dt must be finite and > 0 (TIDALCRUST_ASSERT). InputError when the body's liquid is a
+  /// Maxwell liquid whose tau_M is shorter than dt (its explicit creep would overshoot).
   Leapfrog(ForceField& forces, StepClock clock);
 
   /// One step of clock.dt (the stage's time step; model/stage_records.hpp):
   ///   x_half = x + v dt/2;  a = forces(x_half, v);  v += a dt;  x = x_half + v dt/2,
   /// the perturber moved the same way with the acceleration the body exerts on it. Damping uses
-  /// the start-of-step velocities v. Then step += 1 and time = clock.time_at(step).
+  /// the start-of-step velocities v. Then step += 1 and time = clock.time_at(step). A Maxwell
+  /// liquid (State::liquid_support set) then creeps by dt / tau_M (forces/maxwell_liquid.hpp); the
+  /// energy its dashpots take is in last_work().damping_removed.
   /// Blow-up (non-finite acceleration or position, a collapsed shell triangle, a particle more
   /// than blow_up_distance from the centre of mass) throws SimulationError naming the step, the
   /// element and a likely cause; the state is then left unchanged at the start of the failing
@@ -67,6 +70,7 @@ class Leapfrog {
   std::vector<double> velocity_;  ///< workspace: end-of-step velocities
   std::vector<double> half_;      ///< workspace: half-step positions, kept when measuring work
   ExtraAcceleration extra_;
+  double creep_rate_ = 0;  ///< dt / tau_M of a Maxwell liquid, 0 without one
   bool measure_work_ = false;
   StepWork work_;
 };

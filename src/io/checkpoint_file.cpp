@@ -294,8 +294,17 @@ std::string consistency_problem(const Checkpoint& c) {
         return fmt::format("/checkpoint/liquid/rest_volume row {}: {} is not {}", r, v,
                            node[r] ? "finite and > 0 (a corner of a tetrahedron)" : "0 (no tetrahedron's corner)");
     }
-  } else if (!c.state.liquid_rest_volume.empty()) {
-    return "the state has liquid rest volumes but the body no liquid layer";
+    if (!c.state.liquid_support.empty()) {
+      if (c.state.liquid_support.size() != 3 * n)
+        return fmt::format("/checkpoint/liquid/support has {} rows, expected N = {}", c.state.liquid_support.size() / 3, n);
+      if (!(c.body.liquid.maxwell_time > 0))
+        return "/checkpoint/liquid/support is set but /checkpoint/liquid@maxwell_time is 0 (an elastic liquid has none)";
+      for (std::size_t k = 0; k < 3 * n; ++k)
+        if (!std::isfinite(c.state.liquid_support[k]))
+          return fmt::format("/checkpoint/liquid/support row {}: {} is not finite", k / 3, c.state.liquid_support[k]);
+    }
+  } else if (!c.state.liquid_rest_volume.empty() || !c.state.liquid_support.empty()) {
+    return "the state has liquid rest volumes or a liquid support but the body no liquid layer";
   }
   const std::uint8_t highest_kind = c.body.liquid.present() ? 3 : 2;
   for (std::size_t r = 0; r < ns; ++r) {
@@ -478,14 +487,18 @@ struct RecordReader {
 };
 
 /// /checkpoint/liquid, only for a body with a liquid layer (docs/checkpoint-layout.md): the bulk
-/// modulus K (attribute), the layer's tetrahedra [Nt][4] (the body) and each particle's rest
-/// volume [N] (the state). read_liquid_layer reads it back.
-void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const std::vector<double>& rest_volume) {
+/// modulus K and the Maxwell time tau_M (attributes), the layer's tetrahedra [Nt][4] (the body),
+/// each particle's rest volume [N] and, once a Maxwell liquid's relaxation has ended, its support
+/// [N][3] (the state). read_liquid_layer reads it back.
+void write_liquid_layer(hid_t checkpoint, const LiquidLayer& liquid, const State& state) {
   h5::Group group = h5::create_group(checkpoint, "liquid");
   h5::write_attribute<double>(group.get(), "bulk_modulus", liquid.bulk_modulus);
+  h5::write_attribute<double>(group.get(), "maxwell_time", liquid.maxwell_time);
   h5::write_dataset(group.get(), "tetrahedra", liquid.tetrahedra.empty() ? nullptr : liquid.tetrahedra[0].data(),
                     {liquid.tetrahedra.size(), 4});
-  h5::write_dataset(group.get(), "rest_volume", rest_volume.data(), {rest_volume.size()});
+  h5::write_dataset(group.get(), "rest_volume", state.liquid_rest_volume.data(), {state.liquid_rest_volume.size()});
+  if (!state.liquid_support.empty())
+    h5::write_dataset(group.get(), "support", state.liquid_support.data(), {state.liquid_support.size() / 3, 3});
 }
 
 /// Reads /checkpoint/liquid when the file has it (else the body has no liquid layer); the
@@ -497,6 +510,10 @@ void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
   if (!(body.liquid.bulk_modulus > 0) || !std::isfinite(body.liquid.bulk_modulus))
     throw h5::Error(fmt::format("attribute /checkpoint/liquid@bulk_modulus is {}, expected a finite number > 0",
                                 body.liquid.bulk_modulus));
+  body.liquid.maxwell_time = h5::read_attribute<double>(group.get(), "maxwell_time");
+  if (!(body.liquid.maxwell_time >= 0) || !std::isfinite(body.liquid.maxwell_time))
+    throw h5::Error(fmt::format("attribute /checkpoint/liquid@maxwell_time is {}, expected a finite number >= 0",
+                                body.liquid.maxwell_time));
   auto tets = h5::read_dataset<std::int32_t>(group.get(), "tetrahedra");
   if (tets.dims.size() != 2 || tets.dims[1] != 4)
     throw h5::Error("dataset /checkpoint/liquid/tetrahedra is not [Nt][4]");
@@ -507,6 +524,12 @@ void read_liquid_layer(hid_t checkpoint, Body& body, State& state) {
   if (volume.dims.size() != 1)
     throw h5::Error(fmt::format("dataset /checkpoint/liquid/rest_volume has {} dimensions, expected 1 [N]", volume.dims.size()));
   state.liquid_rest_volume = std::move(volume.values);
+  if (H5Lexists(group.get(), "support", H5P_DEFAULT) > 0) {
+    auto support = h5::read_dataset<double>(group.get(), "support");
+    if (support.dims.size() != 2 || support.dims[1] != 3)
+      throw h5::Error("dataset /checkpoint/liquid/support is not [N][3]");
+    state.liquid_support = std::move(support.values);
+  }
 }
 
 void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& hash) {
@@ -529,7 +552,7 @@ void write_checkpoint_group(hid_t root, const Checkpoint& c, const std::string& 
   h5::write_string_attribute(g, "gravity_kernel_changes", c.stage.gravity_kernel_changes);
   h5::write_attribute<double>(g, "softening", c.body.softening);
 
-  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid, c.state.liquid_rest_volume);
+  if (c.body.liquid.present()) write_liquid_layer(g, c.body.liquid, c.state);
   if (c.state.perturber.present) {
     h5::Group perturber = h5::create_group(g, "perturber");
     h5::write_dataset<double>(perturber.get(), "mass", &c.state.perturber.mass, {});

@@ -17,7 +17,7 @@ namespace tidalcrust {
 /// ascending_node and argument_of_pericenter.
 /// Every change of the layout or of how a stored value is derived is a new version with its
 /// upgrade step (io/checkpoint_upgrade.cpp); tests/reference/format-4/ must still be read.
-inline constexpr std::int64_t checkpoint_format_version = 8;
+inline constexpr std::int64_t checkpoint_format_version = 9;
 
 /// Writes atomically: temporary file in the same folder, flush, fsync, rename, fsync folder.
 /// The file carries its integrity record (/integrity: a digest of every object).

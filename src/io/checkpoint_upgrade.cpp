@@ -161,6 +161,15 @@ void layout_7_to_8(hid_t root) {
   h5::write_dataset(root, factor, std::vector<double>(dims[0], 1.0), {dims[0]});
 }
 
+/// 8 -> 9 (2026-12-08, a Maxwell liquid, issue 26): a liquid layer gains `maxwell_time` = 0 (its
+/// springs stayed elastic; no `support`: none was set).
+void layout_8_to_9(hid_t root) {
+  const char* liquid = "/checkpoint/liquid";
+  if (!h5::exists(root, liquid)) return;
+  h5::Group group = h5::open_group(root, liquid);
+  if (!has_attribute(group.get(), "maxwell_time")) h5::write_attribute<double>(group.get(), "maxwell_time", 0.0);
+}
+
 /// One upgrade step, from format `from` to `from + 1`.
 struct UpgradeStep {
   std::int64_t from;
@@ -176,6 +185,7 @@ constexpr UpgradeStep upgrade_steps[] = {
     {5, layout_5_to_6, nullptr},
     {6, layout_6_to_7, nullptr},
     {7, layout_7_to_8, nullptr},
+    {8, layout_8_to_9, nullptr},
 };
 constexpr bool steps_are_consecutive() {
   for (std::size_t i = 0; i < std::size(upgrade_steps); ++i)

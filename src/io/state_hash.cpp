@@ -27,6 +27,7 @@ std::string state_hash(const State& state) {
     for (double v : state.perturber.velocity) h.f64(v);
   }
   if (!state.liquid_rest_volume.empty()) h.array(state.liquid_rest_volume);
+  if (!state.liquid_support.empty()) h.array(state.liquid_support);
   return h.hex();
 }
 

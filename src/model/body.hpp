@@ -32,6 +32,11 @@ struct LiquidLayer {
   /// [Nt] particle indices, positively oriented as built, each with a liquid or crust corner; every
   /// corner is a pressure node (forces/liquid_pressure.hpp)
   std::vector<std::array<std::int32_t, 4>> tetrahedra;
+  /// tau_M, t_grav: 0, the liquid springs stay elastic; > 0, a Maxwell liquid (docs/ocean.md,
+  /// "A Maxwell liquid"): from the end of the relaxation their static forces are a fixed support
+  /// (State::liquid_support) and their rest lengths creep toward their lengths at the rate 1/tau_M,
+  /// so the liquid's shear relaxes and only its pressure holds a static load
+  double maxwell_time = 0;
   bool present() const { return bulk_modulus > 0; }
 };
 

@@ -330,6 +330,10 @@ void visit_keys(C& c, V&& visit) {
   key(c.ocean.shear_fraction, {"ocean", "shear_fraction", reads(build), "-",
                                "stiffness the liquid's springs keep, of the interior's: a small static shear modulus "
                                "that steadies the liquid (docs/ocean.md); default 0.01", 1e-4, 1, true});
+  key(c.ocean.maxwell_time, {"ocean", "maxwell_time", reads(build), "t_grav",
+                             "tau_M: from the end of the relaxation the liquid's springs relax their stress on this "
+                             "time, their resting forces kept as a fixed support (a Maxwell liquid, docs/ocean.md); "
+                             "unset: they stay elastic", 1e-3, 1e6, true});
 
   // issue 25: [moon], the moon in SI (docs/moon.md); all optional. Quantities are strings with their
   // unit (the key's unit is the SI unit they are converted to). They fill [material] and [core]
@@ -1291,6 +1295,13 @@ void validate(const Config& config, const std::string& origin) {
     throw InputError(fmt::format("{}: ocean.bulk_modulus needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
   if (!config.ocean.present() && config.ocean.shear_fraction)
     throw InputError(fmt::format("{}: ocean.shear_fraction needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
+  if (!config.ocean.present() && config.ocean.maxwell_time)
+    throw InputError(fmt::format("{}: ocean.maxwell_time needs ocean.thickness ([ocean] needs ocean.thickness)", origin));
+  // The support is a force fixed in the inertial frame; a spinning body would turn under it.
+  if (config.ocean.maxwell_time && config.spin.rate() != 0)
+    throw InputError(fmt::format("{}: ocean.maxwell_time (a Maxwell liquid) is not available on a spinning body "
+                                 "(spin.angular_velocity = {}): its support does not turn with the body",
+                                 origin, config.spin.rate()));
   if (config.ocean.present() && config.core.present() && *config.core.radius >= 1 - *config.ocean.thickness)
     throw InputError(fmt::format("{}: core.radius = {} reaches into the ocean (its floor lies at 1 - ocean.thickness "
                                  "= {})", origin, *config.core.radius, 1 - *config.ocean.thickness));

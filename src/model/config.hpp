@@ -202,6 +202,9 @@ struct OceanConfig {
   /// (default default_shear_fraction)
   std::optional<double> shear_fraction;
   static constexpr double default_shear_fraction = 1e-2;
+  /// tau_M, t_grav: the liquid's springs relax their stress on this time from the end of the
+  /// relaxation on, a Maxwell liquid (docs/ocean.md, "A Maxwell liquid"); unset: they stay elastic
+  std::optional<double> maxwell_time;
   bool present() const { return thickness.has_value() && *thickness > 0; }
 };
 

@@ -39,6 +39,11 @@ struct State {
   /// the stretch stage sets it so that the layer starts at its hydrostatic pressure. Empty for a
   /// body without a liquid layer (Body::liquid).
   std::vector<double> liquid_rest_volume;
+  /// [N*3] in G M^2/R^2: a Maxwell liquid's support (LiquidLayer::maxwell_time > 0): the force its
+  /// springs exerted on each particle when the relaxation ended (then their rest lengths became
+  /// their lengths), a constant force from then on, so the relaxed body stays in its equilibrium
+  /// while the springs' shear relaxes (docs/ocean.md). Empty before that and for any other body.
+  std::vector<double> liquid_support;
 };
 
 }  // namespace tidalcrust

@@ -418,7 +418,7 @@ void set_hydrostatic_liquid_rest_volumes(const Body& body, State& state) {
     std::vector<double> rest(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       if (volume[i] > 0) rest[i] = volume[i] / (1 - pressure[i] / bulk);
-    layer.compute(state.position.data(), rest, false);
+    layer.compute(state.position.data(), rest, {}, false);
     double push = 0;
     for (std::size_t i = 0; i < n; ++i)
       if (body.species[i] == shell) {

@@ -44,10 +44,10 @@ TEST(ConfigCli, DefaultsListEveryKeyWithItsDefaultAndStages) {
   const CliResult json = run_cli("config --defaults --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   const Json keys = Json::parse(json.out)["keys"];
-  ASSERT_EQ(keys.size(), 106u);  // 95 keys of Config, 11 of [[encounters]]
+  ASSERT_EQ(keys.size(), 107u);  // 96 keys of Config, 11 of [[encounters]]
   std::set<std::string> names;
   for (const auto& k : keys) names.insert(k["section"].get<std::string>() + "." + k["name"].get<std::string>());
-  EXPECT_EQ(names.size(), 106u);
+  EXPECT_EQ(names.size(), 107u);
   for (const auto& k : keys)
     if (k["section"] == "integrator" && k["name"] == "dt") {
       EXPECT_EQ(k["default"], "0.002");

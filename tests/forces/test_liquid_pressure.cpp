@@ -91,7 +91,7 @@ TEST(LiquidPressure, ForcesAreMinusTheEnergyGradientAndConserveMomentum) {
   LiquidBlock b = liquid_block(4, 3, true);
   for (double& v : b.rest_volume) v *= 1.01;  // compressed
   LiquidPressure liquid(b.body);
-  liquid.compute(b.position.data(), b.rest_volume, false);
+  liquid.compute(b.position.data(), b.rest_volume, {}, false);
   const std::vector<double> f = liquid.forces();
   double fmax = 0;
   for (const double c : f) fmax = std::max(fmax, std::abs(c));
@@ -102,7 +102,7 @@ TEST(LiquidPressure, ForcesAreMinusTheEnergyGradientAndConserveMomentum) {
       std::vector<double> plus = b.position, minus = b.position;
       plus[3 * p + k] += h;
       minus[3 * p + k] -= h;
-      const double gradient = (liquid.energy(plus.data(), b.rest_volume) - liquid.energy(minus.data(), b.rest_volume)) / (2 * h);
+      const double gradient = (liquid.energy(plus.data(), b.rest_volume, {}) - liquid.energy(minus.data(), b.rest_volume, {})) / (2 * h);
       EXPECT_NEAR(f[3 * p + k], -gradient, 1e-6 * fmax) << "particle " << p << " axis " << k;
     }
   }
@@ -140,18 +140,18 @@ TEST(LiquidPressure, ALiquidBlockCarriesNoStaticShear) {
   LiquidPressure liquid(b.body);
   const double gamma = 0.01;
   std::vector<double> x = sheared(b.position, gamma);
-  EXPECT_LT(liquid.energy(x.data(), b.rest_volume), 1e-20);  // a simple shear keeps every volume
+  EXPECT_LT(liquid.energy(x.data(), b.rest_volume, {}), 1e-20);  // a simple shear keeps every volume
   std::mt19937_64 rng(4);
   std::normal_distribution<double> noise(0.0, 1e-3 * b.spacing);
   for (double& c : x) c += noise(rng);
-  const double noisy = liquid.energy(x.data(), b.rest_volume);
+  const double noisy = liquid.energy(x.data(), b.rest_volume, {});
   ASSERT_GT(noisy, 0.0);
   const double alpha = 0.05 / (b.body.liquid.bulk_modulus * b.spacing);
   for (int it = 0; it < 2000; ++it) {
-    liquid.compute(x.data(), b.rest_volume, false);
+    liquid.compute(x.data(), b.rest_volume, {}, false);
     for (std::size_t i = 0; i < x.size(); ++i) x[i] += alpha * liquid.forces()[i];
   }
-  EXPECT_LT(liquid.energy(x.data(), b.rest_volume), 0.05 * noisy);
+  EXPECT_LT(liquid.energy(x.data(), b.rest_volume, {}), 0.05 * noisy);
   EXPECT_NEAR(shear_of(x, b.position), gamma, 0.05 * gamma);
 }
 
@@ -163,8 +163,8 @@ TEST(LiquidPressure, ForcesAreBitwiseTheSameForAnyThreadCount) {
   std::normal_distribution<double> g(0.0, 0.01);
   for (double& c : b.position) c += g(rng);
   LiquidPressure liquid(b.body);
-  liquid.compute(b.position.data(), b.rest_volume, false);
+  liquid.compute(b.position.data(), b.rest_volume, {}, false);
   const std::vector<double> serial = liquid.forces();
-  liquid.compute(b.position.data(), b.rest_volume, true);
+  liquid.compute(b.position.data(), b.rest_volume, {}, true);
   EXPECT_EQ(serial, liquid.forces());
 }

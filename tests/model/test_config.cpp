@@ -163,7 +163,7 @@ TEST(Config, DescribedValuesAreTheResolvedText) {
   const auto config = load_config(workflow("quick.toml"));
   const std::string text = to_toml(config);
   const auto keys = describe_keys(config);
-  EXPECT_EQ(keys.size(), 95u);  // every key of Config, [workflow] to [spin] and [ocean], and [analysis]
+  EXPECT_EQ(keys.size(), 96u);  // every key of Config, [workflow] to [spin] and [ocean], and [analysis]
   for (const KeyInfo& key : keys) {
     if (!key.value) {  // an unset optional key: to_toml leaves it out
       EXPECT_TRUE(key.optional) << key.section << "." << key.name;

@@ -12,6 +12,10 @@
 #include "base/errors.hpp"
 #include "forces/force_field.hpp"
 #include "forces/liquid_pressure.hpp"
+#include "forces/maxwell_liquid.hpp"
+#include "integrate/leapfrog.hpp"
+#include "physics/shell_failure.hpp"
+#include "stages/step_loop.hpp"
 #include "io/checkpoint_file.hpp"
 #include "io/state_hash.hpp"
 #include "model/center_of_mass.hpp"
@@ -59,7 +63,7 @@ struct Balance {
 Balance liquid_balance(const Checkpoint& c, Species species) {
   const Body& body = c.body;
   LiquidPressure layer(body);
-  layer.compute(c.state.position.data(), c.state.liquid_rest_volume, false);
+  layer.compute(c.state.position.data(), c.state.liquid_rest_volume, {}, false);
   ForceField forces(body, ForceOptions{});
   std::vector<double> gravity(c.state.position.size());
   forces.compute_gravity(c.state.position.data(), gravity.data());
@@ -287,6 +291,124 @@ TEST(OceanBody, TheStoredLayerRoundTripsAndAnEditedOneIsAOneLineError) {
     for (hsize_t v = 0; v < 4; ++v) overwrite_element(f, "/checkpoint/liquid/tetrahedra", v, solid[v]);
   });
   refused("stray-volume.h5", [&](hid_t f) { overwrite_element(f, "/checkpoint/liquid/rest_volume", stray, 1e-3); });
+
+  // Format 8 had no Maxwell liquid: its layer reads as elastic (maxwell_time 0, no support).
+  const fs::path format_8 = edited_copy(file, scratch.path, "format-8.h5", [](hid_t f) {
+    h5::Group liquid = h5::open_group(f, "/checkpoint/liquid");
+    h5::check(H5Adelete(liquid.get(), "maxwell_time"), "cannot delete maxwell_time");
+    overwrite_attribute(f, "/checkpoint", "format_version", std::int64_t{8});
+  });
+  const Checkpoint upgraded = read_checkpoint(format_8);
+  EXPECT_EQ(upgraded.provenance.format_version, 8);
+  EXPECT_EQ(upgraded.body.liquid.maxwell_time, 0.0);
+  EXPECT_TRUE(upgraded.state.liquid_support.empty());
+  EXPECT_EQ(state_hash(upgraded.state), state_hash(ocean_stretched().state));
+}
+
+// ---- a Maxwell liquid (ocean.maxwell_time; forces/maxwell_liquid.hpp) ------------------------
+
+/// ocean-L3 with a Maxwell liquid of tau_M = 0.2 t_grav: the same body (tau_M changes nothing before
+/// the relaxation ends) and configuration.
+Config maxwell_relax_config() {
+  Config config = ocean_relax_config();
+  config.ocean.maxwell_time = 0.2;
+  return config;
+}
+Checkpoint maxwell_stretched() {
+  Checkpoint c = ocean_stretched();
+  c.body.liquid.maxwell_time = 0.2;
+  return c;
+}
+
+TEST(MaxwellOcean, RelaxHandsTheSpringsRestingForcesToTheSupportAndResumesBitForBit) {
+  Config config = maxwell_relax_config();
+  const double dt = config.integrator.dt;
+  config.relax.duration = 60 * dt;
+  config.relax.settle_duration = 20 * dt;
+  config.relax.probe_duration = 20 * dt;
+  const Checkpoint stretched = maxwell_stretched();
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  Checkpoint one = begin_relax(stretched, config);
+  ASSERT_EQ(run_relax(one, config, quiet_loop()), LoopOutcome::finished);
+  omp_set_num_threads(2);
+  Checkpoint straight = begin_relax(stretched, config);
+  ASSERT_EQ(run_relax(straight, config, quiet_loop()), LoopOutcome::finished);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(state_hash(one.state), state_hash(straight.state));
+  ASSERT_EQ(straight.state.liquid_support.size(), 3 * straight.body.particle_count());
+  // The liquid springs crept during the probe (20 steps at dt / tau_M = 0.028 each), but not
+  // far: each is within its resting strain of its length.
+  double largest = 0;
+  for (std::size_t k = 0; k < straight.state.liquid_support.size(); ++k)
+    largest = std::max(largest, std::abs(straight.state.liquid_support[k]));
+  EXPECT_GT(largest, 0.0);
+  // settle phase, then the probe with the support and the creep
+  expect_relax_resumes_bit_for_bit(stretched, config, straight, {45, 65}, "maxwell_resume");
+
+  // The stored support round-trips bit for bit; an edited one is a one-line error naming it.
+  const ScratchFolder scratch("maxwell_checkpoint");
+  const fs::path file = scratch.path / "relax.h5";
+  write_checkpoint(file, straight);
+  const Checkpoint back = read_checkpoint(file);
+  EXPECT_EQ(back.state.liquid_support, straight.state.liquid_support);
+  EXPECT_EQ(back.body.liquid.maxwell_time, 0.2);
+  auto refused = [&](const std::string& name, const std::string& says, auto&& edit) {
+    const fs::path bad = edited_copy(file, scratch.path, name, edit);
+    const CliResult r = run_cli("inspect " + quoted(bad));
+    EXPECT_EQ(r.exit_code, 2) << name << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
+  };
+  refused("elastic.h5", "maxwell_time is 0",
+          [](hid_t f) { overwrite_attribute(f, "/checkpoint/liquid", "maxwell_time", 0.0); });
+  refused("negative-tau.h5", "/checkpoint/liquid@maxwell_time is -1",
+          [](hid_t f) { overwrite_attribute(f, "/checkpoint/liquid", "maxwell_time", -1.0); });
+  refused("nan-support.h5", "/checkpoint/liquid/support row 7",
+          [](hid_t f) { overwrite_element(f, "/checkpoint/liquid/support", 22, std::nan("")); });
+}
+
+// Left alone, the relaxed Maxwell body stays at rest: the support holds what the springs held,
+// and the creep has nothing to relax (its springs start unstrained). 2 t_grav at the encounter's
+// damping.
+TEST(MaxwellOcean, TheRelaxedBodyLeftAloneStaysAtRest) {
+  Checkpoint c = ocean_relaxed();
+  c.body.liquid.maxwell_time = 0.2;
+  set_liquid_support(c.body, c.state);
+  std::fill(c.state.velocity.begin(), c.state.velocity.end(), 0.0);
+  const State start = c.state;
+  ForceField forces(c.body, force_options(ocean_relax_config(), 0.01));
+  Leapfrog leapfrog(forces, StepClock{c.state.time, c.state.step, ocean_relax_config().integrator.dt});
+  leapfrog.advance(c.state, steps_for_duration(2.0, ocean_relax_config().integrator.dt));
+  double moved = 0;
+  for (std::size_t p = 0; p < c.body.particle_count(); ++p)
+    moved = std::max(moved, (vec3_at(c.state.position, p) - vec3_at(start.position, p)).norm());
+  std::printf("[ info ] Maxwell ocean-L3 left alone 2 t_grav: largest displacement %.3g R, crust strain %.3g\n", moved,
+              max_abs_shell_strain(c.body, c.state));
+  EXPECT_LT(moved, 2e-3);
+  EXPECT_LT(max_abs_shell_strain(c.body, c.state), 5e-4);
+}
+
+// The static tide of the floating shell on a Maxwell liquid (drag 4, 15 t_grav, as the elastic
+// liquid's above): the liquid's shear relaxes and h2 rises toward the fluid ocean's (TS72 with the
+// fluid layer). Stored reference at commit time (docs/ocean.md): h2 1.2340, l2 0.3298; tolerance 2%.
+TEST(MaxwellOcean, TheFloatingShellsTideApproachesTheFluidOceans) {
+  Checkpoint relaxed = ocean_relaxed();
+  relaxed.body.liquid.maxwell_time = 0.2;
+  set_liquid_support(relaxed.body, relaxed.state);
+  const Config config = maxwell_relax_config();
+  const Vec3 centre = body_center_of_mass(relaxed.body, relaxed.state);
+  std::vector<ElasticLayer> fluid = body_layers(relaxed, centre, 6, false);
+  for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, true))
+    fluid.push_back(layer);
+  const LoveNumbers fluid_theory = layered_sphere_love_numbers(2, fluid);
+  const TideResult t = measure_tide(relaxed, config, body_material(relaxed, config), fluid_theory, 1e-3, 4.0, 15.0, false);
+  std::printf("[ info ] Maxwell ocean-L3 tide: h2 %.4f (2/3: %.4f), l2 %.4f; fluid ocean %.4f\n", t.fit.h2,
+              t.early_fit.h2, t.fit.l2, fluid_theory.h);
+  EXPECT_NEAR(t.fit.h2 / 1.2340, 1.0, 0.02);
+  EXPECT_NEAR(t.fit.l2 / 0.3298, 1.0, 0.02);
+  EXPECT_GT(t.fit.h2, 0.7 * fluid_theory.h);  // the elastic liquid's springs hold it at 0.28
 }
 
 TEST(OceanConfig, AnOceanNeedsAFloatingCrustAndAShearFractionNeedsAnOcean) {
@@ -318,6 +440,15 @@ TEST(OceanConfig, AnOceanNeedsAFloatingCrustAndAShearFractionNeedsAnOcean) {
   no_ocean.replace(no_ocean.find("thickness = 0.3"), 15, "shear_fraction = 0.001");
   no_ocean.replace(no_ocean.find("crust_support = \"floating\""), 26, "crust_support = \"balanced\"");
   EXPECT_NE(error_of("dry.toml", no_ocean).find("ocean.shear_fraction needs ocean.thickness"), std::string::npos);
+  std::string no_ocean_maxwell = no_ocean;
+  no_ocean_maxwell.replace(no_ocean_maxwell.find("shear_fraction = 0.001"), 22, "maxwell_time = 0.2");
+  EXPECT_NE(error_of("dry-maxwell.toml", no_ocean_maxwell).find("ocean.maxwell_time needs ocean.thickness"),
+            std::string::npos);
+  EXPECT_NE(error_of("instant.toml", in_ocean("maxwell_time = 0")).find("ocean.maxwell_time"), std::string::npos);
+  // The support is fixed in the inertial frame: a spinning body is refused, naming both.
+  const std::string spinning = error_of("spinning.toml", in_ocean("maxwell_time = 0.2") + "\n[spin]\nangular_velocity = 0.3\n");
+  EXPECT_NE(spinning.find("ocean.maxwell_time"), std::string::npos) << spinning;
+  EXPECT_NE(spinning.find("spin.angular_velocity = 0.3"), std::string::npos) << spinning;
 
   // A liquid too soft for its own pressure: the stretch refuses it, one line, nothing relaxed.
   const CliResult soft = run_cli("run " + quoted(workflow_file("ocean-L3.toml")) + " --body-only --quiet --out " +
