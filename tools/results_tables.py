@@ -1570,13 +1570,16 @@ def spin(p):
 OCEAN_RUNS = [("crust-L3-uniform", "workflows/welded-L3.toml", "", "no ocean (welded crust)"),
               ("ocean-L3", "workflows/ocean-L3.toml", "", "ocean, shear fraction 0.01"),
               ("ocean-L3-s1e-3", "workflows/ocean-L3.toml", "--set ocean.shear_fraction=0.001 ",
-               "ocean, shear fraction 0.001")]
+               "ocean, shear fraction 0.001"),
+              ("ocean-L3-maxwell", "workflows/ocean-L3.toml", "--set ocean.maxwell_time=0.05 ",
+               "ocean, Maxwell liquid (tau_M = 0.05)")]
 
 
 @full_table("ocean")
 def ocean(p):
-    """T5 on welded-L3 without an ocean and on ocean-L3 with shear fractions 0.01 and 0.001, 5-member
-    ensembles: the relaxed body (probe, largest crust strain), the static tide's h2 and l2 against
+    """T5 on welded-L3 without an ocean and on ocean-L3 with shear fractions 0.01 and 0.001 and with a
+    Maxwell liquid, 5-member ensembles: the relaxed body (probe, largest crust strain), the static
+    tide's duration (validate's default for the body), h2 and l2 against
     TS72 with the body's own layers (the liquid with its springs' shear modulus) and with a fluid
     ocean, and per run the failures, their share on the subsatellite hemisphere, the median angle
     and the crack orientation."""
@@ -1595,15 +1598,15 @@ def ocean(p):
             c = v["comparisons"]
             fluid_h = c.get("tide-fluid-ocean", {}).get("theory")
             fluid_l = c.get("tide-l2-fluid-ocean", {}).get("theory")
-            row += [fixed(c["tide"]["measured"], 3), fixed(c["tide"]["theory"], 3),
+            row += [fixed(v["details"]["tide"]["duration"], 0), fixed(c["tide"]["measured"], 3), fixed(c["tide"]["theory"], 3),
                     "-" if fluid_h is None else fixed(fluid_h, 3), fixed(c["tide-l2"]["measured"], 3),
                     fixed(c["tide-l2"]["theory"], 3), "-" if fluid_l is None else fixed(fluid_l, 3),
                     fixed(c["tide-correlation"]["measured"], 3)]
         else:
-            row += ["-"] * 7
+            row += ["-"] * 8
         bodies.append(row)
     lines += table(["relaxed body", "probe failures (largest strain)", "largest crust strain relaxed",
-                    "h2", "h2 TS72 own layers", "h2 TS72 fluid ocean", "l2", "l2 TS72 own layers",
+                    "tide duration [t_grav]", "h2", "h2 TS72 own layers", "h2 TS72 fluid ocean", "l2", "l2 TS72 own layers",
                     "l2 TS72 fluid ocean", "crust strain correlation"], bodies) + [""]
     rows = []
     for folder, _, _, label in runs:
