@@ -335,12 +335,15 @@ int command_validate(int argc, char** argv) {
       layer.poisson_ratio = sphere.poisson_ratio;
     }
     // Its own liquid (the springs' small shear modulus) is the reference; the fluid limit beside it.
+    // A Maxwell liquid's springs keep no static shear: its own liquid is the fluid one.
+    const bool maxwell = ocean && relaxed.body.liquid.maxwell_time > 0;
     std::optional<LoveNumbers> fluid_limit;
     if (ocean) {
       if (!config.material.crust_thickness)
         throw InputError("validate --measure tide on a body with an ocean needs material.crust_thickness (the crust layer's h)");
       std::vector<ElasticLayer> fluid_layers = layers;
-      for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, false)) layers.push_back(layer);
+      for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, maxwell))
+        layers.push_back(layer);
       for (const ElasticLayer& layer : ocean_layers(relaxed, centre, *config.material.crust_thickness, true))
         fluid_layers.push_back(layer);
       fluid_limit = layered_sphere_love_numbers(2, fluid_layers);
@@ -351,12 +354,11 @@ int command_validate(int argc, char** argv) {
         layered_reference
             ? layered
             : homogeneous_sphere_love_numbers(2, sphere.youngs_modulus, sphere.poisson_ratio, sphere.density, sphere.radius);
-    const char* tide_source = ocean ? ocean_tide_source : layered_reference ? layered_tide_source : nullptr;
+    const char* tide_source = maxwell ? ocean_fluid_source : ocean ? ocean_tide_source : layered_reference ? layered_tide_source : nullptr;
     // A floating shell answers on its own slow time: the shell bobbing on the liquid (period ~2.8
     // t_grav on ocean-L3, docs/ocean.md), not the elastic sphere's: drag near critical for it and
     // several of its relaxation times.
     const double drag = ocean ? floating_shell_drag : 0.0;
-    const bool maxwell = ocean && relaxed.body.liquid.maxwell_time > 0;
     const double duration = tide_duration > 0 ? tide_duration
                             : maxwell         ? maxwell_ocean_tide_duration
                             : ocean           ? floating_shell_tide_duration
