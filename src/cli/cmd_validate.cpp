@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "analysis/elastic_validation.hpp"
+#include "build_info.hpp"
 #include "analysis/tidal_response.hpp"
 #include "analysis/layer_moduli.hpp"
 #include "base/errors.hpp"
@@ -225,6 +226,7 @@ int command_validate(int argc, char** argv) {
   Json json;
   json["workflow"] = config.workflow.name;
   json["relaxed_body"] = relaxed_file.string();
+  json["git_commit"] = build_info::git_commit;  // the code that measured (the body's is in its checkpoint)
   json["material"] = Json{{"youngs_modulus", material.youngs_modulus}, {"poisson_ratio", material.poisson_ratio},
                           {"density", material.density},               {"radius", material.radius},
                           {"p_wave_speed", material.p_wave_speed},     {"shell_spacing", material.shell_spacing},

@@ -37,6 +37,7 @@ TEST(CmdValidate, WritesEveryComparisonWithItsRatioAndTheFigures) {
   EXPECT_NE(r.out.find("breathing"), std::string::npos);  // the printed table
   const Json json = Json::parse(read_file(out / "validate" / "validation.json"));
   EXPECT_EQ(json["workflow"], "tiny");
+  EXPECT_FALSE(json["git_commit"].get<std::string>().empty());  // the code that measured
   EXPECT_GT(json["material"]["youngs_modulus"].get<double>(), 0);
   for (const char* name : {"breathing", "love", "flexure", "p-wave"}) {
     SCOPED_TRACE(name);
@@ -99,6 +100,9 @@ TEST(CmdValidate, BadInputIsOneLineAndExitTwoWithNothingWritten) {
   for (const Case& c : {Case{"validate " + quoted(scratch.path / "missing.toml") + " --out " + quoted(out), "missing.toml"},
                         Case{"validate " + quoted(workflow) + " --bogus --out " + quoted(out), "bogus"},
                         Case{"validate " + quoted(workflow) + " --measure breathing,tides --out " + quoted(out), "tides"},
+                        Case{"validate " + quoted(workflow) + " --tide-duration 0 --out " + quoted(out), "--tide-duration"},
+                        Case{"validate " + quoted(workflow) + " --tide-duration nan --out " + quoted(out), "--tide-duration"},
+                        Case{"validate " + quoted(workflow) + " --tide-duration 2e4 --out " + quoted(out), "--tide-duration"},
                         Case{"validate --out " + quoted(out), "WORKFLOW.toml"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run_cli(c.args);
