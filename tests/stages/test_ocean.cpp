@@ -244,15 +244,7 @@ TEST(OceanBody, RelaxResumesBitForBitOnAnyThreadCount) {
   config.relax.duration = 60 * dt;
   config.relax.settle_duration = 20 * dt;
   config.relax.probe_duration = 20 * dt;
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  Checkpoint one = begin_relax(ocean_stretched(), config);
-  ASSERT_EQ(run_relax(one, config, quiet_loop()), LoopOutcome::finished);
-  omp_set_num_threads(2);
-  Checkpoint straight = begin_relax(ocean_stretched(), config);
-  ASSERT_EQ(run_relax(straight, config, quiet_loop()), LoopOutcome::finished);
-  omp_set_num_threads(threads);
-  EXPECT_EQ(state_hash(one.state), state_hash(straight.state));
+  const Checkpoint straight = relaxed_alike_on_one_and_two_threads(ocean_stretched(), config);
 
   // creep phase, settle phase, stability probe
   expect_relax_resumes_bit_for_bit(ocean_stretched(), config, straight, {25, 45, 65}, "ocean_resume");
@@ -327,15 +319,7 @@ TEST(MaxwellOcean, RelaxHandsTheSpringsRestingForcesToTheSupportAndResumesBitFor
   config.relax.settle_duration = 20 * dt;
   config.relax.probe_duration = 20 * dt;
   const Checkpoint stretched = maxwell_stretched();
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  Checkpoint one = begin_relax(stretched, config);
-  ASSERT_EQ(run_relax(one, config, quiet_loop()), LoopOutcome::finished);
-  omp_set_num_threads(2);
-  Checkpoint straight = begin_relax(stretched, config);
-  ASSERT_EQ(run_relax(straight, config, quiet_loop()), LoopOutcome::finished);
-  omp_set_num_threads(threads);
-  EXPECT_EQ(state_hash(one.state), state_hash(straight.state));
+  const Checkpoint straight = relaxed_alike_on_one_and_two_threads(stretched, config);
   ASSERT_EQ(straight.state.liquid_support.size(), 3 * straight.body.particle_count());
   // The liquid springs crept during the probe (20 steps at dt / tau_M = 0.028 each), but not
   // far: each is within its resting strain of its length.

@@ -1,5 +1,7 @@
 #pragma once
 // The quick workflow (workflows/quick.toml): its config, its body built, stretched, relaxed once.
+#include <omp.h>
+
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -115,6 +117,21 @@ inline const Checkpoint& quick_relaxed(bool stability_probe = true) {
   static const Checkpoint unprobed =
       shared_checkpoint("quick-relaxed-unprobed", [] { return detail::relax_quick_body(false); });
   return unprobed;
+}
+
+/// Relaxes `stretched` by `config` on one thread and on two, expects the same state hash, and
+/// returns the two-thread run (the thread count restored).
+inline Checkpoint relaxed_alike_on_one_and_two_threads(const Checkpoint& stretched, const Config& config) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  Checkpoint one = begin_relax(stretched, config);
+  EXPECT_EQ(run_relax(one, config, quiet_loop()), LoopOutcome::finished);
+  omp_set_num_threads(2);
+  Checkpoint two = begin_relax(stretched, config);
+  EXPECT_EQ(run_relax(two, config, quiet_loop()), LoopOutcome::finished);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(state_hash(one.state), state_hash(two.state));
+  return two;
 }
 
 /// Relaxes `stretched` by `config` interrupted after each of `stops` steps (a mid-stage checkpoint
