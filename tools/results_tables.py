@@ -479,6 +479,16 @@ def commands(*lines):
     return ["```", *lines, "```", ""]
 
 
+def validated_line(p, *validations):
+    """'Validated at commit X.' from validate's validation.json files (all of them, if they differ)."""
+    seen = []
+    for v in validations:
+        commit = p.load(v).get("git_commit", "unknown")
+        if commit not in seen:
+            seen.append(commit)
+    return ["Tides measured (validate) at commit " + ", ".join(seen) + ".", ""] if seen else []
+
+
 def measured_line(p, *checkpoints):
     """'Measured at commit X, gravity kernel K.' (all of them, if the checkpoints differ)."""
     seen = []
@@ -1573,20 +1583,28 @@ OCEAN_RUNS = [("crust-L3-uniform", "workflows/welded-L3.toml", "", "no ocean (we
                "ocean, shear fraction 0.001"),
               ("ocean-L3-maxwell", "workflows/ocean-L3.toml", "--set ocean.maxwell_time=0.05 ",
                "ocean, Maxwell liquid (tau_M = 0.05)")]
+# The same bodies under a perturber ten times lighter than T5's (its orbit kept): failures only.
+LIGHT = "--set encounters.T5.perturber_mass=0.05 "
+OCEAN_LIGHT_RUNS = [(f + "-m2-0.05", w, s + LIGHT, label + ", M2 = 0.05") for f, w, s, label in OCEAN_RUNS
+                    if f != "ocean-L3-s1e-3"]
 
 
 @full_table("ocean")
 def ocean(p):
     """T5 on welded-L3 without an ocean and on ocean-L3 with shear fractions 0.01 and 0.001 and with a
-    Maxwell liquid, 5-member ensembles: the relaxed body (probe, largest crust strain), the static
+    Maxwell liquid, 5-member ensembles (and with a perturber of M2 = 0.05 on T5's orbit, except at
+    0.001): the relaxed body (probe, largest crust strain), the static
     tide's duration (validate's default for the body), h2 and l2 against
     TS72 with the body's own layers (the liquid with its springs' shear modulus) and with a fluid
     ocean, and per run the failures, their share on the subsatellite hemisphere, the median angle
     and the crack orientation."""
     runs = [r for r in OCEAN_RUNS if (p.work / r[0] / "T5_m0" / "analysis" / "summary.json").is_file()]
-    lines = commands(*[f"tidalcrust run {w} {s}--set ensemble.members=5 --threads 1 --out {f}" for f, w, s, _ in OCEAN_RUNS],
+    lines = commands(*[f"tidalcrust run {w} {s}--set ensemble.members=5 --threads 1 --out {f}"
+                       for f, w, s, _ in OCEAN_RUNS + OCEAN_LIGHT_RUNS],
                      *[f"tidalcrust validate {w} {s}--measure tide --threads 1 --out {f}" for f, w, s, _ in OCEAN_RUNS])
     lines += measured_line(p, *[p.work / f / "T5_m0" / "encounter.h5" for f, _, _, _ in runs])
+    lines += validated_line(p, *[p.work / f / "validate" / "validation.json" for f, _, _, _ in runs
+                                 if (p.work / f / "validate" / "validation.json").is_file()])
     bodies = []
     for folder, _, _, label in runs:
         record = p.inspect(p.work / folder / "body" / "relax.h5")["record"]
@@ -1609,7 +1627,8 @@ def ocean(p):
                     "tide duration [t_grav]", "h2", "h2 TS72 own layers", "h2 TS72 fluid ocean", "l2", "l2 TS72 own layers",
                     "l2 TS72 fluid ocean", "crust strain correlation"], bodies) + [""]
     rows = []
-    for folder, _, _, label in runs:
+    light = [r for r in OCEAN_LIGHT_RUNS if (p.work / r[0] / "T5_m0" / "analysis" / "summary.json").is_file()]
+    for folder, _, _, label in runs + light:
         members = [p.load(m) for m in sorted((p.work / folder).glob("T5_m*/analysis/summary.json"))]
         failures = [m["failures"] for m in members]
         column = lambda key: [f[key] for f in failures]
@@ -1623,6 +1642,38 @@ def ocean(p):
     lines += table(["body", "members", "failed shell springs", "failed area [%]",
                     "share on the subsatellite hemisphere", "median angle [deg]", "concentricity",
                     "crack rose peak [deg]", "largest energy error (of 3/5 G M^2/R)"], rows)
+    return lines
+
+
+# The static tide of ocean-L3's floating shell on a Maxwell liquid (docs/ocean.md, "A Maxwell
+# liquid"): tau_M and the tide's duration, h2 and l2 against the fluid ocean's.
+MAXWELL_TIDES = [(0.05, 30), (0.05, 45), (0.05, 60), (0.05, 75), (0.05, 90), (0.02, 45), (0.2, 45), (0.2, 90),
+                 (1, 45)]
+
+
+@full_table("ocean-maxwell")
+def ocean_maxwell(p):
+    """validate --measure tide on ocean-L3 with a Maxwell liquid, by tau_M and the tide's duration:
+    h2 and l2 and their ratios to TS72 with a fluid ocean, h2 at two thirds of the run, the
+    correlation of the crust springs' strain with the fitted degree-2 pattern and the shell's rms
+    azimuthal displacement per unit of the tide's (the crust following the tide, not the liquid
+    wandering)."""
+    folder = lambda tau, d: f"ocean-L3-maxwell{tau:g}-d{d:g}"
+    done = [(t, d) for t, d in MAXWELL_TIDES if (p.work / folder(t, d) / "validate" / "validation.json").is_file()]
+    lines = commands(*[f"tidalcrust validate workflows/ocean-L3.toml --set ocean.maxwell_time={t:g} --measure tide "
+                       f"--tide-duration {d:g} --threads 1 --out {folder(t, d)}" for t, d in MAXWELL_TIDES])
+    lines += measured_line(p, *[p.work / folder(t, d) / "body" / "relax.h5" for t, d in done])
+    lines += validated_line(p, *[p.work / folder(t, d) / "validate" / "validation.json" for t, d in done])
+    rows = []
+    for tau, duration in done:
+        v = p.load(p.work / folder(tau, duration) / "validate" / "validation.json")
+        c, t = v["comparisons"], v["details"]["tide"]
+        h, l = c["tide-fluid-ocean"], c["tide-l2-fluid-ocean"]
+        rows.append([f"{tau:g}", f"{duration:g}", fixed(h["measured"], 3), fixed(h["ratio"], 3),
+                     fixed(t["h2_at_two_thirds"] / h["theory"], 3), fixed(l["measured"], 3), fixed(l["ratio"], 3),
+                     fixed(t["own_correlation"], 3), fixed(t["rms_azimuthal_displacement"], 3)])
+    lines += table(["tau_M [t_grav]", "tide [t_grav]", "h2", "h2 / fluid ocean", "h2 / fluid ocean at 2/3",
+                    "l2", "l2 / fluid ocean", "crust strain vs own degree 2", "rms azimuthal"], rows)
     return lines
 
 
