@@ -434,6 +434,17 @@ TEST(OceanConfig, AnOceanNeedsAFloatingCrustAndAShearFractionNeedsAnOcean) {
   EXPECT_NE(spinning.find("ocean.maxwell_time"), std::string::npos) << spinning;
   EXPECT_NE(spinning.find("spin.angular_velocity = 0.3"), std::string::npos) << spinning;
 
+  // A Maxwell time shorter than the step (dt = 0.0056 t_grav on ocean-L3): the relax refuses it
+  // before it starts, one line naming the workflow and the key.
+  const CliResult quick = run_cli("run " + quoted(workflow_file("ocean-L3.toml")) + " --body-only --quiet --out " +
+                                  quoted(scratch.path / "quick") + " --set ocean.maxwell_time=0.002");
+  EXPECT_EQ(quick.exit_code, 2) << quick.err;
+  EXPECT_EQ(count_lines(quick.err), 1) << quick.err;
+  EXPECT_NE(quick.err.find(workflow_file("ocean-L3.toml").string() + ": ocean.maxwell_time = 0.002 t_grav is shorter"),
+            std::string::npos)
+      << quick.err;
+  EXPECT_FALSE(fs::exists(scratch.path / "quick" / "body" / "relax.h5"));
+
   // A liquid too soft for its own pressure: the stretch refuses it, one line, nothing relaxed.
   const CliResult soft = run_cli("run " + quoted(workflow_file("ocean-L3.toml")) + " --body-only --quiet --out " +
                                  quoted(scratch.path / "soft") + " --set ocean.bulk_modulus=0.01");
