@@ -353,10 +353,11 @@ TEST(MaxwellOcean, RelaxHandsTheSpringsRestingForcesToTheSupportAndResumesBitFor
           [](hid_t f) { overwrite_element(f, "/checkpoint/liquid/support", 22, std::nan("")); });
 }
 
-// Left alone, the relaxed Maxwell body stays at rest: the support holds what the springs held,
+// Left alone, the relaxed Maxwell body starts at rest: the support holds what the springs held,
 // and the creep has nothing to relax (its springs start unstrained). 2 t_grav at the encounter's
-// damping.
-TEST(MaxwellOcean, TheRelaxedBodyLeftAloneStaysAtRest) {
+// damping: an encounter's time, not more (over tens of t_grav the liquid's growing modes take
+// over, docs/ocean.md, "A Maxwell liquid").
+TEST(MaxwellOcean, TheRelaxedBodyLeftAloneStaysAtRestForTwoTgrav) {
   Checkpoint c = ocean_relaxed();
   c.body.liquid.maxwell_time = 0.2;
   set_liquid_support(c.body, c.state);
