@@ -1647,8 +1647,8 @@ def ocean(p):
 
 # The static tide of ocean-L3's floating shell on a Maxwell liquid (docs/ocean.md, "A Maxwell
 # liquid"): tau_M and the tide's duration, h2 and l2 against the fluid ocean's.
-MAXWELL_TIDES = [(0.05, 30), (0.05, 45), (0.05, 60), (0.05, 75), (0.05, 90), (0.02, 45), (0.2, 45), (0.2, 90),
-                 (1, 45)]
+MAXWELL_TIDES = [(3, 0.05, 30), (3, 0.05, 45), (3, 0.05, 60), (3, 0.05, 75), (3, 0.05, 90), (3, 0.02, 45),
+                 (3, 0.2, 45), (3, 0.2, 90), (3, 1, 45), (4, 0.05, 60), (4, 0.05, 90)]
 
 
 @full_table("ocean-maxwell")
@@ -1658,21 +1658,23 @@ def ocean_maxwell(p):
     correlation of the crust springs' strain with the fitted degree-2 pattern and the shell's rms
     azimuthal displacement per unit of the tide's (the crust following the tide, not the liquid
     wandering)."""
-    folder = lambda tau, d: f"ocean-L3-maxwell{tau:g}-d{d:g}"
-    done = [(t, d) for t, d in MAXWELL_TIDES if (p.work / folder(t, d) / "validate" / "validation.json").is_file()]
-    lines = commands(*[f"tidalcrust validate workflows/ocean-L3.toml --set ocean.maxwell_time={t:g} --measure tide "
-                       f"--tide-duration {d:g} --threads 1 --out {folder(t, d)}" for t, d in MAXWELL_TIDES])
-    lines += measured_line(p, *[p.work / folder(t, d) / "body" / "relax.h5" for t, d in done])
-    lines += validated_line(p, *[p.work / folder(t, d) / "validate" / "validation.json" for t, d in done])
+    folder = lambda level, tau, d: f"ocean-L{level}-maxwell{tau:g}-d{d:g}"
+    level_setting = lambda level: "" if level == 3 else f"--set resolution.shell_level={level} "
+    done = [r for r in MAXWELL_TIDES if (p.work / folder(*r) / "validate" / "validation.json").is_file()]
+    lines = commands(*[f"tidalcrust validate workflows/ocean-L3.toml --set ocean.maxwell_time={t:g} {level_setting(lv)}"
+                       f"--measure tide --tide-duration {d:g} --threads 1 --out {folder(lv, t, d)}"
+                       for lv, t, d in MAXWELL_TIDES])
+    lines += measured_line(p, *[p.work / folder(*r) / "body" / "relax.h5" for r in done])
+    lines += validated_line(p, *[p.work / folder(*r) / "validate" / "validation.json" for r in done])
     rows = []
-    for tau, duration in done:
-        v = p.load(p.work / folder(tau, duration) / "validate" / "validation.json")
+    for level, tau, duration in done:
+        v = p.load(p.work / folder(level, tau, duration) / "validate" / "validation.json")
         c, t = v["comparisons"], v["details"]["tide"]
         h, l = c["tide-fluid-ocean"], c["tide-l2-fluid-ocean"]
-        rows.append([f"{tau:g}", f"{duration:g}", fixed(h["measured"], 3), fixed(h["ratio"], 3),
+        rows.append([str(level), f"{tau:g}", f"{duration:g}", fixed(h["measured"], 3), fixed(h["ratio"], 3),
                      fixed(t["h2_at_two_thirds"] / h["theory"], 3), fixed(l["measured"], 3), fixed(l["ratio"], 3),
                      fixed(t["own_correlation"], 3), fixed(t["rms_azimuthal_displacement"], 3)])
-    lines += table(["tau_M [t_grav]", "tide [t_grav]", "h2", "h2 / fluid ocean", "h2 / fluid ocean at 2/3",
+    lines += table(["shell level", "tau_M [t_grav]", "tide [t_grav]", "h2", "h2 / fluid ocean", "h2 / fluid ocean at 2/3",
                     "l2", "l2 / fluid ocean", "crust strain vs own degree 2", "rms azimuthal"], rows)
     return lines
 
