@@ -7,7 +7,9 @@
 
 namespace tidalcrust {
 
-std::string likely_blow_up_cause(const Body& body, const State& state, double dt) {
+namespace {
+
+std::string time_step_cause(const Body& body, const State& state, double dt) {
   const double bound = derive_quantities(body, state, 1.0).dt_max;
   if (bound > 0 && dt > bound)
     return fmt::format("likely cause: dt = {:.4g} is larger than the stability bound of the stiffest spring "
@@ -23,6 +25,16 @@ std::string likely_blow_up_cause(const Body& body, const State& state, double dt
                      "a collapsing shell triangle (perturber too close or too massive, or failed springs) "
                      "or dt too close to the bound",
                      dt, bound);
+}
+
+}  // namespace
+
+std::string likely_blow_up_cause(const Body& body, const State& state, double dt) {
+  if (!state.liquid_support.empty())
+    return "likely cause: the Maxwell liquid's growing modes (ocean.maxwell_time: left alone, its body breaks "
+           "after tens of t_grav; docs/ocean.md, \"A Maxwell liquid\"); about the time step: " +
+           time_step_cause(body, state, dt);
+  return time_step_cause(body, state, dt);
 }
 
 }  // namespace tidalcrust
