@@ -182,10 +182,7 @@ Checkpoint begin_relax(const Checkpoint& stretched, const Config& config) {
   Checkpoint c = child_checkpoint(stretched, RelaxRecord{}, config);
   const StepClock& clock = c.stage.clock;
   // The Maxwell liquid creeps from the end of this stage on, by dt / tau_M a step (Leapfrog).
-  if (const double tau = c.body.liquid.maxwell_time; c.body.liquid.present() && tau > 0 && tau < clock.dt)
-    throw InputError(fmt::format("ocean.maxwell_time = {} t_grav is shorter than the time step dt = {} t_grav: the "
-                                 "liquid's creep needs tau_M >= dt",
-                                 tau, clock.dt));
+  maxwell_creep_rate(c.body, clock.dt);  // refuses a tau_M shorter than dt now, naming the workflow
   c.stage.end_step = c.state.step + steps_for_duration(config.relax.duration, clock.dt);
   auto& record = c.stage.as<RelaxRecord>();
   record.damping = config.relax.damping;

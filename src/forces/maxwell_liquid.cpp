@@ -1,5 +1,8 @@
 #include "forces/maxwell_liquid.hpp"
 
+#include <fmt/format.h>
+
+#include "base/errors.hpp"
 #include "base/invariant.hpp"
 #include "base/vec3.hpp"
 #include "forces/spring_force.hpp"
@@ -18,6 +21,16 @@ double length_of(const Body& body, const State& state, std::size_t s) {
 }
 
 }  // namespace
+
+double maxwell_creep_rate(const Body& body, double dt) {
+  const double tau = body.liquid.maxwell_time;
+  if (!body.liquid.present() || !(tau > 0)) return 0.0;
+  if (tau < dt)
+    throw InputError(fmt::format("ocean.maxwell_time = {} t_grav is shorter than the time step dt = {} t_grav: the "
+                                 "liquid's creep needs tau_M >= dt",
+                                 tau, dt));
+  return dt / tau;
+}
 
 void set_liquid_support(const Body& body, State& state) {
   TIDALCRUST_ASSERT(body.liquid.present(), "a liquid support needs a body with a liquid layer");

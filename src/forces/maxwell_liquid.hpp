@@ -17,6 +17,11 @@
 
 namespace tidalcrust {
 
+/// The creep fraction per step, dt / tau_M (in (0, 1]), of a body whose liquid is a Maxwell liquid;
+/// 0 for any other body. InputError naming ocean.maxwell_time when tau_M < dt (the explicit creep
+/// would overshoot). dt in t_grav.
+double maxwell_creep_rate(const Body& body, double dt);
+
 /// Sets State::liquid_support [N*3] to the elastic forces of the liquid springs at the state's
 /// positions (each spring's force on its two ends, springs in index order, no damping) and their
 /// rest lengths to their lengths: the accelerations stay those of the state (up to rounding), the

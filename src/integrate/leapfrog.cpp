@@ -18,13 +18,7 @@ Leapfrog::Leapfrog(ForceField& forces, StepClock clock) : forces_(forces), clock
   // The configuration's range and the checkpoint reader have checked it.
   TIDALCRUST_ASSERT(clock.dt > 0 && std::isfinite(clock.dt),
                     fmt::format("time step dt must be a finite number > 0, got {}", clock.dt));
-  if (const double tau = forces.body().liquid.maxwell_time; forces.body().liquid.present() && tau > 0) {
-    if (tau < clock.dt)
-      throw InputError(fmt::format("ocean.maxwell_time = {} t_grav is shorter than the time step dt = {} t_grav: the "
-                                   "liquid's creep needs tau_M >= dt",
-                                   tau, clock.dt));
-    creep_rate_ = clock.dt / tau;
-  }
+  creep_rate_ = maxwell_creep_rate(forces.body(), clock.dt);
 }
 
 void Leapfrog::step(State& state) {
